@@ -1,0 +1,33 @@
+#include "netlist/netlist.h"
+
+namespace lcs {
+
+const char* element_kind_name(ElementKind kind) {
+  switch (kind) {
+    case ElementKind::Resistor: return "resistor";
+    case ElementKind::Inductor: return "inductor";
+    case ElementKind::Capacitor: return "capacitor";
+    case ElementKind::Coupling: return "coupling";
+    case ElementKind::VoltageSource: return "voltage source";
+    case ElementKind::CurrentSource: return "current source";
+    case ElementKind::Diode: return "diode";
+  }
+  return "element";
+}
+
+std::string Probe::name() const {
+  switch (kind) {
+    case Kind::NodeVoltage: return "v(" + a + ")";
+    case Kind::NodePairVoltage: return "v(" + a + "," + b + ")";
+    case Kind::ElementCurrent: return "i(" + a + ")";
+  }
+  return a;
+}
+
+const Element* Netlist::find_element(const std::string& lower_name) const {
+  for (const Element& e : elements)
+    if (e.name == lower_name) return &e;
+  return nullptr;
+}
+
+}  // namespace lcs

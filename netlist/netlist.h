@@ -1,0 +1,97 @@
+// The parsed, flattened circuit: what the netlist reader hands to the graph and model stages.
+// Subcircuits are expanded, parameters substituted, names lower-cased (SPICE is case-insensitive).
+#pragma once
+
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "netlist/source_location.h"
+#include "netlist/waveform.h"
+
+namespace lcs {
+
+enum class ElementKind {
+  Resistor,       // R n+ n- value
+  Inductor,       // L n+ n- value [IC=i0]
+  Capacitor,      // C n+ n- value [IC=v0]
+  Coupling,       // K L1 L2 k         (no nodes)
+  VoltageSource,  // V n+ n- waveform
+  CurrentSource,  // I n+ n- waveform  (current flows n+ -> through source -> n-)
+  Diode,          // D anode cathode model
+};
+
+const char* element_kind_name(ElementKind kind);  // "resistor", "inductor", ...
+
+struct Element {
+  ElementKind kind = ElementKind::Resistor;
+  // Lower-case name as written ("r1"), prefixed by the instance path inside subcircuits
+  // ("x1.r1", "x2.x1.d3"). Unique within a Netlist.
+  std::string name;
+  // Lower-case node names; ground is always "0" ("gnd" is mapped to "0"). Nodes inside a
+  // subcircuit instance that are not ports are prefixed like names ("x1.mid").
+  std::vector<std::string> nodes;
+  double value = 0.0;                  // R [ohm], L [H], C [F]; K: coupling coefficient k
+  std::optional<double> ic;            // IC= of L (current) and C (voltage)
+  Waveform waveform;                   // V and I
+  std::string model;                   // D: model name, lower-case
+  std::vector<std::string> coupled;    // K: the two inductor names (lower-case, full path)
+  SourceLocation loc;                  // the card (for subcircuit elements: the card inside .subckt)
+};
+
+struct DiodeModel {
+  std::string name;                    // lower-case
+  std::optional<double> von, ron;      // ideal (piecewise-linear) parameters as written
+  double is = 1e-14, n = 1.0, rs = 0.0;  // smooth (Shockley, ngspice level 1) parameters
+  bool has_is = false, has_n = false, has_rs = false;  // which smooth ones were written
+  std::vector<std::string> ignored;    // accepted ngspice parameters unused by lcspice (cjo, tt, bv, ...)
+  SourceLocation loc;
+};
+
+struct TranSpec {
+  double tstep = 0, tstop = 0, tstart = 0, tmax = 0;  // tmax 0: not given
+  bool uic = false;
+  SourceLocation loc;
+};
+
+struct NodeIc {                        // one entry of `.ic v(node)=value`
+  std::string node;                    // lower-case, "0" for ground
+  double value = 0;
+  SourceLocation loc;
+};
+
+struct Probe {
+  enum class Kind { NodeVoltage, NodePairVoltage, ElementCurrent };
+  Kind kind = Kind::NodeVoltage;
+  std::string a, b;                    // nodes (a, b) or element name (a); lower-case
+  SourceLocation loc;                  // empty file when it came from the command line
+  std::string name() const;            // canonical CSV header: "v(n)", "v(p,n)", "i(d1)"
+};
+
+// Parses one probe as written in `.print`/`.save`/`--probe`: v(n), v(n1,n2), i(name).
+// Throws NetlistError (with `loc` adjusted by the column offset inside `text`).
+Probe parse_probe(const std::string& text, const SourceLocation& loc);
+
+struct Netlist {
+  std::string file;                    // path of the top-level file as given
+  std::string title;                   // first line, as written
+  std::vector<Element> elements;       // in card order, subcircuits expanded in place
+  std::map<std::string, DiodeModel> diode_models;  // by lower-case name
+  std::optional<TranSpec> tran;
+  std::vector<NodeIc> node_ics;
+  std::vector<Probe> probes;           // `.print tran` and `.save`, in order, duplicates removed
+  std::map<std::string, std::string> options;  // `.options` name (lower-case) -> value text ("" for flags)
+  std::map<std::string, SourceLocation> option_locs;
+  std::vector<std::string> warnings;   // formatted "FILE:LINE:COL: warning: ..." lines
+
+  const Element* find_element(const std::string& lower_name) const;
+};
+
+// Reads and flattens a netlist. Throws NetlistError for every problem in the input (syntax,
+// unknown model, duplicate names, unsupported card, unreadable .include file, ...).
+// A file that cannot be opened at the top level throws FileError (a usage error, exit 1).
+Netlist parse_netlist_file(const std::string& path);
+Netlist parse_netlist_string(const std::string& text, const std::string& file_name);
+
+}  // namespace lcs

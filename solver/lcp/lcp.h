@@ -1,0 +1,75 @@
+// Linear complementarity problems: find z with 0 <= z  ⟂  w = M z + q >= 0   (Stewart 2.2).
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <Eigen/Dense>
+
+namespace lcs {
+
+enum class LcpStatus {
+  Solved,
+  RayTermination,   // Lemke ended on an unbounded ray: no solution (M copositive-plus) or M outside
+                    // the classes Lemke handles
+  IterationLimit,
+};
+const char* lcp_status_name(LcpStatus s);
+
+struct LemkeOptions {
+  int max_pivots = 0;          // 0: 50 * (n + 1)
+  double pivot_tol = 1e-12;    // |entry| below this (relative to the column's scale) is not a pivot
+  double feas_tol = 1e-10;     // accepted complementarity residual (relative to |q|, |M|), see residual
+};
+
+struct LcpSolution {
+  LcpStatus status = LcpStatus::Solved;
+  Eigen::VectorXd z, w;        // w = M z + q
+  int pivots = 0;              // Lemke pivots spent (0 for the warm path)
+};
+
+// Lemke's complementary pivoting with covering vector d = (1,...,1) and lexicographic
+// degeneracy resolution (2.2.1): never cycles. For q >= 0 returns z = 0 without pivoting.
+LcpSolution solve_lemke(const Eigen::MatrixXd& M, const Eigen::VectorXd& q,
+                        const LemkeOptions& options = {});
+
+// Natural residual max_i |min(z_i, w_i)| together with max(0, -z_i, -w_i): zero iff z solves
+// LCP(q, M) exactly; the number every test and debug check compares against a tolerance.
+double lcp_residual(const Eigen::MatrixXd& M, const Eigen::VectorXd& q, const Eigen::VectorXd& z);
+
+// Every solution of LCP(q, M), by enumerating active sets (n <= 24). Distinct solutions only
+// (within a relative 1e-9), sorted lexicographically by z. Used by `op --all`.
+std::vector<Eigen::VectorXd> enumerate_lcp_solutions(const Eigen::MatrixXd& M,
+                                                     const Eigen::VectorXd& q);
+
+struct LcpWarmStats {
+  long solves = 0;             // calls to solve()
+  long warm_hits = 0;          // answered by the previous active set (one solve + sign check)
+  long lemke_calls = 0;
+  long lemke_pivots = 0;
+};
+
+// For a fixed matrix M and a sequence of q (one per time step): first tries the previous
+// solution's active set J = {i : z_i > 0} -- solve M_JJ z_J = -q_J, accept if z_J >= 0 and
+// w >= 0 within tolerance -- and falls back to Lemke. Factorisations of M_JJ are cached per
+// active set (n <= 64), so a periodic circuit factorises each mode once.
+class LcpWarmSolver {
+ public:
+  explicit LcpWarmSolver(Eigen::MatrixXd M, LemkeOptions options = {});
+  const LcpSolution& solve(const Eigen::VectorXd& q);
+  const LcpWarmStats& stats() const { return stats_; }
+  const Eigen::MatrixXd& matrix() const { return M_; }
+
+ private:
+  struct Impl;
+  Eigen::MatrixXd M_;
+  LemkeOptions options_;
+  LcpWarmStats stats_;
+  LcpSolution last_;
+  std::uint64_t active_ = 0;   // bitmask of the last active set
+  std::shared_ptr<Impl> impl_; // factorisation cache
+};
+
+}  // namespace lcs
