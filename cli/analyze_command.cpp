@@ -1,0 +1,179 @@
+// `lcspice analyze`: the normal tree, fundamental loops, the pair type and C/R/L class of every
+// diode (5.4.4), the components of H and the quotient G/H (5.4.6), the LCS dimensions and index.
+#include <cstdio>
+#include <sstream>
+
+#include "cli/commands.h"
+#include "cli/exit_codes.h"
+#include "cli/load_circuit.h"
+#include "graph/components.h"
+#include "graph/diode_classes.h"
+#include "solver/model/lcs_index.h"
+
+namespace lcs {
+
+namespace {
+
+std::string json_string(const std::string& s) {
+  std::string out = "\"";
+  for (char c : s) {
+    if (c == '"' || c == '\\') out += '\\';
+    if (static_cast<unsigned char>(c) < 0x20) {
+      char buf[8];
+      std::snprintf(buf, sizeof buf, "\\u%04x", c);
+      out += buf;
+      continue;
+    }
+    out += c;
+  }
+  return out + "\"";
+}
+
+std::string number(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.12g", v);
+  return buf;
+}
+
+std::string loop_text(const CircuitGraph& g, const std::vector<LoopTerm>& loop) {
+  std::string s;
+  for (const LoopTerm& t : loop) s += (s.empty() ? "" : " ") + std::string(t.sign > 0 ? "+" : "-") + g.branches[t.branch].name;
+  return s;
+}
+
+struct Report {
+  const CircuitModel& model;
+  NodePartition h;
+  std::vector<DiodeClass> classes;
+  LcsIndex index;
+  std::vector<std::string> warnings;
+};
+
+std::string class_of(const Report& r, int branch) {
+  for (const DiodeClass& c : r.classes)
+    if (c.branch == branch) return std::string(1, c.cls);
+  return "?";
+}
+
+bool joins(const Report& r, int branch) {
+  for (const DiodeClass& c : r.classes)
+    if (c.branch == branch) return c.joins_h_components;
+  return false;
+}
+
+void print_text(const Report& r) {
+  const CircuitModel& m = r.model;
+  const CircuitGraph& g = m.graph();
+  const SpanningTree& t = m.tree();
+  const Lcs& s = m.lcs();
+  std::printf("circuit: %s\n", m.netlist().title.c_str());
+  std::printf("nodes: %zu (ground 0), branches: %zu\n\n", g.nodes.size(), g.branches.size());
+  std::printf("normal tree (Kruskal, V < C < R < D < L < I), %zu branches:\n", t.tree.size());
+  for (int b : t.tree)
+    std::printf("  %-10s %s  %s -> %s\n", g.branches[b].name.c_str(), branch_class_name(g.branches[b].cls),
+                g.nodes[g.branches[b].from].c_str(), g.nodes[g.branches[b].to].c_str());
+  std::printf("\nlinks and their fundamental loops (5.34), %zu:\n", t.links.size());
+  for (size_t j = 0; j < t.links.size(); ++j)
+    std::printf("  %-10s %s  loop: %s\n", g.branches[t.links[j]].name.c_str(),
+                branch_class_name(g.branches[t.links[j]].cls), loop_text(g, t.loops[j]).c_str());
+
+  std::printf("\nH (circuit without diodes and current sources): %d component%s\n", r.h.count,
+              r.h.count == 1 ? "" : "s");
+  for (int c = 0; c < r.h.count && r.h.count > 1; ++c) {
+    std::string nodes;
+    for (size_t n = 0; n < g.nodes.size(); ++n)
+      if (r.h.component[n] == c) nodes += (nodes.empty() ? "" : ", ") + g.nodes[n];
+    std::printf("  H%d: {%s}\n", c + 1, nodes.c_str());
+  }
+  if (r.h.count > 1) {
+    std::string tree_diodes;
+    for (int b : t.tree)
+      if (g.branches[b].cls == BranchClass::Diode && joins(r, b)) tree_diodes += (tree_diodes.empty() ? "" : ", ") + g.branches[b].name;
+    std::printf("  quotient G/H: %d nodes; tree diodes spanning it (5.4.6): %s\n", r.h.count,
+                tree_diodes.c_str());
+  }
+
+  std::printf("\ndiodes (%zu):\n", m.pairs().size());
+  std::printf("  %-10s %-8s %-5s %-14s %s\n", "name", "pair", "class", "index (Gk_ii)", "law");
+  for (size_t k = 0; k < m.pairs().size(); ++k) {
+    const PairInfo& p = m.pairs()[k];
+    std::string law = "VON=" + number(p.law.von) + " V RON=" + number(p.law.ron) + " ohm";
+    if (p.fitted) law += " (fitted to Shockley IS/N/RS)";
+    std::printf("  %-10s %-8s %-5s %-14d %s%s\n", g.branches[p.branch].name.c_str(),
+                p.voltage_type ? "voltage" : "current", class_of(r, p.branch).c_str(),
+                r.index.pair_index[k], law.c_str(), joins(r, p.branch) ? "  [joins H components]" : "");
+  }
+
+  std::printf("\nLCS: dx/dt = A x + B z + E u,  w = C x + D z + F u,  0 <= w _|_ z >= 0\n");
+  std::printf("  states n = %d:", s.states());
+  for (const StateInfo& st : m.states()) std::printf(" %s", st.label.c_str());
+  std::printf("\n  pairs m = %d, inputs = %d (u0 = 1 carries VON)", s.pairs(), s.inputs());
+  for (size_t k = 1; k < m.inputs().size(); ++k) std::printf(", %s", m.inputs()[k].label.c_str());
+  std::printf("\n");
+  if (s.Gamma.size() > 0 && s.Gamma.cwiseAbs().maxCoeff() > 0)
+    std::printf("  state shift: x = x_phys - Gamma u (capacitor/source loops or inductor/source cutsets)\n");
+  const char* names[] = {"D", "CB", "CAB"};
+  for (size_t k = 0; k < r.index.markov.size(); ++k) {
+    std::ostringstream os;
+    os << r.index.markov[k].format(Eigen::IOFormat(6, 0, " ", "\n", "    [", "]"));
+    std::printf("  Markov parameter %s:\n%s\n", names[k], os.str().c_str());
+  }
+  if (r.index.index >= 0) std::printf("  index: %d\n", r.index.index);
+  else std::printf("  index: undefined (G(s) singular for large s)\n");
+  for (const std::string& w : r.warnings) std::printf("warning: %s\n", w.c_str());
+}
+
+void print_json(const Report& r) {
+  const CircuitModel& m = r.model;
+  const CircuitGraph& g = m.graph();
+  const SpanningTree& t = m.tree();
+  const Lcs& s = m.lcs();
+  std::ostringstream o;
+  o << "{\n  \"title\": " << json_string(m.netlist().title) << ",\n  \"nodes\": [";
+  for (size_t n = 0; n < g.nodes.size(); ++n) o << (n ? ", " : "") << json_string(g.nodes[n]);
+  o << "],\n  \"tree\": [";
+  for (size_t k = 0; k < t.tree.size(); ++k) o << (k ? ", " : "") << json_string(g.branches[t.tree[k]].name);
+  o << "],\n  \"links\": [";
+  for (size_t j = 0; j < t.links.size(); ++j) {
+    o << (j ? ",\n" : "\n") << "    {\"name\": " << json_string(g.branches[t.links[j]].name) << ", \"loop\": [";
+    for (size_t k = 0; k < t.loops[j].size(); ++k)
+      o << (k ? ", " : "") << "{\"branch\": " << json_string(g.branches[t.loops[j][k].branch].name)
+        << ", \"sign\": " << t.loops[j][k].sign << "}";
+    o << "]}";
+  }
+  o << "\n  ],\n  \"h_components\": " << r.h.count << ",\n  \"diodes\": [";
+  for (size_t k = 0; k < m.pairs().size(); ++k) {
+    const PairInfo& p = m.pairs()[k];
+    o << (k ? ",\n" : "\n") << "    {\"name\": " << json_string(g.branches[p.branch].name)
+      << ", \"pair\": " << json_string(p.voltage_type ? "voltage" : "current")
+      << ", \"class\": " << json_string(class_of(r, p.branch)) << ", \"index\": " << r.index.pair_index[k]
+      << ", \"von\": " << number(p.law.von) << ", \"ron\": " << number(p.law.ron)
+      << ", \"fitted\": " << (p.fitted ? "true" : "false")
+      << ", \"joins_h_components\": " << (joins(r, p.branch) ? "true" : "false") << "}";
+  }
+  o << "\n  ],\n  \"lcs\": {\"states\": " << s.states() << ", \"pairs\": " << s.pairs()
+    << ", \"inputs\": " << s.inputs() << ", \"index\": " << r.index.index << ", \"state_labels\": [";
+  for (size_t k = 0; k < m.states().size(); ++k) o << (k ? ", " : "") << json_string(m.states()[k].label);
+  o << "]},\n  \"warnings\": [";
+  for (size_t k = 0; k < r.warnings.size(); ++k) o << (k ? ", " : "") << json_string(r.warnings[k]);
+  o << "]\n}\n";
+  std::fputs(o.str().c_str(), stdout);
+}
+
+}  // namespace
+
+int analyze_command(const AnalyzeArgs& args) {
+  Netlist netlist = load_netlist(args.netlist);
+  const double t1 = netlist.tran ? netlist.tran->tstop : 0.0;
+  CircuitModel model = build_model(netlist, 0.0, t1);
+  Report r{model, h_components(model.graph()), classify_diodes(model.graph()), lcs_index(model.lcs()), {}};
+  for (const Element& el : netlist.elements)
+    if (el.kind == ElementKind::Diode)
+      for (const std::string& p : netlist.diode_models.at(el.model).ignored)
+        r.warnings.push_back("diode " + el.name + ": model parameter " + p + " is ignored by the ideal model");
+  if (args.json) print_json(r);
+  else print_text(r);
+  return kExitOk;
+}
+
+}  // namespace lcs

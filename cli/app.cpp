@@ -1,0 +1,68 @@
+#include "cli/app.h"
+
+#include <iostream>
+
+#include <CLI/CLI.hpp>
+
+#include "cli/commands.h"
+#include "cli/exit_codes.h"
+#include "solver/integrators/method_registry.h"
+
+namespace lcs {
+
+int run_cli(int argc, char** argv) {
+  CLI::App app{"lcspice: circuits of ideal diodes as linear complementarity systems"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", "lcspice 0.1.0");
+
+  RunArgs run;
+  CLI::App* run_cmd = app.add_subcommand("run", "transient simulation; writes waveform CSV");
+  run_cmd->add_option("netlist", run.netlist, "netlist file")->required();
+  run_cmd->add_option("-o", run.output, "CSV path ('-' or absent: standard output)");
+  run_cmd->add_option("--method", run.method, "integration method: " + method_names());
+  run_cmd->add_option("--theta", run.theta, "theta of --method theta (default 0.5)");
+  run_cmd->add_option("--step", run.step, "fixed step (default: the .tran TSTEP)");
+  run_cmd->add_option("--tstop", run.tstop, "overrides the .tran TSTOP");
+  run_cmd->add_option("--probe", run.probes, "comma-separated probes, overrides .print/.save");
+  run_cmd->add_option("--diode", run.diode, "diode model: ideal (complementarity with VON/RON)");
+  run_cmd->add_flag("--stats", run.stats, "print a run summary to standard error");
+
+  OpArgs op;
+  CLI::App* op_cmd = app.add_subcommand("op", "DC operating point at t = 0");
+  op_cmd->add_option("netlist", op.netlist, "netlist file")->required();
+  op_cmd->add_flag("--all", op.all, "every solution of the static complementarity problem");
+
+  AnalyzeArgs analyze;
+  CLI::App* analyze_cmd =
+      app.add_subcommand("analyze", "spanning tree, loops, diode classes, LCS dimensions and index");
+  analyze_cmd->add_option("netlist", analyze.netlist, "netlist file")->required();
+  analyze_cmd->add_flag("--json", analyze.json, "machine-readable report");
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::Success& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    app.exit(e);
+    return kExitUsage;
+  }
+
+  try {
+    if (run_cmd->parsed()) return run_command(run);
+    if (op_cmd->parsed()) return op_command(op);
+    if (analyze_cmd->parsed()) return analyze_command(analyze);
+  } catch (const CliError& e) {
+    std::cerr << e.what() << "\n";
+    return e.code();
+  } catch (const std::exception& e) {
+    std::cerr << "lcspice: internal error: " << e.what() << "\n";
+    return kExitNumerical;
+  }
+  return kExitUsage;
+}
+
+}  // namespace lcs

@@ -1,0 +1,73 @@
+#include "cli/csv_writer.h"
+
+#include <cerrno>
+#include <cstring>
+#include <unistd.h>
+
+#include "cli/exit_codes.h"
+
+namespace lcs {
+
+std::string csv_quote(const std::string& field) {
+  if (field.find_first_of(",\"\r\n") == std::string::npos) return field;
+  std::string out = "\"";
+  for (char c : field) {
+    if (c == '"') out += '"';
+    out += c;
+  }
+  return out + "\"";
+}
+
+CsvSink::CsvSink(std::string path) : path_(std::move(path)) {
+  if (path_.empty() || path_ == "-") {
+    to_stdout_ = true;
+    out_ = stdout;
+    return;
+  }
+  std::string templ = path_ + ".tmp-XXXXXX";
+  int fd = mkstemp(templ.data());
+  if (fd < 0)
+    throw CliError(kExitUsage, "error: cannot write '" + path_ + "': " + std::strerror(errno));
+  temp_path_ = templ;
+  out_ = fdopen(fd, "w");
+}
+
+CsvSink::~CsvSink() {
+  if (!to_stdout_ && !finished_ && out_) {
+    std::fclose(out_);
+    std::remove(temp_path_.c_str());
+  }
+}
+
+void CsvSink::begin(const std::vector<std::string>& names) {
+  std::fputs("time", out_);
+  for (const std::string& n : names) {
+    std::fputc(',', out_);
+    std::fputs(csv_quote(n).c_str(), out_);
+  }
+  std::fputc('\n', out_);
+}
+
+void CsvSink::row(double t, const Eigen::VectorXd& values) {
+  std::fprintf(out_, "%.14e", t);
+  for (int k = 0; k < values.size(); ++k) std::fprintf(out_, ",%.14e", values(k));
+  std::fputc('\n', out_);
+}
+
+void CsvSink::finish() {
+  if (finished_) return;
+  finished_ = true;
+  if (to_stdout_) {
+    std::fflush(out_);
+    return;
+  }
+  const bool ok = std::fflush(out_) == 0 && fsync(fileno(out_)) == 0;
+  std::fclose(out_);
+  out_ = nullptr;
+  if (!ok || std::rename(temp_path_.c_str(), path_.c_str()) != 0) {
+    std::remove(temp_path_.c_str());
+    throw CliError(kExitUsage, "error: cannot write '" + path_ + "': " + std::strerror(errno));
+  }
+}
+
+}  // namespace lcs

@@ -1,0 +1,30 @@
+// Waveform CSV (SPEC §3): header `time,<probe>,...`, RFC 4180 quoting, one row per output time,
+// 15 significant digits. A file is written to a temporary name beside it and renamed into place
+// by finish(), so a reader never sees a torn file.
+#pragma once
+
+#include <cstdio>
+#include <string>
+
+#include "solver/integrators/output_sink.h"
+
+namespace lcs {
+
+class CsvSink : public OutputSink {
+ public:
+  explicit CsvSink(std::string path);  // "-" or "": standard output. Throws CliError (exit 1).
+  ~CsvSink() override;                 // removes the temporary file if finish() never ran
+  void begin(const std::vector<std::string>& names) override;
+  void row(double t, const Eigen::VectorXd& values) override;
+  void finish() override;
+  const std::string& path() const { return path_; }
+
+ private:
+  std::string path_, temp_path_;
+  std::FILE* out_ = nullptr;
+  bool to_stdout_ = false, finished_ = false;
+};
+
+std::string csv_quote(const std::string& field);
+
+}  // namespace lcs

@@ -1,0 +1,24 @@
+// Reading a netlist and forming its model, with input errors turned into CLI errors.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "netlist/netlist.h"
+#include "solver/model/circuit_model.h"
+
+namespace lcs {
+
+// FileError -> exit 1; NetlistError -> exit 2. Prints the netlist's warnings to stderr.
+Netlist load_netlist(const std::string& path);
+// TopologyError / NetlistError -> exit 2. [t0, t1] is the interval the sources are checked over.
+CircuitModel build_model(const Netlist& netlist, double t0, double t1);
+// Probes from a `--probe` list ("v(a),v(p,n),i(d1)": commas inside parentheses belong to a probe).
+std::vector<Probe> parse_probe_list(const std::string& list);
+// The netlist's probes, else the model's defaults.
+std::vector<Probe> probes_for(const Netlist& netlist, const CircuitModel& model,
+                              const std::string& cli_list);
+OutputMap output_map_or_exit(const CircuitModel& model, const std::vector<Probe>& probes);
+void warn(const std::string& text);  // "lcspice: warning: ..." on stderr
+
+}  // namespace lcs

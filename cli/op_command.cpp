@@ -1,0 +1,56 @@
+#include <cstdio>
+#include <iostream>
+
+#include "cli/commands.h"
+#include "cli/exit_codes.h"
+#include "cli/load_circuit.h"
+#include "solver/model/numerical_failure.h"
+#include "solver/model/operating_point.h"
+
+namespace lcs {
+
+namespace {
+
+void print_point(const CircuitModel& model, const OperatingPoint& op) {
+  const CircuitGraph& g = model.graph();
+  auto line = [](const std::string& name, double value, const char* note = "") {
+    std::printf("  %-16s = %22.14e%s\n", name.c_str(), value, note);
+  };
+  for (size_t n = 1; n < g.nodes.size(); ++n)
+    line("v(" + g.nodes[n] + ")", model.evaluate(model.node_voltage(n), op.x, op.z, 0.0));
+  for (size_t b = 0; b < g.branches.size(); ++b) {
+    const double i = model.evaluate(model.branch_current(b), op.x, op.z, 0.0);
+    const char* note = "";
+    if (g.branches[b].cls == BranchClass::Diode) {
+      note = i > 0 ? "   (on)" : "   (off)";
+    }
+    line("i(" + g.branches[b].name + ")", i, note);
+  }
+}
+
+}  // namespace
+
+int op_command(const OpArgs& args) {
+  Netlist netlist = load_netlist(args.netlist);
+  CircuitModel model = build_model(netlist, 0.0, 0.0);
+  std::vector<OperatingPoint> points;
+  try {
+    if (args.all) points = enumerate_operating_points(model, 0.0);
+    else points.push_back(solve_operating_point(model, 0.0));
+  } catch (const NumericalFailure& e) {
+    throw CliError(kExitNumerical, std::string("lcspice: error: ") + e.what());
+  }
+  if (points.empty())
+    throw CliError(kExitNumerical, "lcspice: error: the operating point has no solution");
+  for (const std::string& s : points.front().undetermined)
+    warn("no DC path for " + s + ": its operating-point value comes from a 1e-9 relative leak");
+  std::printf("* operating point at t = 0: %s\n", netlist.title.c_str());
+  if (args.all) std::printf("* %zu solution%s\n", points.size(), points.size() == 1 ? "" : "s");
+  for (size_t k = 0; k < points.size(); ++k) {
+    if (args.all) std::printf("solution %zu:\n", k + 1);
+    print_point(model, points[k]);
+  }
+  return kExitOk;
+}
+
+}  // namespace lcs

@@ -1,0 +1,88 @@
+#include <iostream>
+
+#include "cli/commands.h"
+#include "cli/csv_writer.h"
+#include "cli/exit_codes.h"
+#include "cli/load_circuit.h"
+#include "solver/integrators/transient.h"
+#include "solver/model/numerical_failure.h"
+
+namespace lcs {
+
+namespace {
+
+// `.options method=` accepts the registry's names and ngspice's trap (theta 0.5).
+void apply_method_option(const Netlist& netlist, TransientOptions& options) {
+  auto it = netlist.options.find("method");
+  if (it == netlist.options.end()) return;
+  const std::string& m = it->second;
+  if (find_method(m)) {
+    options.method = m;
+  } else if (m == "trap" || m == "trapezoidal") {
+    options.method = "theta";
+    options.method_options.theta = 0.5;
+  } else if (m == "gear") {
+    warn(".options method=gear: lcspice has no Gear method; using implicit Euler (euler)");
+  } else {
+    throw CliError(kExitNetlist, format_diagnostic(netlist.option_locs.at("method"), "error",
+                                                   "unknown method '" + m + "' (known: " +
+                                                       method_names() + ", trap)"));
+  }
+}
+
+}  // namespace
+
+int run_command(const RunArgs& args) {
+  Netlist netlist = load_netlist(args.netlist);
+  TransientOptions options;
+  apply_method_option(netlist, options);
+  if (auto it = netlist.options.find("theta"); it != netlist.options.end() && !it->second.empty())
+    options.method_options.theta = std::stod(it->second);
+  if (!args.method.empty()) {
+    if (!find_method(args.method))
+      throw CliError(kExitUsage, "error: unknown method '" + args.method + "' (known: " +
+                                     method_names() + ")");
+    options.method = args.method;
+  }
+  if (args.theta) options.method_options.theta = *args.theta;
+  if (args.diode != "ideal")
+    throw CliError(kExitUsage, "error: unknown diode model '" + args.diode + "' (known: ideal)");
+
+  if (!netlist.tran && !(args.step && args.tstop)) {
+    SourceLocation file_only;
+    file_only.file = netlist.file;
+    throw CliError(kExitNetlist, format_diagnostic(file_only, "error",
+                                                   "no .tran card: nothing to simulate (add "
+                                                   ".tran TSTEP TSTOP, or give --step and --tstop)"));
+  }
+  if (netlist.tran) {
+    const TranSpec& tran = *netlist.tran;
+    options.step = tran.tmax > 0 ? std::min(tran.tstep, tran.tmax) : tran.tstep;
+    options.tstop = tran.tstop;
+    options.tstart = tran.tstart;
+    options.uic = tran.uic;
+  }
+  if (args.step) options.step = *args.step;
+  if (args.tstop) options.tstop = *args.tstop;
+  std::string why;
+  if (!options.IsValid(&why)) throw CliError(kExitUsage, "error: " + why);
+
+  CircuitModel model = build_model(netlist, 0.0, options.tstop);
+  OutputMap outputs = output_map_or_exit(model, probes_for(netlist, model, args.probes));
+  CsvSink sink(args.output);
+  try {
+    TransientSummary summary = run_transient(model, outputs, options, sink);
+    for (const std::string& w : summary.warnings) warn(w);
+    if (args.stats) std::cerr << summary.BriefReport() << "\n";
+    if (!sink.path().empty() && sink.path() != "-")
+      std::cerr << "lcspice: wrote " << summary.rows << " rows to " << sink.path() << "\n";
+  } catch (const NumericalFailure& e) {
+    throw CliError(kExitNumerical, std::string("lcspice: error: numerical failure ") + e.what() +
+                                       (sink.path().empty() || sink.path() == "-"
+                                            ? ""
+                                            : "; rows computed so far are in " + sink.path()));
+  }
+  return kExitOk;
+}
+
+}  // namespace lcs

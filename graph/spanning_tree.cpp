@@ -1,0 +1,116 @@
+#include "graph/spanning_tree.h"
+
+#include <algorithm>
+#include <deque>
+#include <iterator>
+#include <stdexcept>
+
+#include <boost/graph/adjacency_list.hpp>
+#include <boost/graph/kruskal_min_spanning_tree.hpp>
+
+namespace lcs {
+
+namespace {
+
+using WeightProperty = boost::property<boost::edge_weight_t, double,
+                                       boost::property<boost::edge_index_t, int>>;
+using UndirectedGraph = boost::adjacency_list<boost::vecS, boost::vecS, boost::undirectedS,
+                                              boost::no_property, WeightProperty>;
+
+// Walking from node `from` to node `to` over branch b: +1 when that is b's n+ -> n- direction.
+int traversal_sign(const Branch& b, int from) { return b.from == from ? +1 : -1; }
+
+}  // namespace
+
+SpanningTree build_normal_tree(const CircuitGraph& graph) {
+  const int n_nodes = static_cast<int>(graph.nodes.size());
+  const int n_branches = static_cast<int>(graph.branches.size());
+
+  UndirectedGraph g(n_nodes);
+  for (int b = 0; b < n_branches; ++b) {
+    const Branch& br = graph.branches[b];
+    // Class dominates; the card order breaks ties so that the tree is deterministic.
+    double weight = static_cast<double>(br.cls) * 1e7 + b;
+    boost::add_edge(br.from, br.to, WeightProperty(weight, b), g);
+  }
+  std::vector<boost::graph_traits<UndirectedGraph>::edge_descriptor> tree_edges;
+  boost::kruskal_minimum_spanning_tree(g, std::back_inserter(tree_edges));
+  if (static_cast<int>(tree_edges.size()) != n_nodes - 1)
+    throw std::logic_error("build_normal_tree: circuit graph is not connected");
+
+  SpanningTree t;
+  t.in_tree.assign(n_branches, false);
+  auto index = boost::get(boost::edge_index, g);
+  for (auto e : tree_edges) t.in_tree[index[e]] = true;
+  t.position.assign(n_branches, -1);
+  for (int b = 0; b < n_branches; ++b) {
+    auto& list = t.in_tree[b] ? t.tree : t.links;
+    t.position[b] = static_cast<int>(list.size());
+    list.push_back(b);
+  }
+
+  // Root the tree at ground: parent node, the branch to it, depth.
+  std::vector<std::vector<int>> adjacent(n_nodes);
+  for (int b : t.tree) {
+    adjacent[graph.branches[b].from].push_back(b);
+    adjacent[graph.branches[b].to].push_back(b);
+  }
+  std::vector<int> parent(n_nodes, -1), parent_branch(n_nodes, -1), depth(n_nodes, 0);
+  std::vector<bool> seen(n_nodes, false);
+  std::deque<int> queue{0};
+  seen[0] = true;
+  while (!queue.empty()) {
+    int u = queue.front();
+    queue.pop_front();
+    for (int b : adjacent[u]) {
+      const Branch& br = graph.branches[b];
+      int v = br.from == u ? br.to : br.from;
+      if (seen[v]) continue;
+      seen[v] = true;
+      parent[v] = u;
+      parent_branch[v] = b;
+      depth[v] = depth[u] + 1;
+      queue.push_back(v);
+    }
+  }
+
+  t.node_paths.assign(n_nodes, {});
+  for (int v = 1; v < n_nodes; ++v) {
+    std::vector<LoopTerm> path;
+    for (int c = v; c != 0; c = parent[c]) {
+      const Branch& br = graph.branches[parent_branch[c]];
+      // Going down from parent[c] to c raises the potential by v(c) - v(parent[c]).
+      path.push_back({parent_branch[c], br.from == c ? +1 : -1});
+    }
+    std::reverse(path.begin(), path.end());
+    t.node_paths[v] = std::move(path);
+  }
+
+  // Fundamental loop of link e (a = n+, b = n-): a -e-> b, then back from b to a in the tree.
+  t.B = Eigen::MatrixXd::Zero(static_cast<int>(t.tree.size()), static_cast<int>(t.links.size()));
+  t.loops.resize(t.links.size());
+  for (int j = 0; j < static_cast<int>(t.links.size()); ++j) {
+    const int e = t.links[j];
+    const Branch& link = graph.branches[e];
+    std::vector<LoopTerm> up_from_b, up_from_a;
+    int x = link.to, y = link.from;
+    while (x != y) {
+      if (depth[x] >= depth[y]) {  // climb from the b side: traversed child -> parent
+        up_from_b.push_back({parent_branch[x], traversal_sign(graph.branches[parent_branch[x]], x)});
+        x = parent[x];
+      } else {  // climb from the a side; later traversed parent -> child, so flip the sign
+        up_from_a.push_back(
+            {parent_branch[y], -traversal_sign(graph.branches[parent_branch[y]], y)});
+        y = parent[y];
+      }
+    }
+    std::vector<LoopTerm> loop{{e, +1}};
+    loop.insert(loop.end(), up_from_b.begin(), up_from_b.end());
+    loop.insert(loop.end(), up_from_a.rbegin(), up_from_a.rend());
+    for (size_t k = 1; k < loop.size(); ++k) t.B(t.position[loop[k].branch], j) = loop[k].sign;
+    t.loops[j] = std::move(loop);
+  }
+  return t;
+}
+
+}  // namespace lcs

@@ -1,0 +1,38 @@
+// Normal spanning tree and fundamental loops (Stewart 5.4.1, eq. 5.34).
+#pragma once
+
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "graph/circuit_graph.h"
+
+namespace lcs {
+
+struct LoopTerm {
+  int branch = -1;
+  int sign = 0;  // +1: traversed n+ -> n- along the loop; -1: against it
+};
+
+struct SpanningTree {
+  std::vector<bool> in_tree;   // per branch
+  std::vector<int> tree;       // tree branches, in branch order
+  std::vector<int> links;      // link (co-tree) branches, in branch order
+  std::vector<int> position;   // branch -> its index in `tree` or in `links`
+  // b_{f,e} of (5.34): rows are tree branches, columns links. KCL: i_tree = B i_link;
+  // KVL: v_link = -B^T v_tree.
+  Eigen::MatrixXd B;
+  // Per link: its fundamental loop, the link itself first with sign +1, then the tree path.
+  std::vector<std::vector<LoopTerm>> loops;
+  // Per node: tree branches from ground to the node, so that v(node) = sum sign * v_branch.
+  std::vector<std::vector<LoopTerm>> node_paths;
+};
+
+// Kruskal (Boost.Graph) with weights V < C < R < D < L < I, ties broken by card order: a normal
+// tree (DESIGN.md). Requires a connected graph (check_floating_nodes first). By the cycle
+// property of minimum spanning trees, the loop of a link holds only tree branches no heavier
+// than the link, and the cutset of a tree branch only links no lighter than it; the model
+// builder relies on this.
+SpanningTree build_normal_tree(const CircuitGraph& graph);
+
+}  // namespace lcs

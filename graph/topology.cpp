@@ -1,0 +1,156 @@
+#include "graph/topology.h"
+
+#include <deque>
+#include <set>
+
+#include "graph/components.h"
+
+namespace lcs {
+
+std::string join_names(const std::vector<std::string>& names) {
+  std::string out;
+  for (size_t k = 0; k < names.size(); ++k) {
+    if (k > 0) out += k + 1 == names.size() ? " and " : ", ";
+    out += names[k];
+  }
+  return out;
+}
+
+std::string TopologyError::formatted(const Netlist& netlist) const {
+  SourceLocation file_only;
+  file_only.file = netlist.file;
+  std::string out = format_diagnostic(file_only, "error", message_);
+  for (int e : elements_) {
+    if (e < 0 || e >= static_cast<int>(netlist.elements.size())) continue;
+    const Element& el = netlist.elements[e];
+    out += "\n" + format_diagnostic(el.loc, "note", std::string(element_kind_name(el.kind)) + " " +
+                                                        el.name + " is here");
+  }
+  return out;
+}
+
+namespace {
+
+std::vector<std::string> names_of(const Netlist& netlist, const std::vector<int>& elements) {
+  std::vector<std::string> names;
+  for (int e : elements) names.push_back(netlist.elements[e].name);
+  return names;
+}
+
+}  // namespace
+
+void check_connected(const Netlist& netlist, const CircuitGraph& graph) {
+  NodePartition all = components(graph, [](const Branch&) { return true; });
+  if (all.count <= 1) return;
+  std::vector<std::string> nodes;
+  std::vector<int> elements;
+  for (int n = 1; n < static_cast<int>(graph.nodes.size()); ++n)
+    if (!all.same(n, 0)) nodes.push_back("'" + graph.nodes[n] + "'");
+  for (const Branch& b : graph.branches)
+    if (!all.same(b.from, 0)) elements.push_back(b.element);
+  std::string what = nodes.size() == 1 ? "node " + nodes[0] + " has" : "nodes " + join_names(nodes) + " have";
+  throw TopologyError(what + " no path to ground (floating: " +
+                          join_names(names_of(netlist, elements)) + ")",
+                      elements);
+}
+
+void check_source_loops_and_cutsets(const Netlist& netlist, const CircuitGraph& graph,
+                                    const SpanningTree& tree) {
+  // A V link: by the cycle property its fundamental loop holds only voltage sources.
+  for (size_t j = 0; j < tree.links.size(); ++j) {
+    const Branch& link = graph.branches[tree.links[j]];
+    if (link.cls != BranchClass::VoltageSource) continue;
+    std::vector<int> elements;
+    for (const LoopTerm& t : tree.loops[j]) elements.push_back(graph.branches[t.branch].element);
+    throw TopologyError("voltage sources form a loop: " + join_names(names_of(netlist, elements)) +
+                            " (KVL cannot hold for arbitrary source values)",
+                        elements);
+  }
+  // An I tree branch: its fundamental cutset holds only current sources.
+  for (size_t i = 0; i < tree.tree.size(); ++i) {
+    const Branch& tb = graph.branches[tree.tree[i]];
+    if (tb.cls != BranchClass::CurrentSource) continue;
+    std::vector<int> elements{tb.element};
+    for (size_t j = 0; j < tree.links.size(); ++j)
+      if (tree.B(i, j) != 0) elements.push_back(graph.branches[tree.links[j]].element);
+    throw TopologyError("current sources form a cutset: " + join_names(names_of(netlist, elements)) +
+                            " (KCL cannot hold for arbitrary source values)",
+                        elements);
+  }
+}
+
+void check_ideal_diode_loops(const Netlist& netlist, const CircuitGraph& graph,
+                             const std::vector<IdealDiodeLaw>& law, double t0, double t1) {
+  const int n_nodes = static_cast<int>(graph.nodes.size());
+  auto ideal = [&](int b) {
+    return graph.branches[b].cls == BranchClass::Diode && law[b].ron == 0.0;
+  };
+  // Arcs along which current can flow with no impedance: ideal diodes anode -> cathode,
+  // voltage sources both ways.
+  std::vector<std::vector<std::pair<int, int>>> arcs(n_nodes);  // node -> (branch, next node)
+  for (int b = 0; b < static_cast<int>(graph.branches.size()); ++b) {
+    const Branch& br = graph.branches[b];
+    if (ideal(b)) {
+      arcs[br.from].push_back({b, br.to});
+    } else if (br.cls == BranchClass::VoltageSource) {
+      arcs[br.from].push_back({b, br.to});
+      arcs[br.to].push_back({b, br.from});
+    }
+  }
+  for (int d = 0; d < static_cast<int>(graph.branches.size()); ++d) {
+    if (!ideal(d)) continue;
+    const Branch& diode = graph.branches[d];
+    // Breadth-first search from the cathode back to the anode without using d itself.
+    std::vector<int> via(n_nodes, -1), prev(n_nodes, -1);
+    std::vector<bool> seen(n_nodes, false);
+    std::deque<int> queue{diode.to};
+    seen[diode.to] = true;
+    while (!queue.empty() && !seen[diode.from]) {
+      int u = queue.front();
+      queue.pop_front();
+      for (auto [b, v] : arcs[u]) {
+        if (b == d || seen[v]) continue;
+        seen[v] = true;
+        via[v] = b;
+        prev[v] = u;
+        queue.push_back(v);
+      }
+    }
+    if (!seen[diode.from]) continue;
+
+    std::vector<int> elements{diode.element};
+    std::vector<std::string> sources;
+    bool other_diodes = false;
+    // Forward bias v(anode) - v(cathode) accumulated along the path cathode -> anode.
+    double bias_max = 0.0;
+    for (int v = diode.from; v != diode.to; v = prev[v]) {
+      const Branch& br = graph.branches[via[v]];
+      elements.push_back(br.element);
+      if (br.cls == BranchClass::Diode) {
+        other_diodes = true;
+        continue;
+      }
+      // Stepping prev[v] -> v over a source raises the potential by +u when v is its n+.
+      sources.push_back(br.name);
+      auto [lo, hi] = netlist.elements[br.element].waveform.range(t0, t1);
+      bias_max += br.from == v ? hi : -lo;
+    }
+    const std::string loop = join_names(names_of(netlist, elements));
+    if (other_diodes) {
+      throw TopologyError("ideal diodes form a loop with no impedance: " + loop +
+                              " (assumption 5.40: the loop current is undefined; give a diode "
+                              "RON > 0 or add a resistance to the loop)",
+                          elements);
+    }
+    if (bias_max >= law[d].von) {
+      throw TopologyError("diode " + diode.name + " is forward-biased directly by voltage source" +
+                              (sources.size() > 1 ? "s " : " ") + join_names(sources) +
+                              " with no impedance in the loop (" + loop +
+                              "): an ideal diode has no solution there (Figure 5.5); give it "
+                              "RON > 0 or add a series resistance",
+                          elements);
+    }
+  }
+}
+
+}  // namespace lcs

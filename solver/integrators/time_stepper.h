@@ -1,0 +1,44 @@
+// Fixed-step time-stepping methods for an LCS (Stewart 8.4): one LCP per step.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include <Eigen/Dense>
+
+#include "solver/lcp/lcp.h"
+#include "solver/model/circuit_model.h"
+
+namespace lcs {
+
+struct StepperStats {
+  long steps = 0;
+  LcpWarmStats lcp;       // summed over the cached LCP matrices
+  int factorisations = 0; // distinct step sizes prepared
+};
+
+// Advances (x, z) of a circuit's LCS. Step() is the non-virtual entry point (Drake style).
+class TimeStepper {
+ public:
+  explicit TimeStepper(const CircuitModel& model) : model_(model) {}
+  virtual ~TimeStepper() = default;
+
+  // z at t0+ consistent with x at t0, for a run with step h (methods that reuse z_n need it).
+  void Start(double t0, double h, const Eigen::VectorXd& x, Eigen::VectorXd& z) {
+    DoStart(t0, h, x, z);
+  }
+  // From (x, z) at t to t + h. Throws NumericalFailure when the step's LCP has no solution.
+  void Step(double t, double h, Eigen::VectorXd& x, Eigen::VectorXd& z) {
+    DoStep(t, h, x, z);
+    ++stats_.steps;
+  }
+  virtual StepperStats stats() const { return stats_; }
+
+ protected:
+  virtual void DoStart(double t0, double h, const Eigen::VectorXd& x, Eigen::VectorXd& z) = 0;
+  virtual void DoStep(double t, double h, Eigen::VectorXd& x, Eigen::VectorXd& z) = 0;
+  const CircuitModel& model_;
+  StepperStats stats_;
+};
+
+}  // namespace lcs

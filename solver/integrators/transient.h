@@ -1,0 +1,40 @@
+// A transient run: initial state, the fixed-step loop, output rows, and its summary.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "solver/integrators/method_registry.h"
+#include "solver/integrators/output_sink.h"
+#include "solver/model/circuit_model.h"
+
+namespace lcs {
+
+struct TransientOptions {
+  std::string method = "euler";
+  MethodOptions method_options;
+  double step = 0;     // fixed step h (> 0)
+  double tstart = 0;   // no output rows before tstart
+  double tstop = 0;    // > tstart
+  bool uic = false;    // start from zero state + IC= instead of the operating point
+
+  bool IsValid(std::string* why) const;
+};
+
+struct TransientSummary {
+  std::string method;
+  long rows = 0;
+  StepperStats stepper;
+  double cpu_setup = 0, cpu_steps = 0, cpu_output = 0;  // seconds of process CPU time
+  std::vector<std::string> warnings;
+
+  std::string BriefReport() const;
+};
+
+// Throws NumericalFailure after finishing `sink` with the rows computed so far.
+TransientSummary run_transient(const CircuitModel& model, const OutputMap& outputs,
+                               const TransientOptions& options, OutputSink& sink);
+
+double process_cpu_seconds();
+
+}  // namespace lcs

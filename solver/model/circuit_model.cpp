@@ -1,0 +1,405 @@
+#include "solver/model/circuit_model.h"
+
+#include <cmath>
+#include <set>
+#include <stdexcept>
+
+#include "solver/model/diode_law.h"
+
+namespace lcs {
+
+namespace {
+
+enum class Role { State, Static, Forced };  // how a branch's primary unknown is determined
+
+double option_value(const Netlist& netlist, const std::string& name, double fallback) {
+  auto it = netlist.options.find(name);
+  if (it == netlist.options.end() || it->second.empty()) return fallback;
+  try {
+    return std::stod(it->second);
+  } catch (...) {
+    return fallback;
+  }
+}
+
+}  // namespace
+
+CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& options) {
+  CircuitModel m;
+  m.netlist_ = netlist;
+  m.graph_ = CircuitGraph::from_netlist(netlist);
+  const CircuitGraph& g = m.graph_;
+  check_connected(netlist, g);
+  m.tree_ = build_normal_tree(g);
+  const SpanningTree& t = m.tree_;
+  check_source_loops_and_cutsets(netlist, g, t);
+
+  const int nb = static_cast<int>(g.branches.size());
+  const double ifit = option_value(netlist, "ifit", options.ifit);
+
+  // Diode laws (per branch), checked for impedance-free loops (5.40).
+  std::vector<IdealDiodeLaw> law(nb);
+  std::vector<bool> fitted(nb, false);
+  for (int b = 0; b < nb; ++b) {
+    const Element& el = netlist.elements[g.branches[b].element];
+    if (el.kind != ElementKind::Diode) continue;
+    ResolvedDiodeLaw r = resolve_diode_law(netlist.diode_models.at(el.model), ifit);
+    law[b] = r.law;
+    fitted[b] = r.fitted;
+  }
+  check_ideal_diode_loops(netlist, g, law, options.t0, options.t1);
+
+  // Roles, state / pair / input numbering (all in branch order).
+  std::vector<Role> role(nb, Role::Static);
+  std::vector<int> state_of(nb, -1), pair_of(nb, -1), input_of(nb, -1);
+  m.inputs_.push_back({-1, "1"});
+  for (int b = 0; b < nb; ++b) {
+    const Branch& br = g.branches[b];
+    const bool tree = t.in_tree[b];
+    if ((br.cls == BranchClass::Capacitor && tree) || (br.cls == BranchClass::Inductor && !tree)) {
+      role[b] = Role::State;
+    } else if ((br.cls == BranchClass::Capacitor && !tree) ||
+               (br.cls == BranchClass::Inductor && tree)) {
+      role[b] = Role::Forced;
+    }
+    if (br.cls == BranchClass::VoltageSource || br.cls == BranchClass::CurrentSource) {
+      input_of[b] = static_cast<int>(m.inputs_.size());
+      m.inputs_.push_back({br.element, br.name});
+    }
+    if (br.cls == BranchClass::Diode) {
+      pair_of[b] = static_cast<int>(m.pairs_.size());
+      m.pairs_.push_back({br.element, b, tree, law[b], fitted[b]});
+    }
+  }
+  // Tree capacitors first, then link inductors.
+  for (int pass = 0; pass < 2; ++pass)
+    for (int b = 0; b < nb; ++b) {
+      if (role[b] != Role::State) continue;
+      const bool cap = g.branches[b].cls == BranchClass::Capacitor;
+      if (cap != (pass == 0)) continue;
+      state_of[b] = static_cast<int>(m.states_.size());
+      m.states_.push_back({g.branches[b].element, b, (cap ? "v(" : "i(") + g.branches[b].name + ")"});
+    }
+
+  const int n = static_cast<int>(m.states_.size());
+  const int mp = static_cast<int>(m.pairs_.size());
+  const int nu = static_cast<int>(m.inputs_.size());
+  const int ncol = n + mp + 2 * nu;  // columns of [x | z | u | du]
+  auto col_z = [&](int k) { return n + k; };
+  auto col_u = [&](int k) { return n + mp + k; };
+  auto Bt = [&](int tree_branch, int link_branch) {
+    return t.B(t.position[tree_branch], t.position[link_branch]);
+  };
+  auto value = [&](int b) { return netlist.elements[g.branches[b].element].value; };
+
+  // Primary unknown p_b: the voltage of a tree branch, the current of a link. Every branch
+  // voltage and current is linear in p: KCL i_tree = B i_link, KVL v_link = -B^T v_tree.
+  Eigen::MatrixXd Vmap = Eigen::MatrixXd::Zero(nb, nb), Imap = Eigen::MatrixXd::Zero(nb, nb);
+  for (int b = 0; b < nb; ++b) {
+    if (t.in_tree[b]) {
+      Vmap(b, b) = 1;
+      for (int l : t.links) Imap(b, l) = Bt(b, l);
+    } else {
+      Imap(b, b) = 1;
+      for (int f : t.tree) Vmap(b, f) = -Bt(f, b);
+    }
+  }
+
+  // Static (resistive, source and diode) equations, one per Static branch:
+  //   EqP p + EqR [x z u du] = 0   (EqR holds the z and u coefficients).
+  std::vector<int> statics;
+  for (int b = 0; b < nb; ++b)
+    if (role[b] == Role::Static) statics.push_back(b);
+  const int ns = static_cast<int>(statics.size());
+  Eigen::MatrixXd EqP = Eigen::MatrixXd::Zero(ns, nb), EqR = Eigen::MatrixXd::Zero(ns, ncol);
+  for (int r = 0; r < ns; ++r) {
+    const int b = statics[r];
+    const Branch& br = g.branches[b];
+    switch (br.cls) {
+      case BranchClass::VoltageSource:   // tree: v = u
+      case BranchClass::CurrentSource:   // link: i = u
+        EqP(r, b) = 1;
+        EqR(r, col_u(input_of[b])) = -1;
+        break;
+      case BranchClass::Resistor:        // v - R i = 0
+        EqP.row(r) = Vmap.row(b) - value(b) * Imap.row(b);
+        break;
+      case BranchClass::Diode:
+        if (t.in_tree[b]) {              // v - RON i + z - VON = 0
+          EqP.row(r) = Vmap.row(b) - law[b].ron * Imap.row(b);
+          EqR(r, col_z(pair_of[b])) = 1;
+          EqR(r, col_u(0)) = -law[b].von;
+        } else {                         // i - z = 0
+          EqP(r, b) = 1;
+          EqR(r, col_z(pair_of[b])) = -1;
+        }
+        break;
+      default:
+        throw std::logic_error("circuit model: unexpected static branch " + br.name);
+    }
+  }
+  // Split EqP into the static unknowns (solved for) and the states; by the cycle property the
+  // forced unknowns never appear here.
+  Eigen::MatrixXd Es(ns, ns);
+  for (int c = 0; c < ns; ++c) Es.col(c) = EqP.col(statics[c]);
+  Eigen::MatrixXd rhs = EqR;
+  for (int b = 0; b < nb; ++b) {
+    if (role[b] == Role::State) rhs.col(state_of[b]) += EqP.col(b);
+    if (role[b] == Role::Forced && EqP.col(b).cwiseAbs().maxCoeff() > 0)
+      throw std::logic_error("circuit model: forced branch in a static equation");
+  }
+  Eigen::FullPivLU<Eigen::MatrixXd> es_lu(Es);
+  if (ns > 0 && !es_lu.isInvertible()) {
+    std::vector<int> elements;
+    for (int b : statics) elements.push_back(g.branches[b].element);
+    throw TopologyError("the resistive part of the circuit has no unique solution", elements);
+  }
+  // P: every primary unknown as a row over [x_phys | z | u | du]; forced rows filled below.
+  Eigen::MatrixXd P = Eigen::MatrixXd::Zero(nb, ncol);
+  if (ns > 0) {
+    Eigen::MatrixXd sol = -es_lu.solve(rhs);
+    for (int r = 0; r < ns; ++r) P.row(statics[r]) = sol.row(r);
+  }
+  for (int b = 0; b < nb; ++b)
+    if (role[b] == Role::State) P(b, state_of[b]) = 1;
+
+  // Capacitor and inductor voltages/currents in terms of states and sources:
+  //   v_cap = Tc x + Tcu u,   i_ind = Tl x + Tlu u.
+  std::vector<int> caps, inds;
+  std::vector<int> cap_index(nb, -1), ind_index(nb, -1);
+  for (int b = 0; b < nb; ++b) {
+    if (g.branches[b].cls == BranchClass::Capacitor) { cap_index[b] = caps.size(); caps.push_back(b); }
+    if (g.branches[b].cls == BranchClass::Inductor) { ind_index[b] = inds.size(); inds.push_back(b); }
+  }
+  const int nc = caps.size(), nl = inds.size();
+  Eigen::MatrixXd Tc = Eigen::MatrixXd::Zero(nc, n), Tcu = Eigen::MatrixXd::Zero(nc, nu);
+  Eigen::MatrixXd Tl = Eigen::MatrixXd::Zero(nl, n), Tlu = Eigen::MatrixXd::Zero(nl, nu);
+  Eigen::VectorXd Cd(nc);
+  Eigen::MatrixXd Lf = Eigen::MatrixXd::Zero(nl, nl);
+  for (int k = 0; k < nc; ++k) {
+    const int b = caps[k];
+    Cd(k) = value(b);
+    if (role[b] == Role::State) {
+      Tc(k, state_of[b]) = 1;
+    } else {  // link capacitor: its loop holds only tree capacitors and voltage sources
+      for (int f : t.tree) {
+        const double s = Bt(f, b);
+        if (s == 0) continue;
+        if (state_of[f] >= 0) Tc(k, state_of[f]) -= s;
+        else if (input_of[f] >= 0) Tcu(k, input_of[f]) -= s;
+        else throw std::logic_error("circuit model: unexpected branch in a capacitor loop");
+      }
+    }
+  }
+  for (int k = 0; k < nl; ++k) {
+    const int b = inds[k];
+    Lf(k, k) = value(b);
+    if (role[b] == Role::State) {
+      Tl(k, state_of[b]) = 1;
+    } else {  // tree inductor: its cutset holds only link inductors and current sources
+      for (int l : t.links) {
+        const double s = Bt(b, l);
+        if (s == 0) continue;
+        if (state_of[l] >= 0) Tl(k, state_of[l]) += s;
+        else if (input_of[l] >= 0) Tlu(k, input_of[l]) += s;
+        else throw std::logic_error("circuit model: unexpected branch in an inductor cutset");
+      }
+    }
+  }
+  for (const Element& el : netlist.elements) {  // mutual inductance M = k sqrt(L1 L2)
+    if (el.kind != ElementKind::Coupling) continue;
+    int k1 = -1, k2 = -1;
+    for (int k = 0; k < nl; ++k) {
+      const std::string& name = g.branches[inds[k]].name;
+      if (name == el.coupled.at(0)) k1 = k;
+      if (name == el.coupled.at(1)) k2 = k;
+    }
+    if (k1 < 0 || k2 < 0) throw NetlistError(el.loc, "coupling " + el.name + " needs two inductors");
+    const double mutual = el.value * std::sqrt(Lf(k1, k1) * Lf(k2, k2));
+    Lf(k1, k2) += mutual;
+    Lf(k2, k1) += mutual;
+  }
+
+  // State equations. Cutset of each tree capacitor f (KCL) and loop of each link inductor e
+  // (KVL), with the dependent capacitors/inductors moved to the left:
+  //   Tc^T diag(C) (Tc x' + Tcu u') = sum over R, D, L, I links l of b_{f,l} i_l
+  //   Tl^T Lf (Tl x' + Tlu u')      = -sum over V, C, R, D tree branches f of b_{f,e} v_f
+  Eigen::MatrixXd Mdyn = Tc.transpose() * Cd.asDiagonal() * Tc + Tl.transpose() * Lf * Tl;
+  Eigen::MatrixXd Kdu = -(Tc.transpose() * Cd.asDiagonal() * Tcu + Tl.transpose() * Lf * Tlu);
+  Eigen::MatrixXd Rp = Eigen::MatrixXd::Zero(n, nb);
+  for (int b = 0; b < nb; ++b) {
+    if (role[b] != Role::State) continue;
+    const int j = state_of[b];
+    if (g.branches[b].cls == BranchClass::Capacitor) {
+      for (int l : t.links)
+        if (g.branches[l].cls != BranchClass::Capacitor) Rp(j, l) += Bt(b, l);
+    } else {
+      for (int f : t.tree)
+        if (g.branches[f].cls != BranchClass::Inductor) Rp(j, f) -= Bt(f, b);
+    }
+  }
+  Eigen::MatrixXd Rfull = Rp * P;  // forced rows of P are still zero and Rp never uses them
+  Eigen::FullPivLU<Eigen::MatrixXd> m_lu(Mdyn);
+  if (n > 0 && !m_lu.isInvertible()) {
+    std::vector<int> elements;
+    for (int b : inds) elements.push_back(g.branches[b].element);
+    throw TopologyError("the inductance matrix is singular (perfectly coupled inductors, k = 1, "
+                        "are not supported yet; use k < 1)",
+                        elements);
+  }
+  Eigen::MatrixXd Xdot(n, ncol);  // physical x' = A x + B z + E u + Gamma u'
+  if (n > 0) {
+    Xdot = m_lu.solve(Rfull);
+    Xdot.rightCols(nu) = m_lu.solve(Kdu);
+  }
+  Lcs& s = m.lcs_;
+  s.A = Xdot.leftCols(n);
+  s.B = Xdot.middleCols(n, mp);
+  s.E = Xdot.middleCols(n + mp, nu);
+  s.Gamma = Xdot.rightCols(nu);
+
+  // Forced unknowns: link capacitor currents C v', tree inductor voltages Lf i'.
+  Eigen::MatrixXd du_sel = Eigen::MatrixXd::Zero(nu, ncol);
+  du_sel.rightCols(nu).setIdentity();
+  for (int b = 0; b < nb; ++b) {
+    if (role[b] != Role::Forced) continue;
+    if (g.branches[b].cls == BranchClass::Capacitor) {
+      const int k = cap_index[b];
+      P.row(b) = Cd(k) * (Tc.row(k) * Xdot + Tcu.row(k) * du_sel);
+    } else {
+      const int k = ind_index[b];
+      P.row(b) = Lf.row(k) * (Tl * Xdot + Tlu * du_sel);
+    }
+  }
+  m.branch_v_ = Vmap * P;
+  m.branch_i_ = Imap * P;
+
+  // Complementarity outputs w.
+  Eigen::MatrixXd W(mp, ncol);
+  for (const PairInfo& pr : m.pairs_) {
+    const int b = pr.branch, k = pair_of[b];
+    if (pr.voltage_type) {
+      W.row(k) = m.branch_i_.row(b);
+    } else {
+      W.row(k) = law[b].ron * m.branch_i_.row(b) - m.branch_v_.row(b);
+      W(k, col_u(0)) += law[b].von;
+    }
+  }
+  s.C = W.leftCols(n);
+  s.D = W.middleCols(n, mp);
+  s.F = W.middleCols(n + mp, nu);
+  // The shift x_lcs = x_phys - Gamma u: x_lcs' = A x_lcs + B z + (E + A Gamma) u.
+  s.E += s.A * s.Gamma;
+  s.F += s.C * s.Gamma;
+  return m;
+}
+
+Eigen::VectorXd CircuitModel::input_values(double t) const {
+  Eigen::VectorXd u(inputs_.size());
+  for (size_t k = 0; k < inputs_.size(); ++k)
+    u(k) = inputs_[k].element < 0 ? 1.0 : netlist_.elements[inputs_[k].element].waveform.value(t);
+  return u;
+}
+
+Eigen::VectorXd CircuitModel::input_derivatives(double t) const {
+  Eigen::VectorXd du(inputs_.size());
+  for (size_t k = 0; k < inputs_.size(); ++k)
+    du(k) = inputs_[k].element < 0 ? 0.0
+                                   : netlist_.elements[inputs_[k].element].waveform.derivative(t);
+  return du;
+}
+
+Eigen::VectorXd CircuitModel::physical_state(const Eigen::VectorXd& x, double t) const {
+  return x + lcs_.Gamma * input_values(t);
+}
+
+Eigen::VectorXd CircuitModel::lcs_state(const Eigen::VectorXd& physical, double t) const {
+  return physical - lcs_.Gamma * input_values(t);
+}
+
+OutputRow CircuitModel::row_from_physical(const Eigen::RowVectorXd& r) const {
+  const int n = lcs_.states(), mp = lcs_.pairs(), nu = lcs_.inputs();
+  OutputRow o;
+  o.g = r.segment(0, n);
+  o.h = r.segment(n, mp);
+  o.j = r.segment(n + mp, nu) + o.g * lcs_.Gamma;
+  o.k = r.segment(n + mp + nu, nu);
+  return o;
+}
+
+OutputRow CircuitModel::branch_voltage(int branch) const {
+  return row_from_physical(branch_v_.row(branch));
+}
+
+OutputRow CircuitModel::branch_current(int branch) const {
+  return row_from_physical(branch_i_.row(branch));
+}
+
+OutputRow CircuitModel::node_voltage(int node) const {
+  Eigen::RowVectorXd r = Eigen::RowVectorXd::Zero(branch_v_.cols());
+  for (const LoopTerm& term : tree_.node_paths.at(node)) r += term.sign * branch_v_.row(term.branch);
+  return row_from_physical(r);
+}
+
+double CircuitModel::evaluate(const OutputRow& row, const Eigen::VectorXd& x,
+                              const Eigen::VectorXd& z, double t) const {
+  return row.g.dot(x) + row.h.dot(z) + row.j.dot(input_values(t)) +
+         row.k.dot(input_derivatives(t));
+}
+
+std::vector<Probe> CircuitModel::default_probes() const {
+  std::vector<Probe> probes;
+  for (size_t node = 1; node < graph_.nodes.size(); ++node)
+    probes.push_back({Probe::Kind::NodeVoltage, graph_.nodes[node], "", {}});
+  for (const Branch& b : graph_.branches)
+    if (b.cls == BranchClass::VoltageSource || b.cls == BranchClass::Inductor ||
+        b.cls == BranchClass::Diode)
+      probes.push_back({Probe::Kind::ElementCurrent, b.name, "", {}});
+  return probes;
+}
+
+OutputMap CircuitModel::output_map(const std::vector<Probe>& probes) const {
+  const int n = lcs_.states(), mp = lcs_.pairs(), nu = lcs_.inputs();
+  const int rows = static_cast<int>(probes.size());
+  OutputMap out;
+  out.G = Eigen::MatrixXd::Zero(rows, n);
+  out.H = Eigen::MatrixXd::Zero(rows, mp);
+  out.J = Eigen::MatrixXd::Zero(rows, nu);
+  out.K = Eigen::MatrixXd::Zero(rows, nu);
+  auto node = [&](const Probe& p, const std::string& name) {
+    int index = graph_.node_index(name);
+    if (index < 0) throw NetlistError(p.loc, "probe " + p.name() + ": no node '" + name + "'");
+    return index;
+  };
+  for (int r = 0; r < rows; ++r) {
+    const Probe& p = probes[r];
+    OutputRow row;
+    switch (p.kind) {
+      case Probe::Kind::NodeVoltage:
+        row = node_voltage(node(p, p.a));
+        break;
+      case Probe::Kind::NodePairVoltage: {
+        OutputRow a = node_voltage(node(p, p.a)), b = node_voltage(node(p, p.b));
+        row = {a.g - b.g, a.h - b.h, a.j - b.j, a.k - b.k};
+        break;
+      }
+      case Probe::Kind::ElementCurrent: {
+        int branch = -1;
+        for (int b = 0; b < static_cast<int>(graph_.branches.size()); ++b)
+          if (graph_.branches[b].name == p.a) branch = b;
+        if (branch < 0)
+          throw NetlistError(p.loc, "probe " + p.name() + ": no two-terminal element '" + p.a + "'");
+        row = branch_current(branch);
+        break;
+      }
+    }
+    out.names.push_back(p.name());
+    out.G.row(r) = row.g;
+    out.H.row(r) = row.h;
+    out.J.row(r) = row.j;
+    out.K.row(r) = row.k;
+  }
+  return out;
+}
+
+}  // namespace lcs

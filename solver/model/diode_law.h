@@ -1,0 +1,28 @@
+// The ideal (piecewise-linear) law of each diode: 0 <= i  ⟂  VON + RON*i - v >= 0.
+#pragma once
+
+#include <string>
+
+#include "graph/topology.h"
+#include "netlist/netlist.h"
+
+namespace lcs {
+
+// Thermal voltage kT/q at ngspice's nominal 27 °C.
+constexpr double kThermalVoltage = 0.025864186;
+
+struct ResolvedDiodeLaw {
+  IdealDiodeLaw law;
+  bool fitted = false;  // VON/RON came from the Shockley fit, not from the card
+  double fit_i1 = 0, fit_i2 = 0;
+};
+
+// A card with VON and/or RON uses them (a missing one is 0). A card with neither gets the chord
+// of its Shockley curve v(i) = N*Vt*ln(1 + i/IS) + RS*i between i1 = ifit/10 and i2 = 10*ifit
+// (ifit from `.options ifit=`, default 10 mA): the simplest model that matches the smooth diode
+// where a power circuit operates.
+ResolvedDiodeLaw resolve_diode_law(const DiodeModel& model, double ifit);
+
+double shockley_voltage(const DiodeModel& model, double current);
+
+}  // namespace lcs

@@ -1,0 +1,64 @@
+#include "solver/model/initial_state.h"
+
+#include <map>
+
+#include "solver/model/operating_point.h"
+
+namespace lcs {
+
+InitialState initial_state(const CircuitModel& model, bool uic, double t0) {
+  const Netlist& netlist = model.netlist();
+  const CircuitGraph& g = model.graph();
+  const int n = model.lcs().states();
+  InitialState init;
+  Eigen::VectorXd physical = Eigen::VectorXd::Zero(n);
+  Eigen::VectorXd z = Eigen::VectorXd::Zero(model.lcs().pairs());
+  if (!uic) {
+    OperatingPoint op = solve_operating_point(model, t0);
+    physical = model.physical_state(op.x, t0);
+    z = op.z;
+    if (!op.undetermined.empty()) {
+      std::string list;
+      for (const std::string& s : op.undetermined) list += (list.empty() ? "" : ", ") + s;
+      init.warnings.push_back("no DC path for " + list +
+                              ": the operating point sets it by a 1e-9 relative leak; "
+                              "use UIC and IC= to choose it");
+    }
+  }
+  Eigen::VectorXd x_lcs = model.lcs_state(physical, t0);
+
+  std::map<std::string, double> node_ic;
+  for (const NodeIc& ic : netlist.node_ics) node_ic[ic.node] = ic.value;
+  auto node_value = [&](int node) {
+    auto it = node_ic.find(g.nodes[node]);
+    if (it != node_ic.end()) return it->second;
+    if (node == 0 || uic) return 0.0;
+    return model.evaluate(model.node_voltage(node), x_lcs, z, t0);
+  };
+
+  std::vector<int> state_of_branch(g.branches.size(), -1);
+  for (int j = 0; j < n; ++j) state_of_branch[model.states()[j].branch] = j;
+  for (int b = 0; b < static_cast<int>(g.branches.size()); ++b) {
+    const Branch& br = g.branches[b];
+    const Element& el = netlist.elements[br.element];
+    const bool cap = br.cls == BranchClass::Capacitor, ind = br.cls == BranchClass::Inductor;
+    if (!cap && !ind) continue;
+    const int j = state_of_branch[b];
+    if (j < 0) {
+      if (el.ic)
+        init.warnings.push_back("IC= on " + el.name + " ignored: its " +
+                                (cap ? "voltage is fixed by a loop of capacitors and voltage sources"
+                                     : "current is fixed by a cutset of inductors and current sources"));
+      continue;
+    }
+    if (el.ic) {
+      physical(j) = *el.ic;
+    } else if (cap && (node_ic.count(g.nodes[br.from]) || node_ic.count(g.nodes[br.to]))) {
+      physical(j) = node_value(br.from) - node_value(br.to);
+    }
+  }
+  init.x = model.lcs_state(physical, t0);
+  return init;
+}
+
+}  // namespace lcs

@@ -1,0 +1,22 @@
+// The state at the start of a transient (SPEC §2): with UIC, zero; otherwise the operating
+// point. Then IC= on capacitors and inductors, and `.ic v(node)=` for capacitor voltages,
+// override it (a node without .ic keeps its operating-point voltage, or 0 with UIC).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "solver/model/circuit_model.h"
+
+namespace lcs {
+
+struct InitialState {
+  Eigen::VectorXd x;                  // LCS state at t0
+  std::vector<std::string> warnings;  // IC= on dependent elements, states with no DC path
+};
+
+InitialState initial_state(const CircuitModel& model, bool uic, double t0);
+
+}  // namespace lcs

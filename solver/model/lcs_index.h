@@ -1,0 +1,19 @@
+// Index of an LCS from its Markov parameters (Stewart 4.5): G(s) = D + CB/s + CAB/s^2 + ...;
+// the index is the smallest k such that D + ... + C A^(k-1) B / s^k is nonsingular for large s.
+#pragma once
+
+#include <vector>
+
+#include "solver/model/circuit_model.h"
+
+namespace lcs {
+
+struct LcsIndex {
+  int index = -1;               // -1: G(s) singular for large s (no unique solutions)
+  std::vector<int> pair_index;  // per pair: first k with a nonzero diagonal (G_k)_ii, -1 if none
+  std::vector<Eigen::MatrixXd> markov;  // G_0 = D, G_1 = CB, G_2 = CAB
+};
+
+LcsIndex lcs_index(const Lcs& lcs);
+
+}  // namespace lcs

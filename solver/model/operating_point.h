@@ -1,0 +1,30 @@
+// DC operating point (SPEC §1 `op`): capacitors open, inductors shorted, sources at time t.
+// With dx/dt = 0 the LCS becomes the static problem 0 = A x + B z + E u, w = C x + D z + F u,
+// i.e. LCP(q, D - C A^-1 B) with q = (F - C A^-1 E) u.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "solver/model/circuit_model.h"
+
+namespace lcs {
+
+struct OperatingPoint {
+  Eigen::VectorXd x;  // LCS state
+  Eigen::VectorXd z;
+  int pivots = 0;
+  // States with no DC path (A singular): their values come from a 1e-9 relative leak, the
+  // limit of a very long implicit Euler step from zero, as SPICE's GMIN does. Labels listed.
+  std::vector<std::string> undetermined;
+};
+
+// Throws NumericalFailure when the static LCP has no solution.
+OperatingPoint solve_operating_point(const CircuitModel& model, double t = 0.0);
+
+// Every solution of the static LCP (multistable circuits; diode-only circuits have one).
+std::vector<OperatingPoint> enumerate_operating_points(const CircuitModel& model, double t = 0.0);
+
+}  // namespace lcs
