@@ -15,6 +15,9 @@ enum class LcpStatus {
   RayTermination,   // Lemke ended on an unbounded ray: no solution (M copositive-plus) or M outside
                     // the classes Lemke handles
   IterationLimit,
+  NumericalFailure, // Lemke reached a complementary basis (the artificial variable left) but the
+                    // solution recomputed from it misses feas_tol: basis too ill-conditioned.
+                    // z, w are the best available (residual-minimal) point; do not trust them.
 };
 const char* lcp_status_name(LcpStatus s);
 

@@ -1,0 +1,286 @@
+// Waveform semantics against hand-computed values.
+#include "netlist/waveform.h"
+
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+namespace lcs {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+Waveform make(Waveform::Kind kind, std::vector<double> params, double tstep = 0, double tstop = 0) {
+  Waveform w;
+  w.kind = kind;
+  w.params = std::move(params);
+  w.resolve(tstep, tstop);
+  return w;
+}
+
+void expect_times(const std::vector<double>& got, const std::vector<double>& want) {
+  ASSERT_EQ(got.size(), want.size());
+  for (std::size_t i = 0; i < got.size(); ++i) EXPECT_NEAR(got[i], want[i], 1e-15) << "breakpoint " << i;
+}
+
+TEST(WaveformDc, ConstantEverywhere) {
+  Waveform w;
+  w.dc = 5;
+  w.resolve(1e-3, 1);
+  EXPECT_EQ(w.value(0), 5);
+  EXPECT_EQ(w.value(123.0), 5);
+  EXPECT_EQ(w.derivative(0.5), 0);
+  EXPECT_EQ(w.range(0, 10), std::make_pair(5.0, 5.0));
+  EXPECT_TRUE(w.breakpoints(0, 10).empty());
+  EXPECT_EQ(w.describe(), "DC 5");
+}
+
+TEST(WaveformSin, DefaultsFromTran) {
+  Waveform w = make(Waveform::Kind::Sin, {0, 1}, 1e-3, 0.5);
+  ASSERT_EQ(w.params.size(), 6u);
+  EXPECT_EQ(w.params[2], 2.0);  // FREQ = 1/TSTOP
+  EXPECT_EQ(w.params[3], 0.0);
+  EXPECT_EQ(w.params[4], 0.0);
+  EXPECT_EQ(w.params[5], 0.0);
+  EXPECT_TRUE(w.resolved);
+  // resolve() is idempotent.
+  w.resolve(1, 100);
+  EXPECT_EQ(w.params[2], 2.0);
+}
+
+TEST(WaveformSin, PlainSine) {
+  Waveform w = make(Waveform::Kind::Sin, {0, 10, 50}, 1e-4, 0.1);
+  EXPECT_NEAR(w.value(0), 0.0, 1e-12);
+  EXPECT_NEAR(w.value(0.005), 10.0, 1e-12);
+  EXPECT_NEAR(w.value(0.0025), 10 * std::sqrt(0.5), 1e-12);
+  EXPECT_NEAR(w.value(0.015), -10.0, 1e-12);
+  EXPECT_NEAR(w.value(-1.0), 0.0, 1e-12);  // t < 0 is t = 0
+  EXPECT_NEAR(w.derivative(0), 10 * 2 * kPi * 50, 1e-9);
+  EXPECT_NEAR(w.derivative(0.005), 0.0, 1e-9);
+  EXPECT_TRUE(w.breakpoints(0, 1).empty());
+  EXPECT_EQ(w.describe(), "SIN(0 10 50)");
+}
+
+TEST(WaveformSin, DelayDampingPhase) {
+  // SIN(VO=1 VA=2 FREQ=100 TD=1m THETA=100 PHASE=90)
+  Waveform w = make(Waveform::Kind::Sin, {1, 2, 100, 1e-3, 100, 90});
+  EXPECT_NEAR(w.value(0), 3.0, 1e-12);       // before TD: VO + VA sin(PHASE)
+  EXPECT_NEAR(w.value(0.5e-3), 3.0, 1e-12);
+  EXPECT_NEAR(w.value(1e-3), 3.0, 1e-12);
+  // tau = 5 ms: sin(pi + pi/2) = -1, damping e^{-0.5}
+  EXPECT_NEAR(w.value(6e-3), 1 - 2 * std::exp(-0.5), 1e-12);
+  EXPECT_NEAR(w.value(6e-3), -0.21306131942526685, 1e-12);
+  EXPECT_EQ(w.derivative(0.5e-3), 0.0);
+  // Right derivative at TD: VA (w cos(pi/2) - theta sin(pi/2)) = -200
+  EXPECT_NEAR(w.derivative(1e-3), -200.0, 1e-9);
+  expect_times(w.breakpoints(0, 1), {1e-3});
+  EXPECT_TRUE(w.breakpoints(1e-3, 1).empty());  // strictly inside
+  EXPECT_EQ(w.describe(), "SIN(1 2 100 0.001 100 90)");
+}
+
+TEST(WaveformSin, RangeIsExactOverShortIntervals) {
+  Waveform w = make(Waveform::Kind::Sin, {0, 10, 50});
+  auto r = w.range(0, 1);
+  EXPECT_NEAR(r.first, -10, 1e-9);
+  EXPECT_NEAR(r.second, 10, 1e-9);
+  r = w.range(0, 0.001);  // quarter of a radian-ish: monotone rising
+  EXPECT_NEAR(r.first, 0, 1e-12);
+  EXPECT_NEAR(r.second, 10 * std::sin(0.1 * kPi), 1e-12);
+  r = w.range(0.004, 0.006);  // peak at 5 ms inside
+  EXPECT_NEAR(r.first, 10 * std::sin(0.4 * kPi), 1e-12);
+  EXPECT_NEAR(r.second, 10, 1e-12);
+}
+
+TEST(WaveformSin, RangeOfDampedSineFindsFirstPeak) {
+  Waveform w = make(Waveform::Kind::Sin, {0, 1, 1, 0, 1});
+  double tau = std::atan(2 * kPi) / (2 * kPi);
+  double peak = std::exp(-tau) * std::sin(std::atan(2 * kPi));
+  double trough_tau = tau + 0.5;
+  double trough = -std::exp(-trough_tau) * std::sin(std::atan(2 * kPi));
+  auto r = w.range(0, 10);
+  EXPECT_NEAR(r.second, peak, 1e-12);
+  EXPECT_NEAR(r.first, trough, 1e-12);
+  EXPECT_LT(r.second, 1.0);
+}
+
+TEST(WaveformSin, RangeBeforeDelay) {
+  Waveform w = make(Waveform::Kind::Sin, {2, 1, 10, 1.0, 0, 30});
+  auto r = w.range(0, 0.5);
+  EXPECT_NEAR(r.first, 2.5, 1e-12);
+  EXPECT_NEAR(r.second, 2.5, 1e-12);
+}
+
+TEST(WaveformPulse, Defaults) {
+  Waveform w = make(Waveform::Kind::Pulse, {0, 5}, 1e-3, 1);
+  EXPECT_EQ(w.params, (std::vector<double>{0, 5, 0, 1e-3, 1e-3, 1, 1}));
+  EXPECT_EQ(w.describe(), "PULSE(0 5 0 0.001 0.001 1 1)");
+  Waveform p = make(Waveform::Kind::Pulse, {0, 5, 2e-3}, 1e-3, 1);
+  EXPECT_EQ(p.params, (std::vector<double>{0, 5, 2e-3, 1e-3, 1e-3, 1, 1}));
+}
+
+// PULSE(V1=0 V2=5 TD=1m TR=1m TF=2m PW=3m PER=10m)
+Waveform trapezoid() { return make(Waveform::Kind::Pulse, {0, 5, 1e-3, 1e-3, 2e-3, 3e-3, 10e-3}); }
+
+TEST(WaveformPulse, ValuesOverTwoPeriods) {
+  Waveform w = trapezoid();
+  EXPECT_EQ(w.value(0), 0);
+  EXPECT_EQ(w.value(1e-3), 0);
+  EXPECT_NEAR(w.value(1.5e-3), 2.5, 1e-12);
+  EXPECT_NEAR(w.value(2e-3), 5, 1e-12);
+  EXPECT_NEAR(w.value(4e-3), 5, 1e-12);
+  EXPECT_NEAR(w.value(5e-3), 5, 1e-12);
+  EXPECT_NEAR(w.value(6e-3), 2.5, 1e-12);
+  EXPECT_NEAR(w.value(7e-3), 0, 1e-12);
+  EXPECT_NEAR(w.value(10e-3), 0, 1e-12);
+  EXPECT_NEAR(w.value(11e-3), 0, 1e-12);
+  EXPECT_NEAR(w.value(11.5e-3), 2.5, 1e-9);
+  EXPECT_NEAR(w.value(16e-3), 2.5, 1e-9);
+  EXPECT_NEAR(w.value(1001.5e-3), 2.5, 1e-9);  // period 100
+}
+
+TEST(WaveformPulse, RightDerivativeAtCorners) {
+  Waveform w = trapezoid();
+  EXPECT_EQ(w.derivative(0.5e-3), 0);
+  EXPECT_NEAR(w.derivative(1e-3), 5000, 1e-6);   // start of rise
+  EXPECT_NEAR(w.derivative(1.5e-3), 5000, 1e-6);
+  EXPECT_NEAR(w.derivative(2e-3), 0, 1e-6);      // top
+  EXPECT_NEAR(w.derivative(5e-3), -2500, 1e-6);  // start of fall
+  EXPECT_NEAR(w.derivative(7e-3), 0, 1e-6);      // bottom
+  EXPECT_NEAR(w.derivative(11e-3), 5000, 1e-6);  // next period
+}
+
+TEST(WaveformPulse, BreakpointsStrictlyInside) {
+  Waveform w = trapezoid();
+  expect_times(w.breakpoints(0, 12e-3), {1e-3, 2e-3, 5e-3, 7e-3, 11e-3});
+  expect_times(w.breakpoints(2e-3, 13e-3), {5e-3, 7e-3, 11e-3, 12e-3});
+  expect_times(w.breakpoints(0, 0.5e-3), {});
+}
+
+TEST(WaveformPulse, ExactRange) {
+  Waveform w = trapezoid();
+  auto r = w.range(1.5e-3, 1.8e-3);
+  EXPECT_NEAR(r.first, 2.5, 1e-12);
+  EXPECT_NEAR(r.second, 4.0, 1e-12);
+  r = w.range(6e-3, 6.5e-3);
+  EXPECT_NEAR(r.first, 1.25, 1e-12);
+  EXPECT_NEAR(r.second, 2.5, 1e-12);
+  r = w.range(0, 100e-3);
+  EXPECT_EQ(r.first, 0);
+  EXPECT_EQ(r.second, 5);
+  r = w.range(0, 0.9e-3);  // before TD
+  EXPECT_EQ(r.first, 0);
+  EXPECT_EQ(r.second, 0);
+  r = w.range(9e-3, 11.5e-3);  // across a period boundary
+  EXPECT_NEAR(r.first, 0, 1e-12);
+  EXPECT_NEAR(r.second, 2.5, 1e-9);
+}
+
+TEST(WaveformPulse, ZeroEdgesAreRightContinuousJumps) {
+  // PULSE(0 1 0 0 0 1 2): square wave, high on [0,1), low on [1,2)
+  Waveform w = make(Waveform::Kind::Pulse, {0, 1, 0, 0, 0, 1, 2}, 1e-3, 10);
+  EXPECT_EQ(w.value(0), 1);
+  EXPECT_EQ(w.value(0.5), 1);
+  EXPECT_EQ(w.value(1), 0);
+  EXPECT_EQ(w.value(1.5), 0);
+  EXPECT_EQ(w.value(2), 1);
+  EXPECT_EQ(w.value(3), 0);
+  EXPECT_EQ(w.derivative(1), 0);
+  expect_times(w.breakpoints(0, 4), {1, 2, 3});
+  auto r = w.range(0.2, 0.8);
+  EXPECT_EQ(r.first, 1);
+  EXPECT_EQ(r.second, 1);
+  r = w.range(0.2, 1.0);  // includes the fall at 1
+  EXPECT_EQ(r.first, 0);
+  EXPECT_EQ(r.second, 1);
+}
+
+TEST(WaveformPulse, CornersLandExactlyDespiteRounding) {
+  // PER = 0.1 is not representable: 3 * 0.1 != 0.3. Values at breakpoints are the right values.
+  Waveform w = make(Waveform::Kind::Pulse, {0, 1, 0, 0, 0, 0.05, 0.1});
+  EXPECT_EQ(w.value(0.3), 1);
+  EXPECT_EQ(w.value(0.35), 0);
+  EXPECT_EQ(w.value(0.7), 1);
+  for (double t : w.breakpoints(0, 1)) {
+    double phase = std::fmod(t + 1e-9, 0.1);
+    EXPECT_EQ(w.value(t), phase < 0.05 ? 1 : 0) << "t = " << t;
+  }
+  EXPECT_EQ(w.breakpoints(0, 1).size(), 19u);
+}
+
+TEST(WaveformPulse, PeriodShorterThanShapeCutsIt) {
+  // TR=1 PW=5 TF=1 but PER=4: rise, then high until the period restarts
+  Waveform w = make(Waveform::Kind::Pulse, {0, 1, 0, 1, 1, 5, 4});
+  EXPECT_NEAR(w.value(0.5), 0.5, 1e-12);
+  EXPECT_EQ(w.value(3.9), 1);
+  EXPECT_EQ(w.value(4), 0);
+  EXPECT_NEAR(w.value(4.5), 0.5, 1e-12);
+  expect_times(w.breakpoints(0, 9), {1, 4, 5, 8});
+  auto r = w.range(2, 3);
+  EXPECT_EQ(r.first, 1);
+  EXPECT_EQ(r.second, 1);
+}
+
+TEST(WaveformPulse, SinglePulseWithoutPeriod) {
+  // No .tran: PW = PER = 0 and TR = TF = 0 by default; explicit PW makes one pulse.
+  Waveform w = make(Waveform::Kind::Pulse, {1, 2, 1, 1, 1, 1, 0});
+  EXPECT_EQ(w.value(0), 1);
+  EXPECT_NEAR(w.value(1.5), 1.5, 1e-12);
+  EXPECT_EQ(w.value(2.5), 2);
+  EXPECT_NEAR(w.value(3.5), 1.5, 1e-12);
+  EXPECT_EQ(w.value(100), 1);
+  expect_times(w.breakpoints(0, 100), {1, 2, 3, 4});
+}
+
+TEST(WaveformPwl, ValuesJumpsAndEnds) {
+  // PWL(0 0 1 1 1 3 2 3 3 0): ramp, jump to 3 at t=1, flat, ramp down
+  Waveform w = make(Waveform::Kind::Pwl, {0, 0, 1, 1, 1, 3, 2, 3, 3, 0});
+  EXPECT_EQ(w.value(-1), 0);
+  EXPECT_EQ(w.value(0.5), 0.5);
+  EXPECT_EQ(w.value(1), 3);
+  EXPECT_EQ(w.value(1.5), 3);
+  EXPECT_EQ(w.value(2.5), 1.5);
+  EXPECT_EQ(w.value(3), 0);
+  EXPECT_EQ(w.value(10), 0);
+  EXPECT_EQ(w.derivative(0.5), 1);
+  EXPECT_EQ(w.derivative(1), 0);
+  EXPECT_EQ(w.derivative(2), -3);
+  EXPECT_EQ(w.derivative(2.5), -3);
+  EXPECT_EQ(w.derivative(3), 0);
+  expect_times(w.breakpoints(0, 3), {1, 2});
+  auto r = w.range(0.5, 2.5);
+  EXPECT_EQ(r.first, 0.5);
+  EXPECT_EQ(r.second, 3);
+  r = w.range(0.2, 0.6);
+  EXPECT_DOUBLE_EQ(r.first, 0.2);
+  EXPECT_DOUBLE_EQ(r.second, 0.6);
+  EXPECT_EQ(w.describe(), "PWL(0 0 1 1 1 3 2 3 3 0)");
+}
+
+TEST(WaveformPwl, ConstantBeforeFirstPoint) {
+  Waveform w = make(Waveform::Kind::Pwl, {1, 2, 3, 4});
+  EXPECT_EQ(w.value(0), 2);
+  EXPECT_EQ(w.value(2), 3);
+  EXPECT_EQ(w.value(7), 4);
+  EXPECT_EQ(w.derivative(0), 0);
+  EXPECT_EQ(w.derivative(1), 1);
+  auto r = w.range(0, 0.5);
+  EXPECT_EQ(r.first, 2);
+  EXPECT_EQ(r.second, 2);
+}
+
+TEST(WaveformDescribe, DcWithTransientFunction) {
+  Waveform w = make(Waveform::Kind::Sin, {0, 10, 50});
+  w.dc = 1;
+  EXPECT_EQ(w.describe(), "DC 1 SIN(0 10 50)");
+}
+
+TEST(WaveformUnresolved, EvaluatesWithZeroAnalysisDefaults) {
+  Waveform w;
+  w.kind = Waveform::Kind::Pulse;
+  w.params = {0, 1};
+  EXPECT_EQ(w.value(0), 0);  // zero-length pulse: back to V1 at once
+  EXPECT_FALSE(w.resolved);
+}
+
+}  // namespace
+}  // namespace lcs

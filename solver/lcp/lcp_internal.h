@@ -1,0 +1,67 @@
+// Internals of the LCP module shared by lemke.cpp, warm_solver.cpp and enumeration.cpp.
+// Not part of the public interface (lcp.h); may change without notice.
+#pragma once
+
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "solver/lcp/lcp.h"
+
+namespace lcs::lcp_detail {
+
+// Positive diagonal equilibration S = diag(row) * M * diag(col), all factors powers of two
+// (so scaling is exact in floating point). LCP(q, M) and LCP(diag(row) q, S) are equivalent:
+//   z = diag(col) * y,   w = diag(row)^{-1} * v,   y ⟂ v  <=>  z ⟂ w.
+// Computed by Ruiz iteration in the max norm: afterwards every non-zero row and column of S
+// has max-norm within a factor ~2 of 1. All solvers work on S and on q normalised to
+// max-norm 1, so their absolute tolerances are in fact relative to |M| and |q|.
+struct Equilibration {
+  Eigen::VectorXd row, col;
+  Eigen::MatrixXd S;
+};
+Equilibration equilibrate(const Eigen::MatrixXd& M);
+
+// qt = diag(row) * q / qn with qn = |diag(row) q|_inf (qn = 1 if q = 0). Returns qn.
+double normalise_q(const Equilibration& eq, const Eigen::VectorXd& q, Eigen::VectorXd& qt);
+
+// Natural residual of LCP(qt, S) at y, allocation free given a preallocated v (size n).
+double scaled_residual(const Eigen::MatrixXd& S, const Eigen::VectorXd& qt,
+                       const Eigen::VectorXd& y, Eigen::VectorXd& v);
+
+void check_square(const Eigen::MatrixXd& M, const Eigen::VectorXd& q, const char* who);
+
+// Lemke's method on an equilibrated matrix. Holds the workspace so repeated solves of the same
+// size do not allocate in the tableau (the final polish factorises M_JJ and may allocate).
+class LemkeEngine {
+ public:
+  LemkeEngine() = default;
+  explicit LemkeEngine(const Eigen::MatrixXd& M) { set_matrix(M); }
+  void set_matrix(const Eigen::MatrixXd& M);
+  const Equilibration& equilibration() const { return eq_; }
+
+  // M must be the matrix given to set_matrix. out.z / out.w are resized only if needed.
+  void solve(const Eigen::MatrixXd& M, const Eigen::VectorXd& q, const LemkeOptions& options,
+             LcpSolution& out);
+
+ private:
+  void pivot(int row, int entering);
+  void entering_column(int var);
+  int lexicographic_leaving_row(double pivot_tol);
+  void refactor();
+  void finish(const Eigen::MatrixXd& M, const Eigen::VectorXd& q, double qn,
+              const LemkeOptions& options, bool solved, LcpSolution& out);
+
+  int n_ = 0;
+  Equilibration eq_;
+  Eigen::MatrixXd Binv_;        // inverse of the current basis matrix
+  Eigen::VectorXd b_;           // current basic values Binv * qt
+  Eigen::VectorXd a_;           // entering column Binv * column(var)
+  Eigen::VectorXd qt_, y_, y2_, v_;
+  Eigen::RowVectorXd prow_;     // pivot row scratch
+  std::vector<int> basis_;      // variable in each row: w_i = i, z_i = n + i, s = 2n
+  std::vector<int> keep_, keep2_;
+  int since_refactor_ = 0;
+};
+
+}  // namespace lcs::lcp_detail

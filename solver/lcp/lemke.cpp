@@ -1,0 +1,278 @@
+// Lemke's complementary pivoting method with lexicographic degeneracy resolution (Stewart 2.2.1).
+//
+// Tableau view: I w - S y - s d = qt with d = (1, ..., 1), where S = diag(r) M diag(c) is the
+// equilibrated matrix and qt = diag(r) q / |diag(r) q|_inf (see lcp_internal.h). The tableau is
+// kept in revised form: the basis inverse Binv (n x n) and the basic values b = Binv qt; the
+// column of an entering variable is computed on demand (a = Binv * column). Since the initial
+// basis is w = I, the rows [b_k, Binv_k] are exactly the rows [b_k, a_k1 .. a_kn] of the book's
+// lexicographic rule restricted to the initial-basis columns, which already decide every tie
+// (Binv is non-singular), so the rule never cycles (Lemma 2.9).
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <vector>
+
+#include "solver/lcp/lcp.h"
+#include "solver/lcp/lcp_internal.h"
+
+namespace lcs {
+
+const char* lcp_status_name(LcpStatus s) {
+  switch (s) {
+    case LcpStatus::Solved: return "solved";
+    case LcpStatus::RayTermination: return "ray termination";
+    case LcpStatus::IterationLimit: return "iteration limit";
+    case LcpStatus::NumericalFailure: return "numerical failure";
+  }
+  return "unknown";
+}
+
+namespace lcp_detail {
+
+namespace {
+
+// Two ratios b_k / a_k are "tied" when pivoting on the smaller one would leave the other row's
+// basic variable within this (normalised) distance of zero. Data is equilibrated and q has
+// max-norm 1, so this is relative to the scale of the problem.
+constexpr double kTieTol = 1e-12;
+// Basic values |y_i| below kClampTol * max(1, |y|_inf) are set to exactly 0 (if the residual
+// does not get worse by it).
+constexpr double kClampTol = 1e-12;
+
+}  // namespace
+
+void LemkeEngine::set_matrix(const Eigen::MatrixXd& M) {
+  eq_ = equilibrate(M);
+  n_ = static_cast<int>(M.rows());
+  Binv_.resize(n_, n_);
+  b_.resize(n_);
+  a_.resize(n_);
+  qt_.resize(n_);
+  y_.resize(n_);
+  y2_.resize(n_);
+  v_.resize(n_);
+  prow_.resize(n_);
+  basis_.assign(n_, 0);
+  keep_.reserve(n_);
+  keep2_.reserve(n_);
+}
+
+// a = Binv * (tableau column of var): w_i -> e_i, y_j -> -S(:, j), s -> -d = -1.
+void LemkeEngine::entering_column(int var) {
+  if (var < n_) {
+    a_ = Binv_.col(var);
+  } else if (var < 2 * n_) {
+    a_.noalias() = Binv_ * eq_.S.col(var - n_);
+    a_ = -a_;
+  } else {
+    a_ = -Binv_.rowwise().sum();
+  }
+}
+
+void LemkeEngine::pivot(int r, int entering) {
+  const double p = a_(r);
+  prow_ = Binv_.row(r) / p;
+  const double br = b_(r) / p;
+  // Row i -= a_i * (row r / p) for every i; row r itself becomes 0 and is then replaced.
+  Binv_.noalias() -= a_ * prow_;
+  b_ -= a_ * br;
+  Binv_.row(r) = prow_;
+  b_(r) = br;
+  basis_[r] = entering;
+}
+
+// Basis matrix B = [column(basis_[0]) ... column(basis_[n-1])]; Binv = B^{-1}, b = Binv qt.
+// Limits the drift of the product-form updates on long pivot sequences.
+void LemkeEngine::refactor() {
+  Eigen::MatrixXd B = Eigen::MatrixXd::Zero(n_, n_);
+  for (int i = 0; i < n_; ++i) {
+    int v = basis_[i];
+    if (v < n_) B(v, i) = 1.0;
+    else if (v < 2 * n_) B.col(i) = -eq_.S.col(v - n_);
+    else B.col(i).setConstant(-1.0);
+  }
+  Eigen::PartialPivLU<Eigen::MatrixXd> lu(B);
+  Eigen::MatrixXd inv = lu.inverse();
+  if (!inv.allFinite()) return;  // keep the updated inverse
+  Binv_ = inv;
+  b_.noalias() = Binv_ * qt_;
+  since_refactor_ = 0;
+}
+
+// Lexicographic minimum ratio test over rows with a_k > pivot_tol * max(1, |a|_inf):
+// minimise [b_k, Binv(k, 0), ..., Binv(k, n-1)] / a_k. A row holding the artificial variable s
+// that ties in the first component is preferred (then s leaves and Lemke stops with a solution).
+// Returns -1 if no row qualifies (ray termination).
+int LemkeEngine::lexicographic_leaving_row(double pivot_tol) {
+  const double amax = a_.cwiseAbs().maxCoeff();
+  const double ptol = pivot_tol * std::max(1.0, amax);
+  keep_.clear();
+  double tmin = std::numeric_limits<double>::infinity();
+  for (int k = 0; k < n_; ++k) {
+    if (a_(k) > ptol) {
+      keep_.push_back(k);
+      tmin = std::min(tmin, std::max(b_(k), 0.0) / a_(k));
+    }
+  }
+  if (keep_.empty()) return -1;
+  if (keep_.size() > 1) {
+    // First component: rows whose basic variable would reach zero (within tolerance).
+    const double btol = kTieTol * std::max(1.0, b_.cwiseAbs().maxCoeff());
+    keep2_.clear();
+    for (int k : keep_)
+      if (std::max(b_(k), 0.0) - tmin * a_(k) <= btol) keep2_.push_back(k);
+    keep_.swap(keep2_);
+  }
+  if (keep_.size() > 1) {
+    for (int k : keep_)
+      if (basis_[k] == 2 * n_) return k;
+  }
+  for (int j = 0; j < n_ && keep_.size() > 1; ++j) {
+    double rmin = std::numeric_limits<double>::infinity();
+    for (int k : keep_) rmin = std::min(rmin, Binv_(k, j) / a_(k));
+    const double ctol = kTieTol * std::max(1.0, Binv_.col(j).cwiseAbs().maxCoeff());
+    keep2_.clear();
+    for (int k : keep_)
+      if (Binv_(k, j) - rmin * a_(k) <= ctol) keep2_.push_back(k);
+    keep_.swap(keep2_);
+  }
+  // Exact lexicographic ties are impossible (Binv non-singular); if rounding leaves several
+  // rows, take the numerically safest pivot.
+  int best = keep_.front();
+  for (int k : keep_)
+    if (a_(k) > a_(best)) best = k;
+  return best;
+}
+
+void LemkeEngine::finish(const Eigen::MatrixXd& M, const Eigen::VectorXd& q, double qn,
+                         const LemkeOptions& options, bool solved, LcpSolution& out) {
+  y_.setZero();
+  for (int i = 0; i < n_; ++i)
+    if (basis_[i] >= n_ && basis_[i] < 2 * n_) y_(basis_[i] - n_) = b_(i);
+
+  if (solved) {
+    double res = scaled_residual(eq_.S, qt_, y_, v_);
+    // Polish: re-solve S_JJ y_J = -qt_J on the final complementary basis.
+    std::vector<int> J;
+    for (int i = 0; i < n_; ++i)
+      if (basis_[i] >= n_ && basis_[i] < 2 * n_) J.push_back(basis_[i] - n_);
+    if (!J.empty()) {
+      const int k = static_cast<int>(J.size());
+      Eigen::MatrixXd SJ(k, k);
+      Eigen::VectorXd rhs(k);
+      for (int a = 0; a < k; ++a) {
+        rhs(a) = -qt_(J[a]);
+        for (int c = 0; c < k; ++c) SJ(a, c) = eq_.S(J[a], J[c]);
+      }
+      Eigen::VectorXd yJ = Eigen::PartialPivLU<Eigen::MatrixXd>(SJ).solve(rhs);
+      if (yJ.allFinite()) {
+        y2_.setZero();
+        for (int a = 0; a < k; ++a) y2_(J[a]) = yJ(a);
+        double res2 = scaled_residual(eq_.S, qt_, y2_, v_);
+        if (res2 <= res) {
+          y_ = y2_;
+          res = res2;
+        }
+      }
+    }
+    // Clean tiny values (degenerate basic variables at zero level, rounding negatives).
+    const double ymax = y_.cwiseAbs().maxCoeff();
+    const double accept = options.feas_tol * std::max(1.0, ymax);
+    const double thr = kClampTol * std::max(1.0, ymax);
+    y2_ = y_;
+    bool changed = false;
+    for (int i = 0; i < n_; ++i)
+      if (y2_(i) != 0.0 && std::abs(y2_(i)) < thr) {
+        y2_(i) = 0.0;
+        changed = true;
+      }
+    if (changed) {
+      double res2 = scaled_residual(eq_.S, qt_, y2_, v_);
+      if (res2 <= std::max(res, accept)) {
+        y_ = y2_;
+        res = res2;
+      }
+    }
+    out.status = res <= accept ? LcpStatus::Solved : LcpStatus::NumericalFailure;
+  }
+  out.z = eq_.col.cwiseProduct(y_) * qn;
+  out.w = q;
+  out.w.noalias() += M * out.z;
+}
+
+void LemkeEngine::solve(const Eigen::MatrixXd& M, const Eigen::VectorXd& q,
+                        const LemkeOptions& options, LcpSolution& out) {
+  check_square(M, q, "solve_lemke");
+  if (M.rows() != n_) throw std::invalid_argument("LemkeEngine: matrix size changed");
+  out.pivots = 0;
+  out.status = LcpStatus::Solved;
+  if ((q.array() >= 0.0).all()) {
+    out.z.setZero(n_);
+    out.w = q;
+    return;
+  }
+  const double qn = normalise_q(eq_, q, qt_);
+  const int max_pivots = options.max_pivots > 0 ? options.max_pivots : 50 * (n_ + 1);
+  const int s = 2 * n_;
+
+  Binv_.setIdentity();
+  b_ = qt_;
+  for (int i = 0; i < n_; ++i) basis_[i] = i;
+  since_refactor_ = 0;
+
+  // First pivot: s enters at the level making qt + s d >= 0; w_r leaves for the most negative
+  // qt_r. Ties: the lexicographic rule on [qt_i, e_i] picks the largest index.
+  const double qmin = qt_.minCoeff();
+  const double qtol = kTieTol * std::max(1.0, std::abs(qmin));
+  int r = 0;
+  for (int i = 0; i < n_; ++i)
+    if (qt_(i) <= qmin + qtol) r = i;
+  a_.setConstant(-1.0);
+  int leaving = basis_[r];
+  pivot(r, s);
+  out.pivots = 1;
+
+  const int refactor_every = std::max(64, n_);
+  for (;;) {
+    if (leaving == s) {
+      finish(M, q, qn, options, true, out);
+      return;
+    }
+    if (out.pivots >= max_pivots) {
+      out.status = LcpStatus::IterationLimit;
+      finish(M, q, qn, options, false, out);
+      return;
+    }
+    const int entering = leaving < n_ ? leaving + n_ : leaving - n_;
+    entering_column(entering);
+    r = lexicographic_leaving_row(options.pivot_tol);
+    if (r < 0) {
+      out.status = LcpStatus::RayTermination;
+      finish(M, q, qn, options, false, out);
+      return;
+    }
+    leaving = basis_[r];
+    pivot(r, entering);
+    ++out.pivots;
+    if (++since_refactor_ >= refactor_every) refactor();
+  }
+}
+
+}  // namespace lcp_detail
+
+LcpSolution solve_lemke(const Eigen::MatrixXd& M, const Eigen::VectorXd& q,
+                        const LemkeOptions& options) {
+  lcp_detail::check_square(M, q, "solve_lemke");
+  LcpSolution out;
+  if ((q.array() >= 0.0).all()) {
+    out.z = Eigen::VectorXd::Zero(q.size());
+    out.w = q;
+    return out;
+  }
+  lcp_detail::LemkeEngine engine(M);
+  engine.solve(M, q, options, out);
+  return out;
+}
+
+}  // namespace lcs
