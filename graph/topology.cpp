@@ -1,7 +1,8 @@
 #include "graph/topology.h"
 
-#include <deque>
-#include <set>
+#include <functional>
+#include <limits>
+#include <queue>
 
 #include "graph/components.h"
 
@@ -85,71 +86,72 @@ void check_ideal_diode_loops(const Netlist& netlist, const CircuitGraph& graph,
   auto ideal = [&](int b) {
     return graph.branches[b].cls == BranchClass::Diode && law[b].ron == 0.0;
   };
-  // Arcs along which current can flow with no impedance: ideal diodes anode -> cathode,
-  // voltage sources both ways.
-  std::vector<std::vector<std::pair<int, int>>> arcs(n_nodes);  // node -> (branch, next node)
+  // Arcs along which current can flow with no impedance: ideal diodes anode -> cathode (cost:
+  // their threshold VON), voltage sources both ways (cost 0).
+  struct Arc { int branch, next; double cost; };
+  std::vector<std::vector<Arc>> arcs(n_nodes);
   for (int b = 0; b < static_cast<int>(graph.branches.size()); ++b) {
     const Branch& br = graph.branches[b];
     if (ideal(b)) {
-      arcs[br.from].push_back({b, br.to});
+      arcs[br.from].push_back({b, br.to, law[b].von});
     } else if (br.cls == BranchClass::VoltageSource) {
-      arcs[br.from].push_back({b, br.to});
-      arcs[br.to].push_back({b, br.from});
+      arcs[br.from].push_back({b, br.to, 0.0});
+      arcs[br.to].push_back({b, br.from, 0.0});
     }
   }
   for (int d = 0; d < static_cast<int>(graph.branches.size()); ++d) {
     if (!ideal(d)) continue;
     const Branch& diode = graph.branches[d];
-    // Breadth-first search from the cathode back to the anode without using d itself.
+    // Cheapest path (least total VON) from the cathode back to the anode, without d itself.
+    std::vector<double> dist(n_nodes, std::numeric_limits<double>::infinity());
     std::vector<int> via(n_nodes, -1), prev(n_nodes, -1);
-    std::vector<bool> seen(n_nodes, false);
-    std::deque<int> queue{diode.to};
-    seen[diode.to] = true;
-    while (!queue.empty() && !seen[diode.from]) {
-      int u = queue.front();
-      queue.pop_front();
-      for (auto [b, v] : arcs[u]) {
-        if (b == d || seen[v]) continue;
-        seen[v] = true;
-        via[v] = b;
-        prev[v] = u;
-        queue.push_back(v);
+    using Item = std::pair<double, int>;
+    std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue;
+    dist[diode.to] = 0;
+    queue.push({0.0, diode.to});
+    while (!queue.empty()) {
+      auto [du, u] = queue.top();
+      queue.pop();
+      if (du > dist[u]) continue;
+      for (const Arc& a : arcs[u]) {
+        if (a.branch == d || du + a.cost >= dist[a.next]) continue;
+        dist[a.next] = du + a.cost;
+        via[a.next] = a.branch;
+        prev[a.next] = u;
+        queue.push({dist[a.next], a.next});
       }
     }
-    if (!seen[diode.from]) continue;
+    if (via[diode.from] < 0) continue;
 
     std::vector<int> elements{diode.element};
     std::vector<std::string> sources;
-    bool other_diodes = false;
-    // Forward bias v(anode) - v(cathode) accumulated along the path cathode -> anode.
-    double bias_max = 0.0;
+    // Largest forward push of the sources around the loop, against the loop's thresholds.
+    double push_max = 0.0;
     for (int v = diode.from; v != diode.to; v = prev[v]) {
       const Branch& br = graph.branches[via[v]];
       elements.push_back(br.element);
-      if (br.cls == BranchClass::Diode) {
-        other_diodes = true;
-        continue;
-      }
-      // Stepping prev[v] -> v over a source raises the potential by +u when v is its n+.
+      if (br.cls != BranchClass::VoltageSource) continue;
       sources.push_back(br.name);
+      // Stepping prev[v] -> v over a source raises the potential by +u when v is its n+.
       auto [lo, hi] = netlist.elements[br.element].waveform.range(t0, t1);
-      bias_max += br.from == v ? hi : -lo;
+      push_max += br.from == v ? hi : -lo;
     }
+    const double thresholds = law[d].von + dist[diode.from];
+    if (push_max < thresholds) continue;  // the loop stays blocked: no loop current can flow
     const std::string loop = join_names(names_of(netlist, elements));
-    if (other_diodes) {
-      throw TopologyError("ideal diodes form a loop with no impedance: " + loop +
-                              " (assumption 5.40: the loop current is undefined; give a diode "
-                              "RON > 0 or add a resistance to the loop)",
-                          elements);
+    if (elements.size() > sources.size() + 1) {
+      throw TopologyError(
+          "ideal diodes form a loop with no impedance that can conduct: " + loop +
+              " (assumption 5.40, Figure 5.4: the loop current is undefined; give a diode "
+              "RON > 0 or add a resistance to the loop)",
+          elements);
     }
-    if (bias_max >= law[d].von) {
-      throw TopologyError("diode " + diode.name + " is forward-biased directly by voltage source" +
-                              (sources.size() > 1 ? "s " : " ") + join_names(sources) +
-                              " with no impedance in the loop (" + loop +
-                              "): an ideal diode has no solution there (Figure 5.5); give it "
-                              "RON > 0 or add a series resistance",
-                          elements);
-    }
+    throw TopologyError("diode " + diode.name + " is forward-biased directly by voltage source" +
+                            (sources.size() > 1 ? "s " : " ") + join_names(sources) +
+                            " with no impedance in the loop (" + loop +
+                            "): an ideal diode has no solution there (Figure 5.5); give it "
+                            "RON > 0 or add a series resistance",
+                        elements);
   }
 }
 

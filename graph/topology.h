@@ -37,11 +37,14 @@ struct IdealDiodeLaw {  // 0 <= i  ⟂  von + ron*i - v >= 0
   double von = 0, ron = 0;
 };
 
-// Loops with no impedance through ideal diodes (ron = 0), assumption (5.40):
-//  - diodes (and sources) that can carry a loop current in their forward direction with no
-//    impedance: the loop current is undefined (Figure 5.4);
-//  - a diode forward-biased directly by voltage sources at some time in [t0, t1]: no solution
-//    exists (Figure 5.5). A source that keeps the diode reverse-biased throughout is accepted.
+// Loops with no impedance through ideal diodes (ron = 0), assumption (5.40): a loop of ideal
+// diodes and voltage sources in which current could circulate in every diode's forward
+// direction, and whose sources can overcome the diodes' summed thresholds VON at some time in
+// [t0, t1]:
+//  - with other diodes in the loop the loop current is undefined (Figure 5.4);
+//  - with only sources, the diode is forward-biased by them directly: no solution (Figure 5.5).
+// Loops blocked by a diode's orientation (bridge rectifiers) or by thresholds (anti-parallel
+// clamps with VON > 0, a supply that keeps a diode reverse-biased) are accepted.
 // `law` is indexed by branch (entries of non-diode branches are ignored).
 void check_ideal_diode_loops(const Netlist& netlist, const CircuitGraph& graph,
                              const std::vector<IdealDiodeLaw>& law, double t0, double t1);

@@ -1,0 +1,153 @@
+// Closed-form checks of the theta-method time-stepping on diode circuits.
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "solver/integrators/transient.h"
+#include "solver/model/test/netlist_builder.h"
+
+namespace lcs {
+namespace {
+
+using testing::NetlistBuilder;
+
+struct RunResult {
+  MemorySink sink;
+  TransientSummary summary;
+};
+
+RunResult simulate(const Netlist& netlist, const std::vector<Probe>& probes, const std::string& method,
+             double h, double tstop, bool uic, double theta = 0.5) {
+  ModelOptions mo;
+  mo.t1 = tstop;
+  CircuitModel model = CircuitModel::build(netlist, mo);
+  TransientOptions o;
+  o.method = method;
+  o.method_options.theta = theta;
+  o.step = h;
+  o.tstop = tstop;
+  o.uic = uic;
+  RunResult r;
+  r.summary = run_transient(model, model.output_map(probes), o, r.sink);
+  return r;
+}
+
+Probe v(const std::string& node) { return {Probe::Kind::NodeVoltage, node, "", {}}; }
+Probe i(const std::string& element) { return {Probe::Kind::ElementCurrent, element, "", {}}; }
+
+// RC charged through a diode from a DC source, capacitor initially empty (UIC): the diode stays
+// on, v(t) = (V - VON)(1 - exp(-t/tau)) with tau = (R + RON) C. Implicit Euler reproduces the
+// exact discrete recursion v_n = (V - VON)(1 - (1 + h/tau)^-n).
+class RcThroughDiode : public ::testing::TestWithParam<std::pair<double, double>> {};
+
+TEST_P(RcThroughDiode, ImplicitEulerMatchesItsDiscreteClosedForm) {
+  const auto [VON, RON] = GetParam();
+  const double V = 10, R = 1e3, C = 1e-6, tau = (R + RON) * C, h = 2e-5;
+  NetlistBuilder b;
+  b.v("v1", "in", "0", NetlistBuilder::dc(V)).d("d1", "in", "a", VON, RON);
+  b.r("r1", "a", "out", R).c("c1", "out", "0", C, 0.0);
+  RunResult r = simulate(b.build(), {v("out"), i("d1")}, "euler", h, 5e-3, true);
+  ASSERT_EQ(r.sink.times.size(), 251u);
+  for (size_t n = 0; n < r.sink.times.size(); ++n) {
+    const double exact = (V - VON) * (1 - std::pow(1 + h / tau, -static_cast<double>(n)));
+    EXPECT_NEAR(r.sink.rows[n](0), exact, 1e-12 * V) << "step " << n;
+    if (n > 0) {  // diode current = capacitor current = (V - VON - v)/(R + RON)
+      EXPECT_NEAR(r.sink.rows[n](1), (V - VON - exact) / (R + RON), 1e-14 * V / R);
+    }
+  }
+}
+
+TEST_P(RcThroughDiode, ImplicitEulerIsFirstOrder) {
+  const auto [VON, RON] = GetParam();
+  const double V = 10, R = 1e3, C = 1e-6, tau = (R + RON) * C, T = 2e-3;
+  NetlistBuilder b;
+  b.v("v1", "in", "0", NetlistBuilder::dc(V)).d("d1", "in", "a", VON, RON);
+  b.r("r1", "a", "out", R).c("c1", "out", "0", C, 0.0);
+  auto error = [&](double h) {
+    RunResult r = simulate(b.build(), {v("out")}, "euler", h, T, true);
+    double e = 0;
+    for (size_t n = 0; n < r.sink.times.size(); ++n)
+      e = std::max(e, std::abs(r.sink.rows[n](0) - (V - VON) * (1 - std::exp(-r.sink.times[n] / tau))));
+    return e;
+  };
+  const double e1 = error(4e-5), e2 = error(2e-5), e3 = error(1e-5);
+  EXPECT_NEAR(e1 / e2, 2.0, 0.1);
+  EXPECT_NEAR(e2 / e3, 2.0, 0.05);
+}
+
+INSTANTIATE_TEST_SUITE_P(Laws, RcThroughDiode,
+                         ::testing::Values(std::make_pair(0.0, 0.0), std::make_pair(0.7, 0.0),
+                                           std::make_pair(0.7, 25.0)));
+
+// Half-wave rectifier into a resistor: no states, v(out) = max(0, u - VON) R/(R + RON) exactly.
+TEST(HalfWaveIntoResistor, EveryStepIsExact) {
+  const double VON = 0.6, RON = 2, R = 50;
+  NetlistBuilder b;
+  b.tran(1e-4, 40e-3, false);
+  b.v("v1", "in", "0", NetlistBuilder::sin(0, 10, 50)).d("d1", "in", "out", VON, RON);
+  b.r("rl", "out", "0", R);
+  RunResult r = simulate(b.build(), {v("out"), i("d1")}, "euler", 1e-4, 40e-3, false);
+  int conducting = 0;
+  for (size_t n = 0; n < r.sink.times.size(); ++n) {
+    const double u = 10 * std::sin(2 * M_PI * 50 * r.sink.times[n]);
+    const double expected = std::max(0.0, u - VON) * R / (R + RON);
+    EXPECT_NEAR(r.sink.rows[n](0), expected, 1e-12);
+    EXPECT_NEAR(r.sink.rows[n](1), expected / R, 1e-14);
+    conducting += expected > 0;
+  }
+  EXPECT_GT(conducting, 150);  // both half-cycles were exercised
+  EXPECT_LT(conducting, 250);
+}
+
+// Siconos' DiodeBridge: a charged LC tank (L = 10 mH, C = 1 uF, v(0) = 10 V) feeds an ideal
+// bridge loaded by R = 1 kOhm. The bridge always connects R across the tank (|v| either way), so
+// v'' + v'/(RC) + v/(LC) = 0 exactly.
+Netlist lc_tank_bridge() {
+  NetlistBuilder b;
+  b.l("l1", "a", "0", 10e-3, 0.0).c("c1", "a", "0", 1e-6, 10.0);
+  b.d("d1", "a", "p").d("d2", "n", "a").d("d3", "0", "p").d("d4", "n", "0");
+  b.r("r1", "p", "n", 1e3);
+  return b.build();
+}
+
+double lc_tank_closed_form(double t) {
+  const double R = 1e3, L = 10e-3, C = 1e-6;
+  const double alpha = 1 / (2 * R * C), w0 = 1 / std::sqrt(L * C);
+  const double wd = std::sqrt(w0 * w0 - alpha * alpha);
+  const double v0 = 10, dv0 = -v0 / (R * C);  // i_L(0) = 0: C v' = -v/R
+  return std::exp(-alpha * t) * (v0 * std::cos(wd * t) + (dv0 + alpha * v0) / wd * std::sin(wd * t));
+}
+
+double lc_tank_error(const std::string& method, double h, double theta = 0.5) {
+  RunResult r = simulate(lc_tank_bridge(), {v("a")}, method, h, 5e-3, true, theta);
+  double e = 0;
+  for (size_t n = 0; n < r.sink.times.size(); ++n)
+    e = std::max(e, std::abs(r.sink.rows[n](0) - lc_tank_closed_form(r.sink.times[n])));
+  return e;
+}
+
+TEST(LcTankBridge, ImplicitEulerConvergesAtFirstOrder) {
+  const double e1 = lc_tank_error("euler", 2e-6), e2 = lc_tank_error("euler", 1e-6),
+               e3 = lc_tank_error("euler", 5e-7);
+  // Implicit Euler damps the oscillation at the rate w0^2 h / 2, so its error grows like
+  // v0 (w0^2 h / 2) t exp(-alpha t), largest at t = 1/alpha: v0 w0^2 h / (2 alpha e) = 0.184 V.
+  const double predicted = 10 * 1e8 * 5e-7 / (2 * 500 * std::exp(1.0));
+  EXPECT_NEAR(e3, predicted, 0.1 * predicted);
+  EXPECT_NEAR(e1 / e2, 2.0, 0.15);
+  EXPECT_NEAR(e2 / e3, 2.0, 0.1);
+}
+
+TEST(LcTankBridge, TrapezoidalConvergesAtSecondOrder) {
+  const double e1 = lc_tank_error("theta", 4e-6), e2 = lc_tank_error("theta", 2e-6);
+  EXPECT_NEAR(e1 / e2, 4.0, 0.4);
+}
+
+TEST(LcTankBridge, WarmStartAnswersMostSteps) {
+  RunResult r = simulate(lc_tank_bridge(), {v("a")}, "euler", 1e-6, 5e-3, true);
+  EXPECT_EQ(r.summary.stepper.steps, 5000);
+  EXPECT_EQ(r.summary.stepper.lcp.solves, 5001);  // + the t0 consistency LCP
+  EXPECT_GT(r.summary.stepper.lcp.warm_hits, 4900);
+}
+
+}  // namespace
+}  // namespace lcs
