@@ -38,6 +38,11 @@ int run_cli(int argc, char** argv) {
   analyze_cmd->add_option("netlist", analyze.netlist, "netlist file")->required();
   analyze_cmd->add_flag("--json", analyze.json, "machine-readable report");
 
+  PlotArgs plot;
+  CLI::App* plot_cmd = app.add_subcommand("plot", "plot a waveform CSV against time (PNG, gnuplot)");
+  plot_cmd->add_option("csv", plot.csv, "waveform CSV")->required();
+  plot_cmd->add_option("-o", plot.output, "PNG path (default: the CSV path with .png)");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -55,6 +60,7 @@ int run_cli(int argc, char** argv) {
     if (run_cmd->parsed()) return run_command(run);
     if (op_cmd->parsed()) return op_command(op);
     if (analyze_cmd->parsed()) return analyze_command(analyze);
+    if (plot_cmd->parsed()) return plot_command(plot);
   } catch (const CliError& e) {
     std::cerr << e.what() << "\n";
     return e.code();

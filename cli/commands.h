@@ -25,4 +25,9 @@ struct AnalyzeArgs {
 };
 int analyze_command(const AnalyzeArgs& args);
 
+struct PlotArgs {
+  std::string csv, output;
+};
+int plot_command(const PlotArgs& args);
+
 }  // namespace lcs

@@ -1,3 +1,4 @@
+#include <cstdlib>
 #include <iostream>
 
 #include "cli/commands.h"
@@ -36,8 +37,14 @@ int run_command(const RunArgs& args) {
   Netlist netlist = load_netlist(args.netlist);
   TransientOptions options;
   apply_method_option(netlist, options);
-  if (auto it = netlist.options.find("theta"); it != netlist.options.end() && !it->second.empty())
-    options.method_options.theta = std::stod(it->second);
+  if (auto it = netlist.options.find("theta"); it != netlist.options.end()) {
+    char* end = nullptr;
+    const double theta = std::strtod(it->second.c_str(), &end);
+    if (it->second.empty() || *end != '\0' || !(theta >= 0 && theta <= 1))
+      throw CliError(kExitNetlist, format_diagnostic(netlist.option_locs.at("theta"), "error",
+                                                     ".options theta must be a number in [0, 1]"));
+    options.method_options.theta = theta;
+  }
   if (!args.method.empty()) {
     if (!find_method(args.method))
       throw CliError(kExitUsage, "error: unknown method '" + args.method + "' (known: " +

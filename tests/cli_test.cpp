@@ -1,0 +1,230 @@
+// The command line as SPEC §1, §3 and §4 fix it, exercised through the real binary.
+#include <regex>
+
+#include <gtest/gtest.h>
+
+#include "tests/cli_support.h"
+
+namespace lcs {
+namespace {
+
+using namespace cli_testing;
+
+// ---------------------------------------------------------------------------------------------
+// Bad netlists: every file in tests/bad_netlists states its exit code and first diagnostic line.
+
+struct BadNetlist {
+  std::string path, expect_diag;
+  int expect_exit = -1;
+};
+
+std::vector<BadNetlist> bad_netlists() {
+  std::vector<BadNetlist> out;
+  for (const auto& entry : fs::directory_iterator(source_path("tests/bad_netlists"))) {
+    if (entry.path().extension() != ".cir") continue;
+    BadNetlist b;
+    b.path = entry.path().string();
+    std::istringstream in(read_file(entry.path()));
+    std::string line;
+    while (std::getline(in, line)) {
+      if (line.rfind("* expect-exit: ", 0) == 0) b.expect_exit = std::stoi(line.substr(15));
+      if (line.rfind("* expect-diag: ", 0) == 0) b.expect_diag = line.substr(15);
+    }
+    out.push_back(b);
+  }
+  std::sort(out.begin(), out.end(), [](auto& a, auto& b) { return a.path < b.path; });
+  return out;
+}
+
+class BadNetlistTest : public ::testing::TestWithParam<BadNetlist> {};
+
+TEST_P(BadNetlistTest, ExitCodeAndDiagnostic) {
+  const BadNetlist& b = GetParam();
+  ASSERT_GE(b.expect_exit, 0) << b.path << " has no '* expect-exit:' line";
+  ASSERT_FALSE(b.expect_diag.empty()) << b.path << " has no '* expect-diag:' line";
+  const fs::path dir = scratch_dir(fs::path(b.path).stem().string());
+  const fs::path csv = dir / "out.csv";
+  Result r = run_lcspice("run '" + b.path + "' -o '" + csv.string() + "'", dir);
+  EXPECT_EQ(r.code, b.expect_exit) << r.err;
+
+  std::string expected = b.expect_diag;
+  const bool located = std::isdigit(static_cast<unsigned char>(expected[0]));
+  if (located) expected = b.path + ":" + expected;
+  else if (expected.rfind("error:", 0) == 0) expected = b.path + ": " + expected;
+  if (auto at = expected.find("OUT"); at != std::string::npos) expected.replace(at, 3, csv.string());
+  EXPECT_EQ(r.err_line(0), expected);
+
+  if (located) {  // the offending line, then a caret under the column
+    const int line = std::stoi(b.expect_diag);
+    const int column = std::stoi(b.expect_diag.substr(b.expect_diag.find(':') + 1));
+    std::istringstream in(read_file(b.path));
+    std::string text;
+    for (int k = 0; k < line; ++k) std::getline(in, text);
+    EXPECT_EQ(r.err_line(1), text);
+    const std::string caret = r.err_line(2);
+    EXPECT_EQ(caret.find('^'), static_cast<size_t>(column - 1)) << caret;
+  }
+  if (b.expect_exit == 2) EXPECT_FALSE(fs::exists(csv)) << "nothing is simulated on input errors";
+  for (const auto& entry : fs::directory_iterator(dir))
+    EXPECT_EQ(entry.path().string().find(".tmp-"), std::string::npos) << "left " << entry.path();
+}
+
+INSTANTIATE_TEST_SUITE_P(Files, BadNetlistTest, ::testing::ValuesIn(bad_netlists()),
+                         [](const ::testing::TestParamInfo<BadNetlist>& info) {
+                           std::string name = fs::path(info.param.path).stem().string();
+                           for (char& c : name)
+                             if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+                           return name;
+                         });
+
+TEST(BadNetlists, AtLeastTwentyCases) { EXPECT_GE(bad_netlists().size(), 20u); }
+
+TEST(BadNetlists, NumericalFailureKeepsTheRowsComputedSoFar) {
+  const fs::path dir = scratch_dir("numerical_failure_rows");
+  Result r = run_lcspice("run '" + source_path("tests/bad_netlists/97-current-into-reverse-diode.cir").string() +
+                             "' -o '" + (dir / "out.csv").string() + "'",
+                         dir);
+  ASSERT_EQ(r.code, 3);
+  Csv csv = parse_csv(read_file(dir / "out.csv"));
+  ASSERT_EQ(csv.header.front(), "time");
+  ASSERT_FALSE(csv.rows.empty());
+  EXPECT_LT(csv.rows.back()[0], 1.02e-3);  // everything before the failure...
+  EXPECT_GT(csv.rows.back()[0], 0.99e-3);  // ...and nothing after it
+}
+
+TEST(BadNetlists, TopologyErrorsPointAtEveryElementInvolved) {
+  const fs::path dir = scratch_dir("topology_notes");
+  const std::string path = source_path("tests/bad_netlists/90-voltage-source-loop.cir").string();
+  Result r = run_lcspice("run '" + path + "'", dir);
+  ASSERT_EQ(r.code, 2);
+  EXPECT_EQ(r.err_line(1), path + ":5:1: note: voltage source v2 is here");
+  EXPECT_EQ(r.err_line(2), "V2 a 0 DC 3");
+  EXPECT_EQ(r.err_line(4), path + ":4:1: note: voltage source v1 is here");
+}
+
+// ---------------------------------------------------------------------------------------------
+// CSV (SPEC §3)
+
+TEST(Csv, HeaderQuotingDigitsAndIncreasingTimes) {
+  const fs::path dir = scratch_dir("csv_format");
+  Result r = run_lcspice("run '" + source_path("circuits/lc_tank_bridge.cir").string() +
+                             "' --tstop 1e-4 --probe 'v(a),v(p,n), i(d1)' -o '" +
+                             (dir / "w.csv").string() + "'",
+                         dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::string text = read_file(dir / "w.csv");
+  EXPECT_EQ(text.substr(0, text.find('\n')), "time,v(a),\"v(p,n)\",i(d1)");
+  Csv csv = parse_csv(text);
+  ASSERT_EQ(csv.rows.size(), 101u);  // t = 0 and 100 steps of 1 us
+  const std::regex number(R"(-?\d\.(\d+)e[+-]\d+)");
+  for (size_t k = 0; k < csv.rows.size(); ++k) {
+    ASSERT_EQ(csv.raw[k].size(), 4u);
+    for (const std::string& f : csv.raw[k]) {
+      std::smatch m;
+      ASSERT_TRUE(std::regex_match(f, m, number)) << f;
+      EXPECT_GE(m[1].length() + 1, 12) << f;
+    }
+    if (k > 0) EXPECT_GT(csv.rows[k][0], csv.rows[k - 1][0]);
+  }
+  EXPECT_DOUBLE_EQ(csv.rows[0][1], 10.0);  // IC=10 on the tank capacitor
+}
+
+TEST(Csv, StandardOutputWhenNoFileIsGiven) {
+  const fs::path dir = scratch_dir("csv_stdout");
+  Result r = run_lcspice("run '" + source_path("circuits/lc_tank_bridge.cir").string() +
+                             "' --tstop 1e-5 --probe 'v(a)'",
+                         dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  Csv csv = parse_csv(r.out);
+  EXPECT_EQ(csv.header, (std::vector<std::string>{"time", "v(a)"}));
+  EXPECT_EQ(csv.rows.size(), 11u);
+}
+
+TEST(Csv, DefaultProbesAreNodeVoltagesThenVLDCurrents) {
+  const fs::path dir = scratch_dir("default_probes");
+  std::ofstream(dir / "c.cir") << "default probes\nV1 in 0 DC 1\nR1 in a 1k\nD1 a b dd\nL1 b 0 1m\n"
+                                  ".model dd D(VON=0.5)\n.tran 1u 10u\n.end\n";
+  Result r = run_lcspice("run '" + (dir / "c.cir").string() + "' -o '" + (dir / "o.csv").string() + "'", dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  Csv csv = parse_csv(read_file(dir / "o.csv"));
+  EXPECT_EQ(csv.header, (std::vector<std::string>{"time", "v(in)", "v(a)", "v(b)", "i(v1)", "i(d1)", "i(l1)"}));
+}
+
+TEST(Csv, ExistingFileIsReplacedWhole) {
+  const fs::path dir = scratch_dir("replace");
+  std::ofstream(dir / "w.csv") << "old content that must disappear\n";
+  Result r = run_lcspice("run '" + source_path("circuits/lc_tank_bridge.cir").string() +
+                             "' --tstop 2e-6 --probe 'v(a)' -o '" + (dir / "w.csv").string() + "'",
+                         dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(read_file(dir / "w.csv").rfind("time,v(a)\n", 0), 0u);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Usage errors (exit 1) and help
+
+TEST(Usage, ErrorsExitOne) {
+  const fs::path dir = scratch_dir("usage");
+  const std::string net = "'" + source_path("circuits/lc_tank_bridge.cir").string() + "'";
+  EXPECT_EQ(run_lcspice("run " + net + " --no-such-option", dir).code, 1);
+  EXPECT_EQ(run_lcspice("run /no/such/netlist.cir", dir).code, 1);
+  EXPECT_EQ(run_lcspice("frobnicate", dir).code, 1);
+  EXPECT_EQ(run_lcspice("", dir).code, 1);
+  Result m = run_lcspice("run " + net + " --method rk4", dir);
+  EXPECT_EQ(m.code, 1);
+  EXPECT_EQ(m.err_line(0), "error: unknown method 'rk4' (known: euler, theta)");
+  EXPECT_EQ(run_lcspice("run " + net + " --probe 'v(a' --tstop 1e-6", dir).code, 1);
+  EXPECT_EQ(run_lcspice("run " + net + " --probe 'v(zz)' --tstop 1e-6", dir).code, 1);
+}
+
+TEST(Usage, HelpListsOnlyWhatExists) {
+  const fs::path dir = scratch_dir("help");
+  Result r = run_lcspice("--help", dir);
+  EXPECT_EQ(r.code, 0);
+  for (const char* cmd : {"run", "op", "analyze"}) EXPECT_NE(r.out.find(cmd), std::string::npos) << cmd;
+  for (const char* absent : {"validate", "bench", "radau", "event", "smooth"})
+    EXPECT_EQ(r.out.find(absent), std::string::npos) << absent;
+}
+
+// ---------------------------------------------------------------------------------------------
+// op and analyze
+
+TEST(Op, DividerWithDiode) {
+  const fs::path dir = scratch_dir("op");
+  std::ofstream(dir / "d.cir") << "divider\nV1 a 0 DC 10\nR1 a b 1k\nD1 b c dd\nR2 c 0 1k\n"
+                                  ".model dd D(VON=0.7 RON=10)\n.end\n";
+  Result r = run_lcspice("op '" + (dir / "d.cir").string() + "'", dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  // i = 9.3 / 2010 A; v(c) = 1k * i
+  EXPECT_NE(r.out.find("v(c)             =   4.62686567164179e+00"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("i(d1)            =   4.62686567164179e-03   (on)"), std::string::npos) << r.out;
+  Result all = run_lcspice("op --all '" + (dir / "d.cir").string() + "'", dir);
+  ASSERT_EQ(all.code, 0);
+  EXPECT_NE(all.out.find("* 1 solution\n"), std::string::npos) << all.out;
+}
+
+TEST(Analyze, BridgeRectifierJson) {
+  const fs::path dir = scratch_dir("analyze_bridge");
+  Result r = run_lcspice("analyze --json '" + source_path("circuits/bridge_rectifier.cir").string() + "'", dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("\"h_components\": 2"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\"states\": 1, \"pairs\": 4"), std::string::npos) << r.out;
+  size_t voltage_pairs = 0;
+  for (size_t at = r.out.find("\"pair\": \"voltage\""); at != std::string::npos;
+       at = r.out.find("\"pair\": \"voltage\"", at + 1))
+    ++voltage_pairs;
+  EXPECT_EQ(voltage_pairs, 1u);  // one tree diode spans the quotient G/H
+}
+
+TEST(Analyze, HalfWaveRectifierDiodeIsAnInductorDiode) {
+  const fs::path dir = scratch_dir("analyze_halfwave");
+  Result r = run_lcspice("analyze --json '" + source_path("circuits/half_wave_rectifier.cir").string() + "'", dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("{\"name\": \"d1\", \"pair\": \"voltage\", \"class\": \"L\", \"index\": 1"),
+            std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("\"index\": 1, \"state_labels\": [\"v(c1)\", \"i(l1)\"]"), std::string::npos) << r.out;
+}
+
+}  // namespace
+}  // namespace lcs
