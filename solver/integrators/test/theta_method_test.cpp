@@ -4,7 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "solver/integrators/transient.h"
-#include "solver/model/test/netlist_builder.h"
+#include "tests/support/netlist_builder.h"
 
 namespace lcs {
 namespace {

@@ -4,7 +4,7 @@
 
 #include "solver/model/lcs_index.h"
 #include "solver/model/operating_point.h"
-#include "solver/model/test/netlist_builder.h"
+#include "tests/support/netlist_builder.h"
 
 namespace lcs {
 namespace {

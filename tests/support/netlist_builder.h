@@ -1,6 +1,8 @@
 // Netlists built in code, so model and integrator tests do not depend on the parser.
 #pragma once
 
+#include <utility>
+
 #include <optional>
 #include <string>
 #include <vector>

@@ -1,0 +1,110 @@
+#include "graph/spanning_tree.h"
+
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "graph/diode_classes.h"
+#include "tests/support/netlist_builder.h"
+
+namespace lcs {
+namespace {
+
+using testing::NetlistBuilder;
+
+// Random connected circuits of every branch class (a spanning chain first, then extra branches).
+Netlist random_circuit(std::mt19937& rng, int nodes, int extra) {
+  NetlistBuilder b;
+  std::uniform_int_distribution<int> kind(0, 5), node(0, nodes - 1);
+  auto name = [](int k) { return std::to_string(k); };
+  auto add = [&](int id, int a, int c) {
+    const std::string na = name(a), nc = name(c);
+    switch (kind(rng)) {
+      case 0: b.v("v" + name(id), na, nc, NetlistBuilder::dc(1)); break;
+      case 1: b.c("c" + name(id), na, nc, 1e-6); break;
+      case 2: b.r("r" + name(id), na, nc, 1e3); break;
+      case 3: b.d("d" + name(id), na, nc, 0.5, 1); break;
+      case 4: b.l("l" + name(id), na, nc, 1e-3); break;
+      default: b.i("i" + name(id), na, nc, NetlistBuilder::dc(1)); break;
+    }
+  };
+  int id = 0;
+  for (int n = 1; n < nodes; ++n) {
+    std::uniform_int_distribution<int> earlier(0, n - 1);
+    add(id++, earlier(rng), n);
+  }
+  for (int k = 0; k < extra; ++k) {
+    int a = node(rng), c = node(rng);
+    if (a == c) c = (c + 1) % nodes;
+    add(id++, a, c);
+  }
+  return b.build();
+}
+
+TEST(SpanningTree, LoopsSatisfyKvlAndNodePathsGivePotentials) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> potential(-5, 5);
+  for (int trial = 0; trial < 300; ++trial) {
+    Netlist net = random_circuit(rng, 2 + trial % 9, trial % 13);
+    CircuitGraph g = CircuitGraph::from_netlist(net);
+    SpanningTree t = build_normal_tree(g);
+    ASSERT_EQ(t.tree.size(), g.nodes.size() - 1);
+    ASSERT_EQ(t.tree.size() + t.links.size(), g.branches.size());
+    std::vector<double> phi(g.nodes.size());
+    for (size_t n = 1; n < phi.size(); ++n) phi[n] = potential(rng);
+    auto v = [&](int b) { return phi[g.branches[b].from] - phi[g.branches[b].to]; };
+    for (size_t j = 0; j < t.links.size(); ++j) {
+      double kvl = 0;
+      for (const LoopTerm& term : t.loops[j]) {
+        kvl += term.sign * v(term.branch);
+        // Cycle property of the minimum spanning tree: the loop of a link holds no branch of
+        // a heavier class (the model builder relies on it).
+        EXPECT_LE(static_cast<int>(g.branches[term.branch].cls),
+                  static_cast<int>(g.branches[t.links[j]].cls));
+      }
+      EXPECT_NEAR(kvl, 0.0, 1e-12);
+      // KVL in matrix form: v_link = -B^T v_tree.
+      double from_b = 0;
+      for (size_t i = 0; i < t.tree.size(); ++i) from_b -= t.B(i, j) * v(t.tree[i]);
+      EXPECT_NEAR(from_b, v(t.links[j]), 1e-12);
+    }
+    for (size_t n = 0; n < g.nodes.size(); ++n) {
+      double sum = 0;
+      for (const LoopTerm& term : t.node_paths[n]) sum += term.sign * v(term.branch);
+      EXPECT_NEAR(sum, phi[n], 1e-12);
+    }
+  }
+}
+
+TEST(SpanningTree, NormalTreePrefersSourcesThenCapacitors) {
+  // A capacitor and a resistor in parallel across a source; an inductor to a second node that
+  // also has a diode to ground: the tree is v1 (a), then the diode (b) rather than the inductor.
+  NetlistBuilder b;
+  b.v("v1", "a", "0", NetlistBuilder::dc(1)).r("r1", "a", "0", 1).c("c1", "a", "0", 1e-6);
+  b.l("l1", "a", "b", 1e-3).d("d1", "b", "0");
+  CircuitGraph g = CircuitGraph::from_netlist(b.build());
+  SpanningTree t = build_normal_tree(g);
+  std::vector<std::string> tree;
+  for (int br : t.tree) tree.push_back(g.branches[br].name);
+  EXPECT_EQ(tree, (std::vector<std::string>{"v1", "d1"}));
+}
+
+TEST(DiodeClasses, CapacitorResistorAndInductorDiodes) {
+  NetlistBuilder b;
+  b.v("v1", "a", "0", NetlistBuilder::dc(1));
+  b.c("c1", "a", "x", 1e-6).d("dc", "x", "a");     // C-only path between x and a
+  b.r("r1", "a", "y", 1).d("dr", "y", "a");        // resistor path
+  b.l("l1", "a", "z", 1e-3).d("dl", "z", "a");     // only through the inductor
+  b.d("dq", "a", "q").r("rq", "q", "w", 1).c("cq", "w", "q", 1e-6);  // q, w: only via dq
+  std::vector<DiodeClass> classes = classify_diodes(CircuitGraph::from_netlist(b.build()));
+  ASSERT_EQ(classes.size(), 4u);
+  EXPECT_EQ(classes[0].cls, 'C');
+  EXPECT_EQ(classes[1].cls, 'R');
+  EXPECT_EQ(classes[2].cls, 'L');
+  EXPECT_EQ(classes[3].cls, 'L');
+  EXPECT_FALSE(classes[0].joins_h_components);
+  EXPECT_TRUE(classes[3].joins_h_components);
+}
+
+}  // namespace
+}  // namespace lcs
