@@ -24,7 +24,7 @@ LcpSolution expect_solved(const Eigen::MatrixXd& M, const Eigen::VectorXd& q, do
   if (s.z.size() != q.size()) return s;
   EXPECT_LE(lcp_residual(M, q, s.z), abs_tol(M, q, s.z, rel))
       << "M=\n" << M << "\nq=" << q.transpose() << "\nz=" << s.z.transpose();
-  EXPECT_LE((s.w - (M * s.z + q)).cwiseAbs().maxCoeff(), 1e-12 * (1 + s.w.cwiseAbs().maxCoeff()));
+  EXPECT_LE(lcp_test::w_mismatch(M, q, s.z, s.w), 1e-13);
   return s;
 }
 
