@@ -367,5 +367,72 @@ TEST(Lemke, DegenerateStrictlyCopositive) {
   RecordProperty("max_pivots_seen", max_pivots_seen);
 }
 
+// Murty's example: M lower triangular with 1 on the diagonal and 2 below, q = -1. A P-matrix
+// (unique solution z = e_1) on which Lemke with d = 1 needs 2^n pivots. Exercises the
+// periodic refactorisation of the basis inverse (every max(64, n) pivots) and shows that the
+// default max_pivots = 50 (n + 1) is exceeded for n >= 9.
+TEST(Lemke, MurtyExponentialExample) {
+  for (int n = 1; n <= 12; ++n) {
+    Eigen::MatrixXd M = Eigen::MatrixXd::Identity(n, n);
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < i; ++j) M(i, j) = 2;
+    const Eigen::VectorXd q = -Eigen::VectorXd::Ones(n);
+    LemkeOptions o;
+    o.max_pivots = (1 << n) + 1;
+    LcpSolution s = solve_lemke(M, q, o);
+    ASSERT_EQ(s.status, LcpStatus::Solved) << n;
+    EXPECT_EQ(s.pivots, 1 << n);
+    Eigen::VectorXd e1 = Eigen::VectorXd::Zero(n);
+    e1(0) = 1;
+    EXPECT_EQ(s.z, e1);
+    EXPECT_EQ(lcp_residual(M, q, s.z), 0.0);
+    EXPECT_EQ(solve_lemke(M, q).status,
+              (1 << n) > 50 * (n + 1) ? LcpStatus::IterationLimit : LcpStatus::Solved);
+  }
+}
+
+// Zero rows/columns (e.g. a diode with no coupling): w_i = q_i whatever z is.
+TEST(Lemke, ZeroRowsAndColumns) {
+  Eigen::MatrixXd M(3, 3);
+  M << 0, 0, 0,
+       0, 2, 1,
+       0, 1, 2;
+  LcpSolution s = expect_solved(M, vec({1, -1, 1}));
+  EXPECT_LE((s.z - vec({0, 0.5, 0})).cwiseAbs().maxCoeff(), 1e-15);
+  EXPECT_EQ(solve_lemke(M, vec({-1, -1, 1})).status, LcpStatus::RayTermination);
+  expect_solved(Eigen::MatrixXd::Zero(2, 2), vec({0, 3}));
+  EXPECT_EQ(solve_lemke(Eigen::MatrixXd::Zero(2, 2), vec({0, -3})).status,
+            LcpStatus::RayTermination);
+}
+
+// Intrinsically ill-conditioned M (SPD, condition 1e12 after any diagonal scaling): Lemke may
+// fail, but then says so (NumericalFailure); whatever it calls Solved is accurate.
+TEST(Lemke, IllConditionedNeverClaimsFalseSuccess) {
+  std::mt19937 rng(12);
+  int solved = 0, failed = 0;
+  for (int n : {30, 60, 100}) {
+    Eigen::MatrixXd Q =
+        Eigen::HouseholderQR<Eigen::MatrixXd>(lcp_test::random_matrix(rng, n, n)).householderQ();
+    Eigen::VectorXd ev(n);
+    for (int i = 0; i < n; ++i) ev(i) = std::pow(1e12, -double(i) / (n - 1));
+    Eigen::MatrixXd M = Q * ev.asDiagonal() * Q.transpose();
+    M = 0.5 * (M + M.transpose());
+    for (int t = 0; t < 6; ++t) {
+      lcp_test::Planted p = planted(rng, M, 0.5 + 0.05 * t, t % 2 == 1);
+      LcpSolution s = solve_lemke(M, p.q);
+      ASSERT_TRUE(s.status == LcpStatus::Solved || s.status == LcpStatus::NumericalFailure)
+          << lcp_status_name(s.status);
+      if (s.status == LcpStatus::Solved) {
+        ++solved;
+        EXPECT_LE(relative_residual(M, p.q, s.z), 1e-8) << "n=" << n << " t=" << t;
+      } else {
+        ++failed;
+      }
+    }
+  }
+  EXPECT_GT(solved, failed);
+  RecordProperty("numerical_failures", failed);
+}
+
 }  // namespace
 }  // namespace lcs
