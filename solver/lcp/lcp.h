@@ -35,6 +35,13 @@ struct LcpSolution {
 
 // Lemke's complementary pivoting with covering vector d = (1,...,1) and lexicographic
 // degeneracy resolution (2.2.1): never cycles. For q >= 0 returns z = 0 without pivoting.
+// Implementation notes (lemke.cpp): M is first equilibrated by exact power-of-two row/column
+// scaling (an equivalent LCP; d = 1 refers to the scaled problem) and q normalised, so the
+// tolerances are relative to the data; on a complementary basis z is re-solved from M_JJ,
+// values below ~1e-12 relative are set to 0, and the status is Solved only if the recomputed
+// residual meets feas_tol (else NumericalFailure). On RayTermination / IterationLimit, z is the
+// last basic point (not a solution). w is always M z + q recomputed from the returned z, so it
+// may carry rounding-level negatives (~1e-16 relative to |q| + |M||z|).
 LcpSolution solve_lemke(const Eigen::MatrixXd& M, const Eigen::VectorXd& q,
                         const LemkeOptions& options = {});
 
@@ -44,6 +51,9 @@ double lcp_residual(const Eigen::MatrixXd& M, const Eigen::VectorXd& q, const Ei
 
 // Every solution of LCP(q, M), by enumerating active sets (n <= 24). Distinct solutions only
 // (within a relative 1e-9), sorted lexicographically by z. Used by `op --all`.
+// Only vertex solutions (from non-singular M_JJ) are found: where the solution set contains a
+// continuum (degenerate M, e.g. M = [[1,1],[1,1]], q = [-1,-1]) just its vertices are returned.
+// Cost 2^n LU factorisations; throws std::invalid_argument for n > 24. n = 0 gives {empty}.
 std::vector<Eigen::VectorXd> enumerate_lcp_solutions(const Eigen::MatrixXd& M,
                                                      const Eigen::VectorXd& q);
 
@@ -58,6 +68,8 @@ struct LcpWarmStats {
 // solution's active set J = {i : z_i > 0} -- solve M_JJ z_J = -q_J, accept if z_J >= 0 and
 // w >= 0 within tolerance -- and falls back to Lemke. Factorisations of M_JJ are cached per
 // active set (n <= 64), so a periodic circuit factorises each mode once.
+// Warm hits do not allocate once the active set's factorisation is cached. Copies of a solver
+// share the cache and work vectors (shared_ptr): do not use copies from different threads.
 class LcpWarmSolver {
  public:
   explicit LcpWarmSolver(Eigen::MatrixXd M, LemkeOptions options = {});

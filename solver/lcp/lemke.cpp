@@ -122,7 +122,7 @@ int LemkeEngine::lexicographic_leaving_row(double pivot_tol) {
     keep2_.clear();
     for (int k : keep_)
       if (std::max(b_(k), 0.0) - tmin * a_(k) <= btol) keep2_.push_back(k);
-    keep_.swap(keep2_);
+    if (!keep2_.empty()) keep_.swap(keep2_);  // empty only with NaN (broken basis)
   }
   if (keep_.size() > 1) {
     for (int k : keep_)
@@ -135,6 +135,7 @@ int LemkeEngine::lexicographic_leaving_row(double pivot_tol) {
     keep2_.clear();
     for (int k : keep_)
       if (Binv_(k, j) - rmin * a_(k) <= ctol) keep2_.push_back(k);
+    if (keep2_.empty()) break;  // NaN
     keep_.swap(keep2_);
   }
   // Exact lexicographic ties are impossible (Binv non-singular); if rounding leaves several

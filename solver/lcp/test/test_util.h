@@ -92,3 +92,17 @@ inline double abs_tol(const Eigen::MatrixXd& M, const Eigen::VectorXd& q, const 
 }
 
 }  // namespace lcs::lcp_test
+
+namespace lcs::lcp_test {
+
+// Largest |w_i - (M z + q)_i| relative to the magnitude of the terms summed into w_i.
+inline double w_mismatch(const Eigen::MatrixXd& M, const Eigen::VectorXd& q,
+                         const Eigen::VectorXd& z, const Eigen::VectorXd& w) {
+  Eigen::VectorXd ws = q.cwiseAbs() + M.cwiseAbs() * z.cwiseAbs();
+  double r = 0.0;
+  for (int i = 0; i < q.size(); ++i)
+    r = std::max(r, std::abs(w(i) - (M.row(i).dot(z) + q(i))) / std::max(ws(i), 1e-300));
+  return r;
+}
+
+}  // namespace lcs::lcp_test

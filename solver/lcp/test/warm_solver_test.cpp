@@ -1,0 +1,227 @@
+// LcpWarmSolver: same answers as Lemke on slowly varying q, exact warm-hit accounting,
+// fallback on active-set changes, no heap allocation on steady-state warm hits.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <random>
+#include <vector>
+
+#include "solver/lcp/lcp.h"
+#include "solver/lcp/test/test_util.h"
+
+// Count heap allocations by interposing malloc/calloc/realloc (forwarded to glibc's allocator,
+// so glibc's free stays valid). operator new and Eigen both go through malloc.
+#if defined(__GLIBC__) && !defined(__SANITIZE_ADDRESS__)
+#define LCS_COUNT_ALLOCS 1
+extern "C" void* __libc_malloc(std::size_t);
+extern "C" void* __libc_calloc(std::size_t, std::size_t);
+extern "C" void* __libc_realloc(void*, std::size_t);
+namespace {
+std::atomic<long> g_allocs{0};
+std::atomic<bool> g_counting{false};
+}  // namespace
+extern "C" void* malloc(std::size_t n) {
+  if (g_counting.load(std::memory_order_relaxed)) g_allocs.fetch_add(1, std::memory_order_relaxed);
+  return __libc_malloc(n);
+}
+extern "C" void* calloc(std::size_t a, std::size_t b) {
+  if (g_counting.load(std::memory_order_relaxed)) g_allocs.fetch_add(1, std::memory_order_relaxed);
+  return __libc_calloc(a, b);
+}
+extern "C" void* realloc(void* p, std::size_t n) {
+  if (g_counting.load(std::memory_order_relaxed)) g_allocs.fetch_add(1, std::memory_order_relaxed);
+  return __libc_realloc(p, n);
+}
+#endif
+
+namespace lcs {
+namespace {
+
+std::uint64_t active_mask(const Eigen::VectorXd& z) {
+  std::uint64_t m = 0;
+  for (int i = 0; i < z.size(); ++i)
+    if (z(i) > 0) m |= std::uint64_t{1} << i;
+  return m;
+}
+
+Eigen::VectorXd vec(std::initializer_list<double> v) {
+  Eigen::VectorXd x(v.size());
+  int i = 0;
+  for (double a : v) x(i++) = a;
+  return x;
+}
+
+// q_i(t) = q0_i + a_i sin(omega_i t + phi_i): active sets change now and then.
+std::vector<Eigen::VectorXd> slow_sequence(std::mt19937& rng, int n, int steps, double dt) {
+  Eigen::VectorXd q0 = lcp_test::random_vector(rng, n), a(n), omega(n), phi(n);
+  std::uniform_real_distribution<double> u(0.5, 2.0), ph(0, 6.28);
+  for (int i = 0; i < n; ++i) a(i) = u(rng), omega(i) = u(rng), phi(i) = ph(rng);
+  std::vector<Eigen::VectorXd> qs;
+  for (int k = 0; k < steps; ++k) {
+    Eigen::VectorXd q(n);
+    for (int i = 0; i < n; ++i) q(i) = q0(i) + a(i) * std::sin(omega(i) * k * dt + phi(i));
+    qs.push_back(q);
+  }
+  return qs;
+}
+
+void run_against_lemke(const Eigen::MatrixXd& M, const std::vector<Eigen::VectorXd>& qs) {
+  LcpWarmSolver warm(M);
+  long expected_hits = 0, lemke_pivots = 0;
+  std::uint64_t prev = 0;  // the solver starts from the empty active set
+  for (size_t k = 0; k < qs.size(); ++k) {
+    const Eigen::VectorXd& q = qs[k];
+    const LcpWarmStats before = warm.stats();
+    const LcpSolution& s = warm.solve(q);
+    LcpSolution ref = solve_lemke(M, q);
+    ASSERT_EQ(ref.status, LcpStatus::Solved);
+    ASSERT_EQ(s.status, LcpStatus::Solved) << "step " << k;
+    EXPECT_LE((s.z - ref.z).cwiseAbs().maxCoeff(), 1e-9 * (1 + ref.z.norm())) << "step " << k;
+    EXPECT_LE(lcp_residual(M, q, s.z), lcp_test::abs_tol(M, q, s.z));
+    EXPECT_LE(lcp_test::w_mismatch(M, q, s.z, s.w), 1e-13);
+    // Unique solutions and generic data: the previous active set works iff it is unchanged.
+    const std::uint64_t now = active_mask(ref.z);
+    const bool hit = now == prev;
+    expected_hits += hit;
+    EXPECT_EQ(warm.stats().warm_hits - before.warm_hits, hit ? 1 : 0) << "step " << k;
+    EXPECT_EQ(s.pivots, hit ? 0 : ref.pivots);
+    if (!hit) lemke_pivots += s.pivots;
+    prev = now;
+  }
+  const LcpWarmStats& st = warm.stats();
+  EXPECT_EQ(st.solves, static_cast<long>(qs.size()));
+  EXPECT_EQ(st.warm_hits, expected_hits);
+  EXPECT_EQ(st.warm_hits + st.lemke_calls, st.solves);
+  EXPECT_EQ(st.lemke_pivots, lemke_pivots);
+  EXPECT_GT(st.warm_hits, 0.9 * st.solves);  // slowly varying: mostly hits
+  EXPECT_GT(st.lemke_calls, 3);               // and the active set did change
+}
+
+TEST(WarmSolver, SlowlyVaryingQMatchesLemkePMatrix) {
+  std::mt19937 rng(41);
+  for (int n : {1, 3, 8, 16}) {
+    Eigen::MatrixXd M = lcp_test::random_p_matrix(rng, n);
+    run_against_lemke(M, slow_sequence(rng, n, 3000, 0.01));
+  }
+}
+
+TEST(WarmSolver, SlowlyVaryingQMatchesLemkeSpdBadlyScaled) {
+  std::mt19937 rng(42);
+  const int n = 12;
+  Eigen::MatrixXd M = lcp_test::random_spd(rng, n);
+  Eigen::VectorXd d(n);
+  for (int i = 0; i < n; ++i) d(i) = std::pow(10.0, (i % 5 - 2) * 4.0);  // 1e-8 .. 1e8
+  M = d.asDiagonal() * M * d.asDiagonal();  // still SPD, equivalent LCP after scaling
+  std::vector<Eigen::VectorXd> qs = slow_sequence(rng, n, 2000, 0.01);
+  for (Eigen::VectorXd& q : qs) q = d.cwiseProduct(q);
+  run_against_lemke(M, qs);
+}
+
+// Hand-checked sequence on M = [[2,1],[1,2]].
+TEST(WarmSolver, ChangedActiveSetFallsBackToLemke) {
+  Eigen::MatrixXd M(2, 2);
+  M << 2, 1, 1, 2;
+  LcpWarmSolver warm(M);
+  struct Step {
+    Eigen::VectorXd q, z;
+    bool hit;
+  } steps[] = {
+      {vec({-1, 1}), vec({0.5, 0}), false},         // {} fails (q1 < 0) -> Lemke
+      {vec({-2, 1}), vec({1, 0}), true},            // {1}: z1 = 1, w2 = 2
+      {vec({1, -1}), vec({0, 0.5}), false},         // {1}: z1 = -0.5 -> Lemke
+      {vec({-1, -1}), vec({1.0 / 3, 1.0 / 3}), false},  // {2}: w1 = -0.5 -> Lemke
+      {vec({-2, -2}), vec({2.0 / 3, 2.0 / 3}), true},   // {1,2}
+      {vec({1, 1}), vec({0, 0}), false},            // {1,2}: z < 0 -> Lemke (q >= 0, 0 pivots)
+      {vec({2, 3}), vec({0, 0}), true},             // {}
+  };
+  long hits = 0, calls = 0;
+  for (const Step& st : steps) {
+    const LcpSolution& s = warm.solve(st.q);
+    ASSERT_EQ(s.status, LcpStatus::Solved);
+    EXPECT_LE((s.z - st.z).cwiseAbs().maxCoeff(), 1e-15) << st.q.transpose();
+    EXPECT_LE(lcp_residual(M, st.q, s.z), 1e-15);
+    hits += st.hit;
+    calls += !st.hit;
+    EXPECT_EQ(warm.stats().warm_hits, hits) << st.q.transpose();
+    EXPECT_EQ(warm.stats().lemke_calls, calls) << st.q.transpose();
+  }
+}
+
+TEST(WarmSolver, FailuresArePropagatedAndRecovered) {
+  Eigen::MatrixXd M(2, 2);
+  M << 1, -1, -1, 1;  // PSD; q = (-1, -1) is infeasible
+  LcpWarmSolver warm(M);
+  EXPECT_EQ(warm.solve(vec({-1, 2})).status, LcpStatus::Solved);
+  EXPECT_EQ(warm.solve(vec({-1, -1})).status, LcpStatus::RayTermination);
+  const LcpSolution& s = warm.solve(vec({-2, 3}));  // the last good active set {1} still works
+  EXPECT_EQ(s.status, LcpStatus::Solved);
+  EXPECT_LE((s.z - vec({2, 0})).norm(), 1e-15);
+  EXPECT_EQ(warm.stats().warm_hits, 1);
+  EXPECT_EQ(warm.stats().lemke_calls, 2);
+  EXPECT_THROW(warm.solve(vec({1, 2, 3})), std::invalid_argument);
+}
+
+TEST(WarmSolver, LargeProblemsAlwaysUseLemke) {
+  std::mt19937 rng(43);
+  const int n = 70;  // active sets beyond 64 bits
+  Eigen::MatrixXd M = lcp_test::random_spd(rng, n);
+  LcpWarmSolver warm(M);
+  std::vector<Eigen::VectorXd> qs = slow_sequence(rng, n, 5, 0.01);
+  for (const Eigen::VectorXd& q : qs) {
+    const LcpSolution& s = warm.solve(q);
+    ASSERT_EQ(s.status, LcpStatus::Solved);
+    EXPECT_LE((s.z - solve_lemke(M, q).z).cwiseAbs().maxCoeff(), 1e-12 * (1 + s.z.norm()));
+  }
+  EXPECT_EQ(warm.stats().warm_hits, 0);
+  EXPECT_EQ(warm.stats().lemke_calls, 5);
+}
+
+#ifdef LCS_COUNT_ALLOCS
+// Periodic excitation: after the first period every mode's factorisation is cached, so a warm
+// hit allocates nothing (the Lemke fallback may).
+TEST(WarmSolver, WarmHitsDoNotAllocate) {
+  std::mt19937 rng(44);
+  const int n = 8;
+  Eigen::MatrixXd M = lcp_test::random_p_matrix(rng, n);
+  Eigen::VectorXd q0 = lcp_test::random_vector(rng, n), phase(n);
+  for (int i = 0; i < n; ++i) phase(i) = 0.7 * i;
+  const int period = 200;
+  std::vector<Eigen::VectorXd> qs;
+  for (int k = 0; k < 3 * period; ++k) {
+    Eigen::VectorXd q(n);
+    for (int i = 0; i < n; ++i) q(i) = q0(i) + 1.5 * std::sin(2 * M_PI * k / period + phase(i));
+    qs.push_back(q);
+  }
+  LcpWarmSolver warm(M);
+  for (int k = 0; k < period; ++k) warm.solve(qs[k]);  // learn the modes
+  long hit_allocs = 0, hits = 0;
+  for (int k = period; k < 3 * period; ++k) {
+    const long h0 = warm.stats().warm_hits;
+    g_allocs = 0;
+    g_counting = true;
+    const LcpSolution& s = warm.solve(qs[k]);
+    g_counting = false;
+    const long allocs = g_allocs;
+    ASSERT_EQ(s.status, LcpStatus::Solved);
+    if (warm.stats().warm_hits > h0) {
+      ++hits;
+      hit_allocs += allocs;
+    }
+  }
+  EXPECT_GT(hits, period);
+  EXPECT_EQ(hit_allocs, 0);
+  // Sanity check of the counter itself.
+  g_allocs = 0;
+  g_counting = true;
+  Eigen::VectorXd tmp = Eigen::VectorXd::Ones(100);
+  g_counting = false;
+  EXPECT_GE(g_allocs.load(), 1);
+  EXPECT_EQ(tmp.sum(), 100.0);
+}
+#endif
+
+}  // namespace
+}  // namespace lcs
