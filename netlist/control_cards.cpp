@@ -1,6 +1,7 @@
 #include "netlist/control_cards.h"
 
 #include <cstdio>
+#include <cstdlib>
 
 #include "netlist/element_card.h"
 
@@ -144,8 +145,13 @@ void parse_options(const Card& card, const ParamScope& scope, Netlist& netlist) 
     if (!a.flag()) {
       const Token& first = card[a.value_first];
       if (a.value_last - a.value_first == 1 && first.is_expression()) {
+        // The shortest text that reads back as the same double.
+        const double v = value_of(card, a.value_first, scope);
         char buf[40];
-        std::snprintf(buf, sizeof buf, "%.17g", value_of(card, a.value_first, scope));
+        for (int precision = 15; precision <= 17; ++precision) {
+          std::snprintf(buf, sizeof buf, "%.*g", precision, v);
+          if (std::strtod(buf, nullptr) == v) break;
+        }
         value = buf;
       } else {
         value = to_lower(card.text(first.begin, card[a.value_last - 1].end));
