@@ -87,7 +87,7 @@ void tokenize(Card& card) {
     } else if (c == '"' || c == '\'') {
       std::size_t close = s.find(c, i + 1);
       if (close == std::string::npos)
-        throw NetlistError(card.span(i, i + 1), std::string("missing closing ") + c);
+        throw NetlistError(card.span(i, i + 1), "missing closing quote");
       int e = static_cast<int>(close);
       push(Token::Kind::Quoted, i, e + 1, s.substr(i + 1, e - i - 1));
       i = e + 1;

@@ -102,8 +102,11 @@ std::vector<Assignment> split_assignments(const Card& card, std::size_t first, s
                                           bool allow_flags, bool expressions) {
   std::vector<Assignment> out;
   std::size_t i = first;
+  // `name =` with a name that cannot be a number (so `1 = 2` inside an expression is no assignment).
   auto starts_assignment = [&](std::size_t k) {
-    return k + 1 < last && card[k].is_word() && card[k + 1].is(Token::Kind::Equals);
+    if (k + 1 >= last || !card[k].is_word() || !card[k + 1].is(Token::Kind::Equals)) return false;
+    char c = card[k].lower[0];
+    return (c >= 'a' && c <= 'z') || c == '_';
   };
   while (i < last) {
     const Token& t = card[i];
@@ -114,7 +117,7 @@ std::vector<Assignment> split_assignments(const Card& card, std::size_t first, s
     if (!t.is_word()) throw NetlistError(card.at(t), "expected 'name=value', got " + quote(t.text));
     Assignment a;
     a.name = i;
-    if (!starts_assignment(i)) {
+    if (!(i + 1 < last && card[i + 1].is(Token::Kind::Equals))) {
       if (!allow_flags) {
         const SourceLocation loc = i + 1 < last ? card.at(i + 1) : card.after_last();
         throw NetlistError(loc, "missing '=' after " + quote(t.text));
