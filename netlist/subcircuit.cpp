@@ -1,5 +1,7 @@
 #include "netlist/subcircuit.h"
 
+#include <optional>
+
 #include "netlist/control_cards.h"
 #include "netlist/element_card.h"
 #include "netlist/param_scope.h"
@@ -67,6 +69,7 @@ const SubcktDef::Param* SubcktDef::param(const std::string& wanted) const {
 std::unique_ptr<SubcktDef> build_definitions(const std::vector<Card>& cards) {
   auto top = std::make_unique<SubcktDef>();
   std::vector<SubcktDef*> open = {top.get()};
+  std::optional<NetlistError> misplaced;  // the first control card found inside a definition
   for (const Card& card : cards) {
     const std::string keyword = card[0].is_word() ? card.keyword() : std::string();
     if (keyword == ".subckt") {
@@ -93,16 +96,19 @@ std::unique_ptr<SubcktDef> build_definitions(const std::vector<Card>& cards) {
       open.pop_back();
       continue;
     }
-    if (open.size() > 1 && !keyword.empty() && keyword[0] == '.') {
+    if (open.size() > 1 && !keyword.empty() && keyword[0] == '.' && !misplaced) {
       DotCard kind = classify_dot_card(keyword);
-      if (kind == DotCard::Unknown) throw NetlistError(card.at(0), "unknown control card " + quote(card[0].text));
-      if (!allowed_in_subcircuit(kind))
-        throw NetlistError(card.at(0), quote(card[0].lower) + " is not allowed inside a subcircuit");
+      if (kind == DotCard::Unknown)
+        misplaced = NetlistError(card.at(0), "unknown control card " + quote(card[0].text));
+      else if (!allowed_in_subcircuit(kind))
+        misplaced = NetlistError(card.at(0), quote(card[0].lower) + " is not allowed inside a subcircuit");
     }
     open.back()->body.push_back(&card);
   }
+  // A forgotten .ends is the likelier cause of control cards inside a definition: report it first.
   if (open.size() > 1)
     throw NetlistError(open.back()->card->at(0), "missing '.ends' for subcircuit " + quote(open.back()->name));
+  if (misplaced) throw *misplaced;
   return top;
 }
 
