@@ -35,9 +35,9 @@ std::string header_value(const std::string& path, const std::string& key) {
   return "";
 }
 
-TEST(BadNetlists, ThereAreEnoughOfThem) { EXPECT_GE(bad_netlists().size(), 16u); }
+TEST(ParseBadNetlists, ThereAreEnoughOfThem) { EXPECT_GE(bad_netlists().size(), 16u); }
 
-TEST(BadNetlists, EachFailsWithItsExpectedDiagnostic) {
+TEST(ParseBadNetlists, EachFailsWithItsExpectedDiagnostic) {
   for (const std::string& path : bad_netlists()) {
     SCOPED_TRACE(path);
     EXPECT_EQ(header_value(path, "expect-exit"), "2");
@@ -55,7 +55,7 @@ TEST(BadNetlists, EachFailsWithItsExpectedDiagnostic) {
   }
 }
 
-TEST(BadNetlists, NamesFollowTheConvention) {
+TEST(ParseBadNetlists, NamesFollowTheConvention) {
   for (const std::string& path : bad_netlists()) {
     const std::string name = fs::path(path).filename().string();
     EXPECT_TRUE(name.size() > 7 && std::isdigit(static_cast<unsigned char>(name[0])) &&

@@ -17,7 +17,7 @@ void check(const std::vector<Case>& cases) {
   for (const Case& c : cases) EXPECT_EQ(diag(c.text), c.expected) << "input:\n" << c.text;
 }
 
-TEST(Diagnostics, SyntaxAndElements) {
+TEST(ParseDiagnostics, SyntaxAndElements) {
   check({
       {"t\nW1 a b 1\n", "t.cir:2:1: error: unknown element type 'w'\nW1 a b 1\n^~"},
       {"t\nE1 a 0 b 0 2\n", "t.cir:2:1: error: unknown element type 'e'\nE1 a 0 b 0 2\n^~"},
@@ -41,7 +41,7 @@ TEST(Diagnostics, SyntaxAndElements) {
   });
 }
 
-TEST(Diagnostics, UnsupportedCards) {
+TEST(ParseDiagnostics, UnsupportedCards) {
   check({
       {"t\nQ1 c b e qmod\n", "t.cir:2:1: error: bipolar transistors (Q cards) are not supported yet\nQ1 c b e qmod\n^~"},
       {"t\n  tline a 0 b 0 z0=50 td=1n\n",
@@ -52,7 +52,7 @@ TEST(Diagnostics, UnsupportedCards) {
   });
 }
 
-TEST(Diagnostics, Numbers) {
+TEST(ParseDiagnostics, Numbers) {
   check({
       {"t\nR1 a b 1x2\n", "t.cir:2:8: error: invalid number '1x2'\nR1 a b 1x2\n       ^~~"},
       {"t\nR1 a b 1k5\n", "t.cir:2:8: error: invalid number '1k5'\nR1 a b 1k5\n       ^~~"},
@@ -61,7 +61,7 @@ TEST(Diagnostics, Numbers) {
   });
 }
 
-TEST(Diagnostics, Expressions) {
+TEST(ParseDiagnostics, Expressions) {
   check({
       {"t\nR1 a b {2*foo}\n", "t.cir:2:11: error: undefined parameter 'foo'\nR1 a b {2*foo}\n          ^~~"},
       {"t\n.param a=1\nR1 a b { a + Bogus }\n",
@@ -81,7 +81,7 @@ TEST(Diagnostics, Expressions) {
   });
 }
 
-TEST(Diagnostics, Sources) {
+TEST(ParseDiagnostics, Sources) {
   check({
       {"t\nV1 a 0 SIN(0 1 1k\n", "t.cir:2:11: error: missing ')'\nV1 a 0 SIN(0 1 1k\n          ^"},
       {"t\nV1 a 0 SIN(0)\n", "t.cir:2:8: error: 'sin' needs at least 2 parameters\nV1 a 0 SIN(0)\n       ^~~"},
@@ -99,7 +99,7 @@ TEST(Diagnostics, Sources) {
   });
 }
 
-TEST(Diagnostics, Models) {
+TEST(ParseDiagnostics, Models) {
   check({
       {"t\nD1 a b dx\n", "t.cir:2:8: error: diode model 'dx' is not defined\nD1 a b dx\n       ^~"},
       {"t\nD1 a b q\n.model q npn(bf=100)\n",
@@ -116,7 +116,7 @@ TEST(Diagnostics, Models) {
   });
 }
 
-TEST(Diagnostics, Couplings) {
+TEST(ParseDiagnostics, Couplings) {
   check({
       {"t\nK1 L1 L2 1.5\nL1 a 0 1\nL2 b 0 1\n",
        "t.cir:2:10: error: coupling coefficient of 'k1' must be in (0, 1]\nK1 L1 L2 1.5\n         ^~~"},
@@ -129,7 +129,7 @@ TEST(Diagnostics, Couplings) {
   });
 }
 
-TEST(Diagnostics, Subcircuits) {
+TEST(ParseDiagnostics, Subcircuits) {
   const std::string sub = "t\n.subckt s a b\nR1 a b 1\n.ends\n";
   check({
       {(sub + "X1 a s\n").c_str(), "t.cir:5:6: error: 'x1' connects 1 node but subcircuit 's' has 2 ports\nX1 a s\n     ^"},
@@ -157,7 +157,7 @@ TEST(Diagnostics, Subcircuits) {
   });
 }
 
-TEST(Diagnostics, ControlCards) {
+TEST(ParseDiagnostics, ControlCards) {
   check({
       {"t\n.tran 0 1m\n", "t.cir:2:7: error: '.tran' step must be positive\n.tran 0 1m\n      ^"},
       {"t\n.tran 1u\n", "t.cir:2:9: error: '.tran' needs TSTEP and TSTOP\n.tran 1u\n        ^"},
@@ -176,7 +176,7 @@ TEST(Diagnostics, ControlCards) {
   });
 }
 
-TEST(Diagnostics, Probes) {
+TEST(ParseDiagnostics, Probes) {
   check({
       {"t\nR1 a 0 1\n.print tran v(a) x(b)\n",
        "t.cir:3:18: error: invalid probe 'x(b)': expected v(node), v(node1,node2) or i(element)\n"
@@ -196,7 +196,7 @@ TEST(Diagnostics, Probes) {
   });
 }
 
-TEST(Diagnostics, LexicalAndIncludes) {
+TEST(ParseDiagnostics, LexicalAndIncludes) {
   check({
       {"t\n.include \"x.inc\n", "t.cir:2:10: error: missing closing quote\n.include \"x.inc\n         ^"},
       {"t\n.include nowhere/x.inc\n",
@@ -206,7 +206,7 @@ TEST(Diagnostics, LexicalAndIncludes) {
   });
 }
 
-TEST(Diagnostics, TabsKeepTheCaretAligned) {
+TEST(ParseDiagnostics, TabsKeepTheCaretAligned) {
   // format_diagnostic keeps tabs in the padding; the column counts characters.
   EXPECT_EQ(diag("t\n\tR1\ta\ta\t1\n"), "t.cir:2:7: error: r1 connects node 'a' to itself\n\tR1\ta\ta\t1\n\t  \t \t^");
 }

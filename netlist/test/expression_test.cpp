@@ -36,7 +36,7 @@ void expect_error(const std::string& text, int offset, int length, const std::st
   EXPECT_EQ(e.length, length) << text;
 }
 
-TEST(Expression, ArithmeticAndPrecedence) {
+TEST(ParseExpression, ArithmeticAndPrecedence) {
   EXPECT_EQ(eval("1+2*3"), 7);
   EXPECT_EQ(eval("(1+2)*3"), 9);
   EXPECT_EQ(eval("10/4"), 2.5);
@@ -52,7 +52,7 @@ TEST(Expression, ArithmeticAndPrecedence) {
   EXPECT_EQ(eval("  1 +\t1 "), 2);
 }
 
-TEST(Expression, NumbersWithSuffixes) {
+TEST(ParseExpression, NumbersWithSuffixes) {
   EXPECT_EQ(eval("1k*2"), 2000);
   EXPECT_DOUBLE_EQ(eval("2.2u*1meg"), 2.2);
   EXPECT_EQ(eval("10uF"), 1e-5);
@@ -60,7 +60,7 @@ TEST(Expression, NumbersWithSuffixes) {
   EXPECT_EQ(eval(".5*4"), 2);
 }
 
-TEST(Expression, ParametersAndPi) {
+TEST(ParseExpression, ParametersAndPi) {
   EXPECT_EQ(eval("a*2+b"), 7);
   EXPECT_EQ(eval("A*2+B"), 7);  // names are case-insensitive
   EXPECT_EQ(eval("r_load/2"), 1000);
@@ -68,7 +68,7 @@ TEST(Expression, ParametersAndPi) {
   EXPECT_EQ(eval("PI*2"), 2 * 3.14159265358979323846);
 }
 
-TEST(Expression, Functions) {
+TEST(ParseExpression, Functions) {
   EXPECT_EQ(eval("sqrt(16)"), 4);
   EXPECT_EQ(eval("exp(0)"), 1);
   EXPECT_DOUBLE_EQ(eval("log(exp(2))"), 2);  // log is the natural logarithm
@@ -88,7 +88,7 @@ TEST(Expression, Functions) {
   EXPECT_EQ(eval("max(min(a,b),2)"), 2);
 }
 
-TEST(Expression, Errors) {
+TEST(ParseExpression, Errors) {
   expect_error("foo+1", 0, 3, "undefined parameter 'foo'");
   expect_error("2*Foo", 2, 3, "undefined parameter 'Foo'");
   expect_error("1/0", 1, 1, "division by zero");
@@ -114,7 +114,7 @@ TEST(Expression, Errors) {
   expect_error("1+1e999", 2, 5, "invalid number '1e999'");
 }
 
-TEST(Expression, DeepNestingIsAnErrorNotACrash) {
+TEST(ParseExpression, DeepNestingIsAnErrorNotACrash) {
   std::string deep(100000, '(');
   deep += "1";
   deep += std::string(100000, ')');
@@ -124,7 +124,7 @@ TEST(Expression, DeepNestingIsAnErrorNotACrash) {
   EXPECT_EQ(eval(std::string(50, '(') + "2" + std::string(50, ')')), 2);
 }
 
-TEST(Expression, LookupFailureIsReportedAtTheName) {
+TEST(ParseExpression, LookupFailureIsReportedAtTheName) {
   ExpressionError e;
   try {
     evaluate_expression("1 + loop", [](const std::string&) -> std::optional<double> {

@@ -18,7 +18,7 @@ std::string file_diag(const std::string& path) {
   return "<no error>";
 }
 
-TEST(Include, RelativePathsNestedAndQuoted) {
+TEST(ParseInclude, RelativePathsNestedAndQuoted) {
   Netlist n = parse_netlist_file(kData + "/include_top.cir");
   EXPECT_EQ(n.file, kData + "/include_top.cir");
   EXPECT_EQ(n.title, "Top level that includes a model library and a subcircuit file");
@@ -38,35 +38,35 @@ TEST(Include, RelativePathsNestedAndQuoted) {
   EXPECT_EQ(test::element(n, "d1").loc.line, 5);
 }
 
-TEST(Include, MissingFileIsAnErrorAtTheIncludeLine) {
+TEST(ParseInclude, MissingFileIsAnErrorAtTheIncludeLine) {
   EXPECT_EQ(file_diag(kData + "/include_missing.cir"),
             kData + "/include_missing.cir:3:10: error: cannot open include file 'lib/no_such_file.lib'\n"
             ".include lib/no_such_file.lib\n"
             "         ^~~~~~~~~~~~~~~~~~~~");
 }
 
-TEST(Include, CycleIsAnError) {
+TEST(ParseInclude, CycleIsAnError) {
   EXPECT_EQ(file_diag(kData + "/include_cycle_top.cir"),
             kData + "/lib/cycle_b.inc:2:10: error: include cycle: './cycle_a.inc' is already being included\n"
             ".include ./cycle_a.inc\n"
             "         ^~~~~~~~~~~~~");
 }
 
-TEST(Include, ErrorsInsideAnIncludedFileNameThatFile) {
+TEST(ParseInclude, ErrorsInsideAnIncludedFileNameThatFile) {
   EXPECT_EQ(file_diag(kData + "/include_error.cir"),
             kData + "/lib/broken.inc:3:11: error: undefined parameter 'nosuch'\n"
             "R3 a 0 {2*nosuch}\n"
             "          ^~~~~~");
 }
 
-TEST(Include, EndInsideAnIncludedFileEndsOnlyThatFile) {
+TEST(ParseInclude, EndInsideAnIncludedFileEndsOnlyThatFile) {
   Netlist n = parse_netlist_file(kData + "/include_end.cir");
   ASSERT_EQ(n.elements.size(), 2u);
   EXPECT_EQ(n.elements[0].name, "r1");
   EXPECT_EQ(n.elements[1].name, "r2");
 }
 
-TEST(Include, FromAStringRelativeToItsFileName) {
+TEST(ParseInclude, FromAStringRelativeToItsFileName) {
   Netlist n = parse_netlist_string("t\n.include common.inc\nR1 a 0 {rload}\n", kData + "/virtual.cir");
   EXPECT_EQ(n.elements[0].value, 2000);
   EXPECT_EQ(test::diag("t\n.include\n"),
@@ -79,7 +79,7 @@ TEST(Include, FromAStringRelativeToItsFileName) {
             "                 ^~~~~");
 }
 
-TEST(Include, ADirectoryIsNotAFile) {
+TEST(ParseInclude, ADirectoryIsNotAFile) {
   EXPECT_EQ(test::diag("t\n.include lib\n", kData + "/x.cir"),
             kData + "/x.cir:2:10: error: cannot open include file 'lib'\n.include lib\n         ^~~");
 }

@@ -12,7 +12,7 @@ using test::diag;
 using test::element;
 using test::parse;
 
-TEST(Lexer, TokensKeepTheirPhysicalPositionAcrossContinuations) {
+TEST(ParseLexer, TokensKeepTheirPhysicalPositionAcrossContinuations) {
   std::vector<std::string> warnings;
   auto file = parse::make_source_file("f.cir", "title\nR1 a\n* a comment between\n\n+ b\n+   {2*k} ; tail\n");
   std::vector<parse::Card> cards = parse::split_cards(file, true, warnings);
@@ -33,7 +33,7 @@ TEST(Lexer, TokensKeepTheirPhysicalPositionAcrossContinuations) {
   EXPECT_EQ(c.at(3).line_text, "+   {2*k} ; tail");
 }
 
-TEST(Lexer, TokenKinds) {
+TEST(ParseLexer, TokenKinds) {
   std::vector<std::string> warnings;
   auto file = parse::make_source_file("f.cir", "t\nV1 a 0 SIN(0, 1k) ic=\"x y\" 'a+b' {c}\n");
   std::vector<parse::Card> cards = parse::split_cards(file, true, warnings);
@@ -51,7 +51,7 @@ TEST(Lexer, TokenKinds) {
                                              "a+b", "c"}));
 }
 
-TEST(Lexer, ErrorInsideAContinuationLinePointsAtItsColumn) {
+TEST(ParseLexer, ErrorInsideAContinuationLinePointsAtItsColumn) {
   EXPECT_EQ(diag("t\nR1 a b\n+ {2 * undefined_p}\n"),
             "t.cir:3:8: error: undefined parameter 'undefined_p'\n"
             "+ {2 * undefined_p}\n"
@@ -62,7 +62,7 @@ TEST(Lexer, ErrorInsideAContinuationLinePointsAtItsColumn) {
             "  ^");
 }
 
-TEST(Lexer, TitleIsAlwaysTheFirstLine) {
+TEST(ParseLexer, TitleIsAlwaysTheFirstLine) {
   EXPECT_EQ(parse("R1 a 0 1k\nR2 a 0 1k\n").title, "R1 a 0 1k");
   Netlist n = parse("* My Circuit *\nR2 a 0 1k\n");
   EXPECT_EQ(n.title, "* My Circuit *");
@@ -73,7 +73,7 @@ TEST(Lexer, TitleIsAlwaysTheFirstLine) {
   EXPECT_EQ(parse("Title with CRLF\r\nR1 a 0 1\r\n").title, "Title with CRLF");
 }
 
-TEST(Lexer, CommentsAndBlankLines) {
+TEST(ParseLexer, CommentsAndBlankLines) {
   Netlist n = parse(
       "title\n"
       "* full-line comment with R9 a b 1\n"
@@ -91,7 +91,7 @@ TEST(Lexer, CommentsAndBlankLines) {
   EXPECT_EQ(element(n, "r4").value, 4e3);
 }
 
-TEST(Lexer, CaseInsensitiveButLineTextKept) {
+TEST(ParseLexer, CaseInsensitiveButLineTextKept) {
   Netlist n = parse("Title\nRLOAD OUT Gnd 1K\n");
   const Element& r = element(n, "rload");
   EXPECT_EQ(r.nodes, (std::vector<std::string>{"out", "0"}));
@@ -101,7 +101,7 @@ TEST(Lexer, CaseInsensitiveButLineTextKept) {
   EXPECT_EQ(r.loc.length, 5);
 }
 
-TEST(Lexer, EndStopsTheDeck) {
+TEST(ParseLexer, EndStopsTheDeck) {
   Netlist n = parse("t\nR1 a 0 1\n.END\nR2 a 0 {unbalanced\n\x01\x02 junk\n");
   EXPECT_EQ(n.elements.size(), 1u);
   EXPECT_EQ(parse("t\nR1 a 0 1\n  .end extra words\nR2 b 0 1\n").elements.size(), 1u);
@@ -109,7 +109,7 @@ TEST(Lexer, EndStopsTheDeck) {
   EXPECT_EQ(parse("t\n.subckt s a\nR1 a 0 1\n.ends\nX1 n s\n").elements.size(), 1u);
 }
 
-TEST(Lexer, ControlBlocksAreSkippedWithAWarning) {
+TEST(ParseLexer, ControlBlocksAreSkippedWithAWarning) {
   Netlist n = parse("t\nR1 a 0 1\n.control\nrun\nplot v(a) * junk {\n.endc\nR2 a 0 2\n");
   EXPECT_EQ(n.elements.size(), 2u);
   ASSERT_EQ(n.warnings.size(), 1u);
@@ -120,7 +120,7 @@ TEST(Lexer, ControlBlocksAreSkippedWithAWarning) {
             "  ^~~~~~~~");
 }
 
-TEST(Lexer, WarningLinesAreOneLine) {
+TEST(ParseLexer, WarningLinesAreOneLine) {
   SourceLocation loc;
   loc.file = "a.cir";
   loc.line = 3;
@@ -129,7 +129,7 @@ TEST(Lexer, WarningLinesAreOneLine) {
   EXPECT_EQ(parse::warning_line(loc, "something"), "a.cir:3:7: warning: something");
 }
 
-TEST(Lexer, QuoteEscapesControlBytesAndCutsLongTokens) {
+TEST(ParseLexer, QuoteEscapesControlBytesAndCutsLongTokens) {
   EXPECT_EQ(parse::quote("r1"), "'r1'");
   EXPECT_EQ(parse::quote(std::string("a\x01" "b", 3)), "'a\\x01b'");
   EXPECT_EQ(parse::quote(std::string(50, 'x')), "'" + std::string(40, 'x') + "...'");

@@ -68,7 +68,7 @@ TEST(ParseNumber, Malformed) {
     EXPECT_FALSE(parse_number(bad).has_value()) << "'" << bad << "'";
 }
 
-TEST(ScanNumber, StopsAfterTheLetters) {
+TEST(ParseNumberScan, StopsAfterTheLetters) {
   std::string s = "2.5kohm*3";
   std::size_t i = 0;
   double v = 0;

@@ -15,7 +15,7 @@ SourceLocation at(int line, int column) {
   return loc;
 }
 
-TEST(Probe, Forms) {
+TEST(ParseProbe, Forms) {
   Probe p = parse_probe("v(out)", at(1, 1));
   EXPECT_EQ(p.kind, Probe::Kind::NodeVoltage);
   EXPECT_EQ(p.a, "out");
@@ -34,7 +34,7 @@ TEST(Probe, Forms) {
   EXPECT_EQ(parse_probe("v(a,GND)", at(1, 1)).name(), "v(a,0)");
 }
 
-TEST(Probe, FromTheCommandLineHasNoLocation) {
+TEST(ParseProbe, FromTheCommandLineHasNoLocation) {
   Probe p = parse_probe("i(l1)", SourceLocation());
   EXPECT_EQ(p.name(), "i(l1)");
   try {
@@ -45,14 +45,14 @@ TEST(Probe, FromTheCommandLineHasNoLocation) {
   }
 }
 
-TEST(Probe, Errors) {
+TEST(ParseProbe, Errors) {
   for (const char* bad : {"", "v", "v()", "v(a", "va)", "v(a,b,c)", "i(a,b)", "x(a)", "vm(a)", "v(a)b", "ic(q1)",
                           "v(a b)", "@r1[i]", "v(,a)", "v(a,)", "all"}) {
     EXPECT_THROW(parse_probe(bad, at(1, 1)), NetlistError) << bad;
   }
 }
 
-TEST(Probe, ErrorColumnSkipsLeadingBlanks) {
+TEST(ParseProbe, ErrorColumnSkipsLeadingBlanks) {
   try {
     parse_probe("  bogus", at(1, 22));
     FAIL();

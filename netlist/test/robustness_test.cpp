@@ -25,7 +25,7 @@ std::string outcome(const std::string& text) {
   }
 }
 
-TEST(Robustness, EmptyAndTrivialInputs) {
+TEST(ParseRobustness, EmptyAndTrivialInputs) {
   for (const char* text : {"", "\n", "\n\n\n", "title only", "t\n* only comments\n; and this\n", " \t \r\n",
                            "t\n.end\n", "t\n\n\n.END"})
     EXPECT_EQ(outcome(text), "") << text;
@@ -33,7 +33,7 @@ TEST(Robustness, EmptyAndTrivialInputs) {
   EXPECT_EQ(outcome("t\n+\n"), "continuation line without a card to continue");
 }
 
-TEST(Robustness, UnbalancedDelimiters) {
+TEST(ParseRobustness, UnbalancedDelimiters) {
   EXPECT_EQ(outcome("t\nV1 a 0 SIN((0 1 2\n"), "missing ')'");
   EXPECT_EQ(outcome("t\nV1 a 0 SIN(0 1 2))\n"), "unexpected extra token ')'");
   EXPECT_EQ(outcome("t\nR1 a 0 {{1}\n"), "unexpected '{' in expression");
@@ -46,7 +46,7 @@ TEST(Robustness, UnbalancedDelimiters) {
   EXPECT_EQ(outcome("t\nR1 a 0 '1+2\n"), "missing closing quote");
 }
 
-TEST(Robustness, RunawayContinuationIsFastAndReportsTheFirstExtraToken) {
+TEST(ParseRobustness, RunawayContinuationIsFastAndReportsTheFirstExtraToken) {
   std::string text = "t\nR1 a b 1k\n";
   for (int i = 0; i < 200000; ++i) text += "+ x\n";
   auto start = std::chrono::steady_clock::now();
@@ -54,7 +54,7 @@ TEST(Robustness, RunawayContinuationIsFastAndReportsTheFirstExtraToken) {
   EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(10));
 }
 
-TEST(Robustness, LongLinesAndManyElements) {
+TEST(ParseRobustness, LongLinesAndManyElements) {
   std::string text = "t\n";
   for (int i = 0; i < 20000; ++i) text += "R" + std::to_string(i) + " n" + std::to_string(i) + " n" + std::to_string(i + 1) + " 1k\n";
   Netlist n = parse_netlist_string(text, "big.cir");
@@ -63,7 +63,7 @@ TEST(Robustness, LongLinesAndManyElements) {
   EXPECT_EQ(outcome(line), "unexpected extra token '" + std::string(40, 'x') + "...'");
 }
 
-TEST(Robustness, ExponentialSubcircuitExpansionIsCapped) {
+TEST(ParseRobustness, ExponentialSubcircuitExpansionIsCapped) {
   // Ten levels of ten instances each would be 10^10 resistors.
   std::string text = "t\n.subckt s0 a\nR1 a 0 1\n.ends\n";
   for (int k = 1; k <= 10; ++k) {
@@ -77,7 +77,7 @@ TEST(Robustness, ExponentialSubcircuitExpansionIsCapped) {
   EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(20));
 }
 
-TEST(Robustness, DeepNesting) {
+TEST(ParseRobustness, DeepNesting) {
   // A chain of 300 subcircuits, each instantiating the next.
   std::string chain = "t\n";
   for (int k = 0; k < 300; ++k)
@@ -102,12 +102,12 @@ TEST(Robustness, DeepNesting) {
   EXPECT_EQ(n.elements[0].value, 10001);
 }
 
-TEST(Robustness, IncludeOfItself) {
+TEST(ParseRobustness, IncludeOfItself) {
   EXPECT_EQ(outcome("t\n.include fuzz.cir\n"), "include cycle: 'fuzz.cir' is already being included");
 }
 
 // Random bytes, and random sequences of SPICE-like fragments that reach deeper into the parser.
-TEST(Robustness, RandomInputOnlyEverThrowsNetlistError) {
+TEST(ParseRobustness, RandomInputOnlyEverThrowsNetlistError) {
   std::mt19937 rng(12345);
   const std::vector<std::string> fragments = {
       "R1", "L1", "C1", "K1", "V1", "I1", "D1", "X1", "Q1", "T1", "O1", "a", "b", "0", "gnd", "1k", "-1", "{",

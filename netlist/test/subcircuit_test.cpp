@@ -16,7 +16,7 @@ std::vector<std::string> names(const Netlist& n) {
   return out;
 }
 
-TEST(Subcircuit, FlattensNamesAndNodes) {
+TEST(ParseSubcircuit, FlattensNamesAndNodes) {
   Netlist n = parse(
       "t\n"
       ".subckt divider top bot\n"
@@ -37,7 +37,7 @@ TEST(Subcircuit, FlattensNamesAndNodes) {
   EXPECT_EQ(element(n, "x2.r2").loc.line_text, "R2 mid bot 1k");
 }
 
-TEST(Subcircuit, NestedInstances) {
+TEST(ParseSubcircuit, NestedInstances) {
   Netlist n = parse(
       "t\n"
       ".subckt leaf a b\n"
@@ -54,7 +54,7 @@ TEST(Subcircuit, NestedInstances) {
   EXPECT_EQ(element(n, "xtop.x2.r1").nodes, (std::vector<std::string>{"xtop.m", "0"}));
 }
 
-TEST(Subcircuit, DefinitionAfterUseAndNestedDefinitions) {
+TEST(ParseSubcircuit, DefinitionAfterUseAndNestedDefinitions) {
   Netlist n = parse(
       "t\n"
       "X1 a 0 outer\n"
@@ -73,7 +73,7 @@ TEST(Subcircuit, DefinitionAfterUseAndNestedDefinitions) {
             "       ^~~~~");
 }
 
-TEST(Subcircuit, ParametersDefaultsAndOverrides) {
+TEST(ParseSubcircuit, ParametersDefaultsAndOverrides) {
   Netlist n = parse(
       "t\n"
       ".param scale=10\n"
@@ -99,7 +99,7 @@ TEST(Subcircuit, ParametersDefaultsAndOverrides) {
   EXPECT_DOUBLE_EQ(element(n, "x3.r2").value, 1);
 }
 
-TEST(Subcircuit, CouplingNamesAreScoped) {
+TEST(ParseSubcircuit, CouplingNamesAreScoped) {
   Netlist n = parse(
       "t\n"
       ".subckt xfmr p1 p2 s1 s2\n"
@@ -115,7 +115,7 @@ TEST(Subcircuit, CouplingNamesAreScoped) {
   EXPECT_EQ(element(n, "k9").coupled, (std::vector<std::string>{"x1.l1", "x2.l2"}));
 }
 
-TEST(Subcircuit, ModelsInsideASubcircuitAreLocal) {
+TEST(ParseSubcircuit, ModelsInsideASubcircuitAreLocal) {
   Netlist n = parse(
       "t\n"
       ".model dm D(von=0.7)\n"
@@ -136,12 +136,12 @@ TEST(Subcircuit, ModelsInsideASubcircuitAreLocal) {
   EXPECT_EQ(n.diode_models.at("x2.dlocal").name, "x2.dlocal");
 }
 
-TEST(Subcircuit, UnusedDefinitionsAreNotExpanded) {
+TEST(ParseSubcircuit, UnusedDefinitionsAreNotExpanded) {
   Netlist n = parse("t\n.subckt unused a b\nR1 a b 1\n.ends\nR1 x 0 1\n");
   EXPECT_EQ(names(n), (std::vector<std::string>{"r1"}));
 }
 
-TEST(Subcircuit, ProbesAndIcReachIntoInstances) {
+TEST(ParseSubcircuit, ProbesAndIcReachIntoInstances) {
   Netlist n = parse(
       "t\n.subckt s a\nR1 a m 1\nC1 m 0 1u\n.ends\nX1 in s\nV1 in 0 1\n"
       ".print tran v(x1.m) i(x1.r1)\n.ic v(x1.m)=0.5\n");
