@@ -29,6 +29,8 @@ std::pair<int, int> value_span(const Card& card, std::size_t first, std::size_t 
   return {t.begin, card[last - 1].end};
 }
 
+// One level of expansion: the top level or one X instance. It lives on the stack while its body
+// is expanded; nested instances point to it as their parent.
 struct Instance {
   const SubcktDef* def = nullptr;
   std::string prefix;                          // "" at the top level, "x1.", "x1.x2.", ...

@@ -136,7 +136,7 @@ std::string warning_line(const SourceLocation& loc, const std::string& message) 
 SourceFilePtr make_source_file(std::string path, const std::string& text) {
   auto file = std::make_shared<SourceFile>();
   file->path = std::move(path);
-  std::size_t start = 0;
+  std::size_t start = text.compare(0, 3, "\xEF\xBB\xBF") == 0 ? 3 : 0;  // a UTF-8 byte order mark
   while (start < text.size()) {
     std::size_t nl = text.find('\n', start);
     if (nl == std::string::npos) nl = text.size();

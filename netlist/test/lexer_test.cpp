@@ -71,6 +71,7 @@ TEST(ParseLexer, TitleIsAlwaysTheFirstLine) {
   EXPECT_FALSE(parse(".tran 1 2\n").tran.has_value());
   EXPECT_EQ(parse("").title, "");
   EXPECT_EQ(parse("Title with CRLF\r\nR1 a 0 1\r\n").title, "Title with CRLF");
+  EXPECT_EQ(parse("\xEF\xBB\xBFTitle after a byte order mark\nR1 a 0 1\n").title, "Title after a byte order mark");
 }
 
 TEST(ParseLexer, CommentsAndBlankLines) {
