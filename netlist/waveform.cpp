@@ -122,13 +122,14 @@ void pulse_phase(const PulseShape& s, double t, double& period_start, double& ta
     tau = x;
   } else {
     double k = std::floor(x / s.per);
+    if (!std::isfinite(k)) k = 0;  // a period too small to divide by: no meaningful phase
     tau = x - k * s.per;
     double tol = 64 * DBL_EPSILON * std::max({std::fabs(t), std::fabs(s.td), s.per});
     if (tau >= s.per - tol) {
       k += 1;
       tau = 0;
     }
-    if (tau < 0) tau = 0;
+    if (!(tau >= 0)) tau = 0;  // also NaN
     period_start = s.td + k * s.per;
   }
   double tol = 64 * DBL_EPSILON * std::max({std::fabs(t), std::fabs(s.td), s.per});
@@ -350,8 +351,11 @@ std::vector<double> Waveform::breakpoints(double t0, double t1) const {
         if (n.t < s.per && (corners.empty() || corners.back() != n.t)) corners.push_back(n.t);
       double kfirst = std::max(0.0, std::floor((t0 - s.td) / s.per));
       double klast = std::ceil((t1 - s.td) / s.per);
-      for (double k = kfirst; k <= klast && out.size() < kMaxBreakpoints; k += 1)
-        for (double c : corners) add(s.td + k * s.per + c);
+      if (!std::isfinite(kfirst) || !std::isfinite(klast)) break;
+      // An integer count, so a period tiny against t (k beyond 2^53) cannot loop forever.
+      const double periods = std::min(klast - kfirst, static_cast<double>(kMaxBreakpoints));
+      for (long long j = 0; j <= static_cast<long long>(periods) && out.size() < kMaxBreakpoints; ++j)
+        for (double c : corners) add(s.td + (kfirst + static_cast<double>(j)) * s.per + c);
       break;
     }
   }

@@ -231,6 +231,17 @@ TEST(WaveformPulse, SinglePulseWithoutPeriod) {
   expect_times(w.breakpoints(0, 100), {1, 2, 3, 4});
 }
 
+TEST(WaveformPulse, AbsurdPeriodsStayBoundedAndFinite) {
+  Waveform tiny = make(Waveform::Kind::Pulse, {0, 1, 0, 0, 0, 1e-300, 2e-300});
+  EXPECT_TRUE(tiny.breakpoints(0.5, 1).size() <= 10'000'000u);
+  EXPECT_TRUE(std::isfinite(tiny.value(0.75)));
+  Waveform denormal = make(Waveform::Kind::Pulse, {0, 1, 0, 0, 0, 1e-320, 2e-320});
+  EXPECT_TRUE(std::isfinite(denormal.value(1.0)));
+  EXPECT_TRUE(std::isfinite(denormal.derivative(1.0)));
+  auto r = denormal.range(0, 1);
+  EXPECT_TRUE(std::isfinite(r.first) && std::isfinite(r.second));
+}
+
 TEST(WaveformPwl, ValuesJumpsAndEnds) {
   // PWL(0 0 1 1 1 3 2 3 3 0): ramp, jump to 3 at t=1, flat, ramp down
   Waveform w = make(Waveform::Kind::Pwl, {0, 0, 1, 1, 1, 3, 2, 3, 3, 0});

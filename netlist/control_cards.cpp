@@ -1,0 +1,165 @@
+#include "netlist/control_cards.h"
+
+#include <cstdio>
+#include <cstdlib>
+
+#include "netlist/element_card.h"
+
+namespace lcs::parse {
+namespace {
+
+const char* const kIgnoredCards[] = {".ac", ".dc", ".noise", ".tf", ".meas", ".measure", ".four",
+                                     ".temp", ".nodeset", ".width", ".sens", ".disto", ".pz"};
+const char* const kOtherAnalyses[] = {"ac", "dc", "op", "noise", "tf", "disto", "pz", "sens"};
+
+[[noreturn]] void expected_ic(const Card& card, std::size_t i) {
+  if (i >= card.size()) throw NetlistError(card.after_last(), "expected 'v(node)=value' after " + quote(card[i - 1].text));
+  throw NetlistError(card.at(i), "expected 'v(node)=value', got " + quote(card[i].text));
+}
+
+}  // namespace
+
+DotCard classify_dot_card(const std::string& k) {
+  if (k == ".param") return DotCard::Param;
+  if (k == ".model") return DotCard::Model;
+  if (k == ".subckt") return DotCard::Subckt;
+  if (k == ".ends") return DotCard::Ends;
+  if (k == ".tran") return DotCard::Tran;
+  if (k == ".ic") return DotCard::Ic;
+  if (k == ".print" || k == ".plot") return DotCard::Print;
+  if (k == ".save") return DotCard::Save;
+  if (k == ".options" || k == ".option" || k == ".opt") return DotCard::Options;
+  if (k == ".op") return DotCard::Op;
+  if (k == ".title") return DotCard::Title;
+  if (k == ".endc") return DotCard::Endc;
+  for (const char* c : kIgnoredCards)
+    if (k == c) return DotCard::Ignored;
+  return DotCard::Unknown;
+}
+
+bool allowed_in_subcircuit(DotCard kind) {
+  return kind == DotCard::Param || kind == DotCard::Model || kind == DotCard::Subckt || kind == DotCard::Ends;
+}
+
+TranSpec parse_tran(const Card& card, const ParamScope& scope) {
+  TranSpec spec;
+  spec.loc = card.at(0);
+  std::vector<std::size_t> values;
+  for (std::size_t i = 1; i < card.size(); ++i) {
+    const Token& t = card[i];
+    if (t.is(Token::Kind::Comma)) continue;
+    if (t.is_word("uic")) {
+      spec.uic = true;
+      continue;
+    }
+    if (values.size() == 4) throw NetlistError(card.at(t), "unexpected extra token " + quote(t.text));
+    values.push_back(i);
+  }
+  if (values.size() < 2) throw NetlistError(card.after_last(), "'.tran' needs TSTEP and TSTOP");
+  double v[4] = {0, 0, 0, 0};
+  for (std::size_t k = 0; k < values.size(); ++k) v[k] = value_of(card, values[k], scope);
+  spec.tstep = v[0];
+  spec.tstop = v[1];
+  spec.tstart = v[2];
+  spec.tmax = v[3];
+  if (!(spec.tstep > 0)) throw NetlistError(card.at(values[0]), "'.tran' step must be positive");
+  if (spec.tstart < 0) throw NetlistError(card.at(values[2]), "'.tran' start time must not be negative");
+  if (!(spec.tstop > spec.tstart))
+    throw NetlistError(card.at(values[1]), values.size() > 2 ? "'.tran' stop time must be greater than the start time"
+                                                             : "'.tran' stop time must be positive");
+  if (spec.tmax < 0) throw NetlistError(card.at(values[3]), "'.tran' maximum step must not be negative");
+  return spec;
+}
+
+std::vector<NodeIc> parse_ic(const Card& card, const ParamScope& scope) {
+  std::vector<NodeIc> out;
+  const std::size_t n = card.size();
+  if (n == 1) expected_ic(card, 1);
+  std::size_t i = 1;
+  while (i < n) {
+    if (card[i].is(Token::Kind::Comma)) {
+      ++i;
+      continue;
+    }
+    if (!card[i].is_word("v")) expected_ic(card, i);
+    if (i + 1 >= n || !card[i + 1].is(Token::Kind::LParen)) expected_ic(card, i + 1);
+    if (i + 2 >= n || !card[i + 2].is_word()) expected_ic(card, i + 2);
+    if (i + 3 >= n || !card[i + 3].is(Token::Kind::RParen)) expected_ic(card, i + 3);
+    if (i + 4 >= n || !card[i + 4].is(Token::Kind::Equals)) expected_ic(card, i + 4);
+    if (i + 5 >= n) expected_ic(card, i + 5);
+    NodeIc ic;
+    ic.node = is_ground(card[i + 2].lower) ? "0" : card[i + 2].lower;
+    if (ic.node == "0") throw NetlistError(card.at(i + 2), "cannot set the initial voltage of ground");
+    ic.value = value_of(card, i + 5, scope);
+    ic.loc = card.span(card[i].begin, card[i + 3].end);
+    out.push_back(ic);
+    i += 6;
+  }
+  return out;
+}
+
+std::vector<Probe> parse_probe_card(const Card& card, std::vector<std::string>& warnings) {
+  std::vector<Probe> out;
+  const std::size_t n = card.size();
+  const bool save = card.keyword() == ".save";
+  std::size_t i = 1;
+  if (!save && i < n && card[i].is_word() && !(i + 1 < n && card[i + 1].is(Token::Kind::LParen))) {
+    if (card[i].lower == "tran") {
+      ++i;
+    } else {
+      for (const char* a : kOtherAnalyses)
+        if (card[i].lower == a) {
+          warnings.push_back(warning_line(card.at(i), quote(card[0].lower + " " + a) + " is ignored (lcspice runs transient analyses)"));
+          return out;
+        }
+    }
+  }
+  while (i < n) {
+    const Token& t = card[i];
+    if (t.is(Token::Kind::Comma)) {
+      ++i;
+      continue;
+    }
+    if (save && t.is_word("all")) {
+      ++i;
+      continue;
+    }
+    std::size_t end = i + 1;
+    if (t.is_word() && i + 1 < n && card[i + 1].is(Token::Kind::LParen)) {
+      std::size_t j = i + 2;
+      while (j < n && !card[j].is(Token::Kind::RParen)) ++j;
+      if (j >= n) throw NetlistError(card.at(i + 1), "missing ')'");
+      end = j + 1;
+    }
+    int b = t.begin, e = card[end - 1].end;
+    out.push_back(parse_probe(card.text(b, e), card.span(b, e)));
+    i = end;
+  }
+  return out;
+}
+
+void parse_options(const Card& card, const ParamScope& scope, Netlist& netlist) {
+  for (const Assignment& a : split_assignments(card, 1, card.size(), true, false)) {
+    const Token& name = card[a.name];
+    std::string value;
+    if (!a.flag()) {
+      const Token& first = card[a.value_first];
+      if (a.value_last - a.value_first == 1 && first.is_expression()) {
+        // The shortest text that reads back as the same double.
+        const double v = value_of(card, a.value_first, scope);
+        char buf[40];
+        for (int precision = 15; precision <= 17; ++precision) {
+          std::snprintf(buf, sizeof buf, "%.*g", precision, v);
+          if (std::strtod(buf, nullptr) == v) break;
+        }
+        value = buf;
+      } else {
+        value = to_lower(card.text(first.begin, card[a.value_last - 1].end));
+      }
+    }
+    netlist.options[name.lower] = value;
+    netlist.option_locs[name.lower] = card.at(name);
+  }
+}
+
+}  // namespace lcs::parse

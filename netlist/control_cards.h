@@ -1,0 +1,43 @@
+// Dot cards other than .param/.model/.subckt/.include: classification, and the control cards of
+// the top level (.tran, .ic, .print/.plot/.save, .options). Internal to the netlist reader.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "netlist/lexer.h"
+#include "netlist/netlist.h"
+#include "netlist/param_scope.h"
+
+namespace lcs::parse {
+
+enum class DotCard {
+  Param,
+  Model,
+  Subckt,
+  Ends,
+  Tran,
+  Ic,
+  Print,     // .print, .plot
+  Save,
+  Options,   // .options, .option, .opt
+  Op,        // accepted silently
+  Title,     // .title text
+  Ignored,   // analyses and cards lcspice does not run (.ac .dc .noise .tf .meas .four ...): warning
+  Endc,      // a stray .endc (the lexer skips .control blocks)
+  Unknown,
+};
+
+DotCard classify_dot_card(const std::string& lower_keyword);
+
+// Control cards may only appear at the top level.
+bool allowed_in_subcircuit(DotCard kind);
+
+TranSpec parse_tran(const Card& card, const ParamScope& scope);
+std::vector<NodeIc> parse_ic(const Card& card, const ParamScope& scope);
+// .print/.plot (`tran` or no analysis name: probes; another analysis: ignored with a warning)
+// and .save (`all` means the default probes).
+std::vector<Probe> parse_probe_card(const Card& card, std::vector<std::string>& warnings);
+void parse_options(const Card& card, const ParamScope& scope, Netlist& netlist);
+
+}  // namespace lcs::parse

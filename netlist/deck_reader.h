@@ -1,0 +1,26 @@
+// Reads a netlist file (or string) into its title and cards, expanding `.include` files in place.
+// Internal to the netlist reader.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "netlist/lexer.h"
+
+namespace lcs::parse {
+
+struct Deck {
+  std::string title;        // first line of the top-level file, as written
+  std::vector<Card> cards;  // every card up to `.end`, included files spliced in
+};
+
+// `top` is the top-level file (its first line is the title). An included file has no title line,
+// and is found relative to the directory of the file that includes it. Throws NetlistError for an
+// unreadable include file or an include cycle.
+Deck read_deck(const SourceFilePtr& top, std::vector<std::string>& warnings);
+
+// Reads a whole file; false when it cannot be opened, is a directory, is larger than 256 MiB, or
+// (with `regular_only`) is not a regular file.
+bool read_file(const std::string& path, std::string& text, bool regular_only);
+
+}  // namespace lcs::parse

@@ -1,0 +1,318 @@
+#include "netlist/elaborate.h"
+
+#include <algorithm>
+#include <memory>
+#include <set>
+
+#include "netlist/control_cards.h"
+#include "netlist/element_card.h"
+#include "netlist/model_card.h"
+#include "netlist/param_scope.h"
+
+namespace lcs::parse {
+namespace {
+
+// Bounds that keep hostile input from exhausting memory or the stack.
+constexpr std::size_t kMaxElements = 100'000;  // elements plus instances after expansion
+constexpr int kMaxInstanceDepth = 100;
+
+// "line 12", or "other.cir:12" when the first one is in another file.
+std::string where(const SourceLocation& first, const SourceLocation& here) {
+  if (first.file != here.file) return first.file + ":" + std::to_string(first.line);
+  return "line " + std::to_string(first.line);
+}
+
+// A `name=value` value: the inside of a single {..} / '..', or the raw text of the tokens.
+std::pair<int, int> value_span(const Card& card, std::size_t first, std::size_t last) {
+  const Token& t = card[first];
+  if (last - first == 1 && t.is_expression()) return {t.begin + 1, t.end - 1};
+  return {t.begin, card[last - 1].end};
+}
+
+// One level of expansion: the top level or one X instance. It lives on the stack while its body
+// is expanded; nested instances point to it as their parent.
+struct Instance {
+  const SubcktDef* def = nullptr;
+  std::string prefix;                          // "" at the top level, "x1.", "x1.x2.", ...
+  std::map<std::string, std::string> ports;    // port name -> flat node outside
+  std::unique_ptr<ParamScope> scope;
+  const Instance* parent = nullptr;
+  std::map<std::string, std::string> models;   // model name as written -> flat model name
+  int depth = 0;
+};
+
+class Elaborator {
+ public:
+  explicit Elaborator(Netlist& netlist) : net_(netlist) {}
+
+  void run(const SubcktDef& top) {
+    Instance root;
+    root.def = &top;
+    root.scope = std::make_unique<ParamScope>();
+    expand(root);
+    resolve_couplings();
+    check_node_ics();
+    check_probes();
+    double tstep = net_.tran ? net_.tran->tstep : 0.0, tstop = net_.tran ? net_.tran->tstop : 0.0;
+    for (Element& e : net_.elements)
+      if (e.kind == ElementKind::VoltageSource || e.kind == ElementKind::CurrentSource) e.waveform.resolve(tstep, tstop);
+  }
+
+ private:
+  std::string map_node(const Instance& in, const std::string& n) const {
+    if (is_ground(n)) return "0";
+    auto it = in.ports.find(n);
+    if (it != in.ports.end()) return it->second;
+    return in.prefix + n;
+  }
+
+  void register_name(const std::string& flat, const SourceLocation& loc, const char* what) {
+    auto [it, inserted] = names_.emplace(flat, loc);
+    if (!inserted)
+      throw NetlistError(loc, std::string("duplicate ") + what + " name " + quote(flat) + " (first defined at " +
+                                  where(it->second, loc) + ")");
+    if (names_.size() > kMaxElements)
+      throw NetlistError(loc, "netlist too large (more than " + std::to_string(kMaxElements) +
+                                  " elements after subcircuit expansion)");
+  }
+
+  void expand(Instance& in) {
+    const std::vector<const Card*>& body = in.def->body;
+    for (const Card* card : body)
+      if ((*card)[0].is_word(".param")) define_params(*card, *in.scope);
+    in.scope->evaluate_all();
+    // Models next, so a diode may use a model defined further down (or in an enclosing scope).
+    for (const Card* card : body)
+      if ((*card)[0].is_word(".model")) add_model(*card, in);
+    for (const Card* card : body) {
+      const std::string& k = card->keyword();
+      const bool word = (*card)[0].is_word();
+      if (word && k[0] == '.') {
+        control_card(*card, in);
+      } else if (word && k[0] == 'x') {
+        instantiate(*card, in);
+      } else {
+        add_element(*card, in);
+      }
+    }
+  }
+
+  void define_params(const Card& card, ParamScope& scope) {
+    if (card.size() == 1) throw NetlistError(card.after_last(), "missing 'name=value' after '.param'");
+    for (const Assignment& a : split_assignments(card, 1, card.size(), false, true)) {
+      const Token& name = card[a.name];
+      if (!is_identifier(name.lower)) throw NetlistError(card.at(name), "invalid parameter name " + quote(name.text));
+      if (name.lower == "pi") throw NetlistError(card.at(name), "cannot redefine 'pi'");
+      auto [b, e] = value_span(card, a.value_first, a.value_last);
+      scope.define(name.lower, &card, b, e);
+    }
+  }
+
+  void control_card(const Card& card, Instance& in) {
+    const std::string& k = card.keyword();
+    switch (classify_dot_card(k)) {
+      case DotCard::Param:  // defined before the other cards of the scope
+      case DotCard::Model:
+      case DotCard::Subckt:  // taken out by build_definitions
+      case DotCard::Ends:
+      case DotCard::Op:
+        return;
+      case DotCard::Tran:
+        if (net_.tran)
+          throw NetlistError(card.at(0), "duplicate '.tran' card (first at " + where(net_.tran->loc, card.at(0)) + ")");
+        net_.tran = parse_tran(card, *in.scope);
+        return;
+      case DotCard::Ic:
+        for (NodeIc& ic : parse_ic(card, *in.scope)) net_.node_ics.push_back(std::move(ic));
+        return;
+      case DotCard::Print:
+      case DotCard::Save:
+        for (Probe& p : parse_probe_card(card, net_.warnings)) net_.probes.push_back(std::move(p));
+        return;
+      case DotCard::Options:
+        parse_options(card, *in.scope, net_);
+        return;
+      case DotCard::Title:
+        net_.title = card.size() > 1 ? card.text(card[1].begin, card.tokens.back().end) : "";
+        return;
+      case DotCard::Ignored:
+        net_.warnings.push_back(warning_line(card.at(0), quote(k) + " is not supported and is ignored"));
+        return;
+      case DotCard::Endc:
+        throw NetlistError(card.at(0), "'.endc' without '.control'");
+      case DotCard::Unknown:
+        throw NetlistError(card.at(0), "unknown control card " + quote(card[0].text));
+    }
+  }
+
+  void add_model(const Card& card, Instance& in) {
+    ModelCard m = parse_model_card(card, *in.scope, in.prefix, net_.warnings);
+    const std::string flat = in.prefix + m.name;
+    auto it = model_locs_.find(flat);
+    if (it != model_locs_.end())
+      throw NetlistError(card.at(1), "model " + quote(m.name) + " is already defined at " + where(it->second, card.at(1)));
+    model_locs_[flat] = card.at(1);
+    model_types_[flat] = m.type;
+    in.models[m.name] = flat;
+    if (m.type == "d") net_.diode_models[flat] = std::move(m.diode);
+  }
+
+  void add_element(const Card& card, Instance& in) {
+    ElementScope scope;
+    scope.params = in.scope.get();
+    scope.prefix = in.prefix;
+    scope.node = [&](const std::string& n) { return map_node(in, n); };
+    ParsedElement pe = parse_element(card, scope, net_.warnings);
+    register_name(pe.element.name, card.at(0), "element");
+    const std::size_t index = net_.elements.size();
+    if (pe.element.kind == ElementKind::Diode) pe.element.model = resolve_diode_model(in, card, pe.model_token);
+    if (pe.element.kind == ElementKind::Coupling)
+      coupling_refs_.push_back({index, {card.at(pe.coupled_tokens[0]), card.at(pe.coupled_tokens[1])}});
+    net_.elements.push_back(std::move(pe.element));
+  }
+
+  // Xname nodes... SUBNAME [params:] [name=value ...]
+  void instantiate(const Card& card, Instance& in) {
+    const std::size_t n = card.size();
+    const std::string flat = in.prefix + card[0].lower;
+    std::vector<std::size_t> words;
+    std::size_t i = 1;
+    for (; i < n; ++i) {
+      const Token& t = card[i];
+      if (t.is_word("params:")) break;
+      if (t.is_word() && i + 1 < n && card[i + 1].is(Token::Kind::Equals)) break;
+      if (!t.is_word()) throw NetlistError(card.at(t), "expected a node or subcircuit name, got " + quote(t.text));
+      words.push_back(i);
+    }
+    if (words.empty()) throw NetlistError(card.after_last(), "missing subcircuit name for " + quote(flat));
+    const std::size_t name_token = words.back();
+    words.pop_back();
+    if (i < n && card[i].is_word("params:")) ++i;
+    const std::string& sub = card[name_token].lower;
+
+    const SubcktDef* def = in.def->find(sub);
+    if (!def) throw NetlistError(card.at(name_token), "subcircuit " + quote(sub) + " is not defined");
+    for (const Instance* p = &in; p; p = p->parent)
+      if (p->def == def) throw NetlistError(card.at(name_token), "recursive instantiation of subcircuit " + quote(sub));
+    if (in.depth >= kMaxInstanceDepth) throw NetlistError(card.at(0), "subcircuit instances nested too deeply");
+    if (words.size() != def->ports.size())
+      throw NetlistError(card.at(name_token),
+                         quote(flat) + " connects " + std::to_string(words.size()) + " node" + (words.size() == 1 ? "" : "s") +
+                             " but subcircuit " + quote(sub) + " has " + std::to_string(def->ports.size()) + " port" +
+                             (def->ports.size() == 1 ? "" : "s"));
+    register_name(flat, card.at(0), "instance");
+
+    Instance child;
+    child.def = def;
+    child.prefix = flat + ".";
+    child.parent = &in;
+    child.depth = in.depth + 1;
+    child.scope = std::make_unique<ParamScope>(in.scope.get());
+    for (std::size_t k = 0; k < words.size(); ++k) child.ports[def->ports[k]] = map_node(in, card[words[k]].lower);
+    for (const Assignment& a : split_assignments(card, i, n, false, true)) {
+      const Token& name = card[a.name];
+      if (!def->param(name.lower))
+        throw NetlistError(card.at(name), "subcircuit " + quote(sub) + " has no parameter " + quote(name.lower));
+      child.scope->set(name.lower, value_of(card, a.value_first, a.value_last, *in.scope, true));
+    }
+    for (const SubcktDef::Param& p : def->params) {
+      if (child.scope->defines(p.name)) continue;
+      auto [b, e] = value_span(*def->card, p.value_first, p.value_last);
+      child.scope->define(p.name, def->card, b, e);
+    }
+    expand(child);
+  }
+
+  // The flat name of the model a diode card names: the innermost instance that defines it.
+  std::string resolve_diode_model(const Instance& in, const Card& card, std::size_t token) const {
+    const std::string& name = card[token].lower;
+    for (const Instance* p = &in; p; p = p->parent) {
+      auto it = p->models.find(name);
+      if (it == p->models.end()) continue;
+      const std::string& type = model_types_.at(it->second);
+      if (type != "d")
+        throw NetlistError(card.at(token), "model " + quote(name) + " is not a diode model (it is " + to_upper(type) + ")");
+      return it->second;
+    }
+    throw NetlistError(card.at(token), "diode model " + quote(name) + " is not defined");
+  }
+
+  void resolve_couplings() {
+    std::map<std::string, std::size_t> by_name;
+    for (std::size_t i = 0; i < net_.elements.size(); ++i) by_name[net_.elements[i].name] = i;
+    std::map<std::pair<std::string, std::string>, std::string> pairs;
+    for (const CouplingRef& r : coupling_refs_) {
+      const Element& k = net_.elements[r.element];
+      for (int j = 0; j < 2; ++j) {
+        auto it = by_name.find(k.coupled[j]);
+        if (it == by_name.end()) throw NetlistError(r.locs[j], "coupled inductor " + quote(k.coupled[j]) + " is not defined");
+        if (net_.elements[it->second].kind != ElementKind::Inductor)
+          throw NetlistError(r.locs[j], quote(k.coupled[j]) + " is not an inductor");
+      }
+      auto key = std::minmax(k.coupled[0], k.coupled[1]);
+      auto [it, inserted] = pairs.emplace(std::make_pair(key.first, key.second), k.name);
+      if (!inserted)
+        throw NetlistError(k.loc, "inductors " + quote(k.coupled[0]) + " and " + quote(k.coupled[1]) +
+                                      " are already coupled by " + quote(it->second));
+    }
+  }
+
+  std::set<std::string> nodes() const {
+    std::set<std::string> out = {"0"};
+    for (const Element& e : net_.elements) out.insert(e.nodes.begin(), e.nodes.end());
+    return out;
+  }
+
+  void check_node_ics() {
+    const std::set<std::string> all = nodes();
+    std::vector<NodeIc> unique;
+    for (NodeIc& ic : net_.node_ics) {
+      if (!all.count(ic.node)) throw NetlistError(ic.loc, "unknown node " + quote(ic.node));
+      auto same = std::find_if(unique.begin(), unique.end(), [&](const NodeIc& u) { return u.node == ic.node; });
+      if (same != unique.end()) *same = ic;  // the later one wins
+      else unique.push_back(ic);
+    }
+    net_.node_ics = std::move(unique);
+  }
+
+  void check_probes() {
+    const std::set<std::string> all = nodes();
+    std::vector<Probe> unique;
+    std::set<std::string> seen;
+    for (const Probe& p : net_.probes) {
+      if (p.kind == Probe::Kind::ElementCurrent) {
+        const Element* e = net_.find_element(p.a);
+        if (!e) throw NetlistError(p.loc, "unknown element " + quote(p.a));
+        if (e->kind == ElementKind::Coupling) throw NetlistError(p.loc, quote(p.a) + " has no current (it is a coupling)");
+      } else {
+        for (const std::string* n : {&p.a, &p.b})
+          if (!n->empty() && !all.count(*n)) throw NetlistError(p.loc, "unknown node " + quote(*n));
+      }
+      if (seen.insert(p.name()).second) unique.push_back(p);
+    }
+    net_.probes = std::move(unique);
+  }
+
+  static std::string to_upper(std::string s) {
+    for (char& c : s)
+      if (c >= 'a' && c <= 'z') c = static_cast<char>(c - 'a' + 'A');
+    return s;
+  }
+
+  struct CouplingRef {
+    std::size_t element;
+    SourceLocation locs[2];
+  };
+
+  Netlist& net_;
+  std::map<std::string, SourceLocation> names_;
+  std::map<std::string, SourceLocation> model_locs_;
+  std::map<std::string, std::string> model_types_;
+  std::vector<CouplingRef> coupling_refs_;
+};
+
+}  // namespace
+
+void elaborate(const SubcktDef& top, Netlist& netlist) { Elaborator(netlist).run(top); }
+
+}  // namespace lcs::parse

@@ -1,0 +1,14 @@
+// Expands the top level and every X instance into the flat Netlist (parameters, models, elements,
+// control cards), then resolves diode models and inductor couplings, checks probes and `.ic` nodes
+// against the circuit, and resolves source waveforms. Internal to the netlist reader.
+#pragma once
+
+#include "netlist/netlist.h"
+#include "netlist/subcircuit.h"
+
+namespace lcs::parse {
+
+// Fills everything but `file` and `title` (a `.title` card does set `title`). Throws NetlistError.
+void elaborate(const SubcktDef& top, Netlist& netlist);
+
+}  // namespace lcs::parse

@@ -1,0 +1,34 @@
+// Element cards R, L, C, K, V, I, D (X instances are the subcircuit expander's). Rejects Q, T, O
+// (not supported yet) and unknown element letters. Internal to the netlist reader.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "netlist/lexer.h"
+#include "netlist/netlist.h"
+#include "netlist/param_scope.h"
+
+namespace lcs::parse {
+
+// Where an element card is read: the top level or one subcircuit instance.
+struct ElementScope {
+  const ParamScope* params = nullptr;
+  std::string prefix;                                    // "" or "x1.", prepended to names
+  std::function<std::string(const std::string&)> node;   // local node name -> flat node name
+};
+
+struct ParsedElement {
+  Element element;         // names and nodes flat; D: `model` still the local name as written
+  std::size_t model_token = 0;               // D: token of the model name
+  std::size_t coupled_tokens[2] = {0, 0};    // K: tokens of the two inductor names
+};
+
+ParsedElement parse_element(const Card& card, const ElementScope& scope,
+                            std::vector<std::string>& warnings);
+
+// "0" and "gnd" are ground.
+bool is_ground(const std::string& lower_node);
+
+}  // namespace lcs::parse

@@ -1,0 +1,238 @@
+#include "netlist/expression.h"
+
+#include <cmath>
+#include <vector>
+
+#include "netlist/lexer.h"
+#include "netlist/number.h"
+
+namespace lcs::parse {
+namespace {
+
+constexpr int kMaxDepth = 200;
+
+struct Function {
+  const char* name;
+  std::size_t min_args, max_args;  // max 0: any number
+  double (*apply)(const std::vector<double>&);
+};
+
+const Function kFunctions[] = {
+    {"sqrt", 1, 1, [](const std::vector<double>& a) { return std::sqrt(a[0]); }},
+    {"exp", 1, 1, [](const std::vector<double>& a) { return std::exp(a[0]); }},
+    {"log", 1, 1, [](const std::vector<double>& a) { return std::log(a[0]); }},
+    {"ln", 1, 1, [](const std::vector<double>& a) { return std::log(a[0]); }},
+    {"log10", 1, 1, [](const std::vector<double>& a) { return std::log10(a[0]); }},
+    {"abs", 1, 1, [](const std::vector<double>& a) { return std::fabs(a[0]); }},
+    {"sin", 1, 1, [](const std::vector<double>& a) { return std::sin(a[0]); }},
+    {"cos", 1, 1, [](const std::vector<double>& a) { return std::cos(a[0]); }},
+    {"tan", 1, 1, [](const std::vector<double>& a) { return std::tan(a[0]); }},
+    {"asin", 1, 1, [](const std::vector<double>& a) { return std::asin(a[0]); }},
+    {"acos", 1, 1, [](const std::vector<double>& a) { return std::acos(a[0]); }},
+    {"atan", 1, 1, [](const std::vector<double>& a) { return std::atan(a[0]); }},
+    {"sinh", 1, 1, [](const std::vector<double>& a) { return std::sinh(a[0]); }},
+    {"cosh", 1, 1, [](const std::vector<double>& a) { return std::cosh(a[0]); }},
+    {"tanh", 1, 1, [](const std::vector<double>& a) { return std::tanh(a[0]); }},
+    {"floor", 1, 1, [](const std::vector<double>& a) { return std::floor(a[0]); }},
+    {"ceil", 1, 1, [](const std::vector<double>& a) { return std::ceil(a[0]); }},
+    {"pow", 2, 2, [](const std::vector<double>& a) { return std::pow(a[0], a[1]); }},
+    {"min", 1, 0,
+     [](const std::vector<double>& a) {
+       double m = a[0];
+       for (double x : a) m = std::min(m, x);
+       return m;
+     }},
+    {"max", 1, 0,
+     [](const std::vector<double>& a) {
+       double m = a[0];
+       for (double x : a) m = std::max(m, x);
+       return m;
+     }},
+};
+
+bool is_name_start(char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '_'; }
+bool is_name_char(char c) { return is_name_start(c) || (c >= '0' && c <= '9'); }
+
+class Evaluator {
+ public:
+  Evaluator(std::string_view text, const Lookup& lookup) : s_(text), lookup_(lookup) {}
+
+  double run() {
+    skip();
+    if (i_ == s_.size()) fail(0, 1, "empty expression");
+    double v = expr();
+    skip();
+    if (i_ != s_.size()) unexpected();
+    return v;
+  }
+
+ private:
+  [[noreturn]] void fail(std::size_t offset, std::size_t length, std::string message) {
+    throw ExpressionError{static_cast<int>(offset), static_cast<int>(std::max<std::size_t>(1, length)),
+                          std::move(message)};
+  }
+  [[noreturn]] void unexpected() {
+    if (i_ >= s_.size()) fail(s_.size(), 1, "unexpected end of expression");
+    fail(i_, 1, "unexpected " + quote(std::string(1, s_[i_])) + " in expression");
+  }
+  void skip() {
+    while (i_ < s_.size() && (s_[i_] == ' ' || s_[i_] == '\t' || s_[i_] == '\r')) ++i_;
+  }
+  bool at(char c) {
+    skip();
+    return i_ < s_.size() && s_[i_] == c;
+  }
+  bool at_power() {
+    skip();
+    return i_ < s_.size() && (s_[i_] == '^' || (s_[i_] == '*' && i_ + 1 < s_.size() && s_[i_ + 1] == '*'));
+  }
+  double check(double v, std::size_t offset, std::size_t length, const std::string& what) {
+    if (!std::isfinite(v)) fail(offset, length, "result of " + quote(what) + " is not a finite number");
+    return v;
+  }
+
+  struct Depth {
+    Evaluator& e;
+    std::size_t offset;
+    explicit Depth(Evaluator& ev, std::size_t off) : e(ev), offset(off) {
+      if (++e.depth_ > kMaxDepth) e.fail(offset, 1, "expression nested too deeply");
+    }
+    ~Depth() { --e.depth_; }
+  };
+
+  double expr() {
+    double v = term();
+    while (at('+') || at('-')) {
+      std::size_t op = i_;
+      char c = s_[i_++];
+      double r = term();
+      v = check(c == '+' ? v + r : v - r, op, 1, std::string(1, c));
+    }
+    return v;
+  }
+
+  double term() {
+    double v = unary();
+    while ((at('*') && !at_power()) || at('/')) {
+      std::size_t op = i_;
+      char c = s_[i_++];
+      double r = unary();
+      if (c == '/') {
+        if (r == 0.0) fail(op, 1, "division by zero");
+        v = check(v / r, op, 1, "/");
+      } else {
+        v = check(v * r, op, 1, "*");
+      }
+    }
+    return v;
+  }
+
+  double unary() {
+    if (at('+') || at('-')) {
+      Depth d(*this, i_);
+      char c = s_[i_++];
+      double v = unary();
+      return c == '-' ? -v : v;
+    }
+    return power();
+  }
+
+  double power() {
+    double base = primary();
+    if (at_power()) {
+      std::size_t op = i_;
+      std::size_t len = s_[i_] == '^' ? 1 : 2;
+      i_ += len;
+      Depth d(*this, op);
+      double exponent = unary();  // right-associative; 2^-1 allowed
+      return check(std::pow(base, exponent), op, len, std::string(s_.substr(op, len)));
+    }
+    return base;
+  }
+
+  double primary() {
+    skip();
+    if (i_ >= s_.size()) unexpected();
+    char c = s_[i_];
+    if (c == '(') {
+      Depth d(*this, i_);
+      std::size_t open = i_++;
+      double v = expr();
+      if (!at(')')) {
+        if (i_ >= s_.size()) fail(open, 1, "missing ')'");
+        unexpected();
+      }
+      ++i_;
+      return v;
+    }
+    if ((c >= '0' && c <= '9') || (c == '.' && i_ + 1 < s_.size() && s_[i_ + 1] >= '0' && s_[i_ + 1] <= '9')) {
+      std::size_t start = i_;
+      double v = 0;
+      scan_number(s_, i_, v);
+      if (!std::isfinite(v)) fail(start, i_ - start, "invalid number " + quote(std::string(s_.substr(start, i_ - start))));
+      return v;
+    }
+    if (is_name_start(c)) {
+      std::size_t start = i_;
+      while (i_ < s_.size() && is_name_char(s_[i_])) ++i_;
+      std::string written(s_.substr(start, i_ - start));
+      std::string name = to_lower(written);
+      if (at('(')) return call(name, written, start);
+      if (name == "pi") return 3.14159265358979323846;
+      std::optional<double> v;
+      try {
+        v = lookup_(name);
+      } catch (const LookupFailure& f) {
+        fail(start, written.size(), f.message);
+      }
+      if (!v) fail(start, written.size(), "undefined parameter " + quote(written));
+      return *v;
+    }
+    unexpected();
+  }
+
+  double call(const std::string& name, const std::string& written, std::size_t start) {
+    const Function* f = nullptr;
+    for (const Function& fn : kFunctions)
+      if (name == fn.name) f = &fn;
+    if (!f) fail(start, written.size(), "unknown function " + quote(written));
+    Depth d(*this, i_);
+    std::size_t open = i_++;  // at '('
+    std::vector<double> args;
+    if (!at(')')) {
+      while (true) {
+        args.push_back(expr());
+        if (at(',')) {
+          ++i_;
+          continue;
+        }
+        if (at(')')) break;
+        if (i_ >= s_.size()) fail(open, 1, "missing ')'");
+        unexpected();
+      }
+    }
+    ++i_;
+    bool bad = args.size() < f->min_args || (f->max_args && args.size() > f->max_args);
+    if (bad) {
+      std::string n = std::to_string(f->min_args) + (f->min_args == 1 ? " argument" : " arguments");
+      fail(start, written.size(),
+           quote(written) + " takes " + (f->max_args ? "" : "at least ") + n);
+    }
+    double v = f->apply(args);
+    if (!std::isfinite(v)) fail(start, written.size(), "invalid argument to " + quote(written));
+    return v;
+  }
+
+  std::string_view s_;
+  const Lookup& lookup_;
+  std::size_t i_ = 0;
+  int depth_ = 0;
+};
+
+}  // namespace
+
+double evaluate_expression(std::string_view text, const Lookup& lookup) {
+  return Evaluator(text, lookup).run();
+}
+
+}  // namespace lcs::parse

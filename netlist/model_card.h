@@ -1,0 +1,24 @@
+// `.model NAME TYPE [(] params [)]`: diode models (D) with ideal and smooth parameters; NPN, PNP
+// and LTRA models are accepted for the cards that will use them and store nothing yet.
+// Internal to the netlist reader.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "netlist/lexer.h"
+#include "netlist/netlist.h"
+#include "netlist/param_scope.h"
+
+namespace lcs::parse {
+
+struct ModelCard {
+  std::string name;   // lower-case, as written
+  std::string type;   // "d", "npn", "pnp" or "ltra"
+  DiodeModel diode;   // type "d": name = prefix + name
+};
+
+ModelCard parse_model_card(const Card& card, const ParamScope& scope, const std::string& prefix,
+                           std::vector<std::string>& warnings);
+
+}  // namespace lcs::parse

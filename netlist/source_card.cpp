@@ -1,0 +1,122 @@
+#include "netlist/source_card.h"
+
+#include "netlist/number.h"
+
+namespace lcs::parse {
+namespace {
+
+struct FunctionSpec {
+  const char* name;
+  Waveform::Kind kind;
+  std::size_t min_params, max_params;  // max 0: unbounded
+};
+
+const FunctionSpec kFunctions[] = {
+    {"sin", Waveform::Kind::Sin, 2, 6},
+    {"pulse", Waveform::Kind::Pulse, 2, 7},
+    {"pwl", Waveform::Kind::Pwl, 2, 0},
+};
+
+const char* const kUnsupported[] = {"exp", "sffm", "am", "trnoise", "trrandom", "pat", "ext"};
+
+bool looks_numeric(const Token& t) {
+  return t.is_expression() || (t.is_word() && parse_number(t.text).has_value());
+}
+
+std::string plural(std::size_t n, const char* what) {
+  return std::to_string(n) + " " + what + (n == 1 ? "" : "s");
+}
+
+}  // namespace
+
+Waveform parse_source_waveform(const Card& card, std::size_t first, const ParamScope& scope,
+                               const std::string& name, std::vector<std::string>& warnings) {
+  Waveform w;
+  bool have_dc = false, have_function = false;
+  const std::size_t n = card.size();
+  std::size_t i = first;
+  while (i < n) {
+    const Token& t = card[i];
+    if (t.is(Token::Kind::Comma)) {
+      ++i;
+      continue;
+    }
+    if (t.is_word("dc")) {
+      if (have_dc) throw NetlistError(card.at(t), "second DC value for " + quote(name));
+      if (i + 1 >= n) throw NetlistError(card.after_last(), "missing value after " + quote(t.text));
+      w.dc = value_of(card, i + 1, scope);
+      have_dc = true;
+      i += 2;
+      continue;
+    }
+    if (t.is_word("ac")) {
+      warnings.push_back(warning_line(card.at(t), "AC specification of " + quote(name) + " is ignored"));
+      ++i;
+      for (int k = 0; k < 2 && i < n && (looks_numeric(card[i]) || card[i].is(Token::Kind::Comma)); ++i)
+        if (!card[i].is(Token::Kind::Comma)) ++k;
+      continue;
+    }
+    const FunctionSpec* fn = nullptr;
+    if (t.is_word())
+      for (const FunctionSpec& f : kFunctions)
+        if (t.lower == f.name) fn = &f;
+    if (fn) {
+      if (have_function) throw NetlistError(card.at(t), "more than one transient function for " + quote(name));
+      have_function = true;
+      // Arguments: a parenthesised list, or the numbers that follow.
+      std::vector<std::size_t> args;
+      std::size_t j = i + 1;
+      if (j < n && card[j].is(Token::Kind::LParen)) {
+        std::size_t open = j++;
+        while (j < n && !card[j].is(Token::Kind::RParen)) {
+          if (!card[j].is(Token::Kind::Comma)) args.push_back(j);
+          ++j;
+        }
+        if (j >= n) throw NetlistError(card.at(open), "missing ')'");
+        ++j;
+      } else {
+        while (j < n && (looks_numeric(card[j]) || card[j].is(Token::Kind::Comma))) {
+          if (!card[j].is(Token::Kind::Comma)) args.push_back(j);
+          ++j;
+        }
+      }
+      if (args.size() < fn->min_params)
+        throw NetlistError(card.at(t), quote(t.lower) + " needs at least " + plural(fn->min_params, "parameter"));
+      if (fn->max_params && args.size() > fn->max_params)
+        throw NetlistError(card.at(args[fn->max_params]),
+                           quote(t.lower) + " takes at most " + plural(fn->max_params, "parameter"));
+      w.kind = fn->kind;
+      for (std::size_t a : args) w.params.push_back(value_of(card, a, scope));
+      if (fn->kind == Waveform::Kind::Pwl) {
+        if (args.size() % 2 != 0)
+          throw NetlistError(card.at(args.back()), "'pwl' needs time-value pairs (odd number of values)");
+        for (std::size_t k = 2; k < w.params.size(); k += 2)
+          if (w.params[k] < w.params[k - 2])
+            throw NetlistError(card.at(args[k]), "pwl times must not decrease");
+      }
+      if (fn->kind == Waveform::Kind::Pulse) {
+        const char* what[] = {nullptr, nullptr, nullptr, "rise time", "fall time", "width", "period"};
+        for (std::size_t k = 3; k < w.params.size(); ++k)
+          if (w.params[k] < 0)
+            throw NetlistError(card.at(args[k]), std::string("pulse ") + what[k] + " must not be negative");
+      }
+      i = j;
+      continue;
+    }
+    if (t.is_word())
+      for (const char* u : kUnsupported)
+        if (t.lower == u) throw NetlistError(card.at(t), "unsupported source function " + quote(t.text));
+    if (!have_dc && !have_function && (t.is_word() || t.is_expression())) {
+      w.dc = value_of(card, i, scope);  // a bare value; throws `invalid number` for junk
+      have_dc = true;
+      ++i;
+      continue;
+    }
+    throw NetlistError(card.at(t), "unexpected extra token " + quote(t.text));
+  }
+  if (!have_dc && !have_function)
+    warnings.push_back(warning_line(card.at(0), quote(name) + " has no value, DC 0 assumed"));
+  return w;
+}
+
+}  // namespace lcs::parse

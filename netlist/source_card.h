@@ -1,0 +1,21 @@
+// The waveform part of V and I cards: `[DC] value`, `SIN(...)`, `PULSE(...)`, `PWL(...)` (with or
+// without a space before the parenthesis, or without parentheses), `DC x` together with a
+// transient function, and `AC mag [phase]` (accepted, ignored with a warning).
+// Internal to the netlist reader.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "netlist/lexer.h"
+#include "netlist/param_scope.h"
+#include "netlist/waveform.h"
+
+namespace lcs::parse {
+
+// Reads the tokens from `first` to the end of the card. `name` is the element's (flat) name for
+// messages. The result is not resolved yet (that needs .tran).
+Waveform parse_source_waveform(const Card& card, std::size_t first, const ParamScope& scope,
+                               const std::string& name, std::vector<std::string>& warnings);
+
+}  // namespace lcs::parse

@@ -1,0 +1,215 @@
+// Exact diagnostics: FILE:LINE:COL: error: message, the line, and the caret under the token.
+#include <gtest/gtest.h>
+
+#include "netlist/test/parse_helpers.h"
+
+namespace lcs {
+namespace {
+
+using test::diag;
+
+struct Case {
+  const char* text;
+  const char* expected;
+};
+
+void check(const std::vector<Case>& cases) {
+  for (const Case& c : cases) EXPECT_EQ(diag(c.text), c.expected) << "input:\n" << c.text;
+}
+
+TEST(ParseDiagnostics, SyntaxAndElements) {
+  check({
+      {"t\nW1 a b 1\n", "t.cir:2:1: error: unknown element type 'w'\nW1 a b 1\n^~"},
+      {"t\nE1 a 0 b 0 2\n", "t.cir:2:1: error: unknown element type 'e'\nE1 a 0 b 0 2\n^~"},
+      {"t\n( a b\n", "t.cir:2:1: error: expected an element or a control card, got '('\n( a b\n^"},
+      {"t\nR1 a a 1k\n", "t.cir:2:6: error: r1 connects node 'a' to itself\nR1 a a 1k\n     ^"},
+      {"t\nV1 0 gnd 1\n", "t.cir:2:6: error: v1 connects node '0' to itself\nV1 0 gnd 1\n     ^~~"},
+      {"t\nR1 a b 1k\nR2 b 0 1\nr1 c d 2k\n",
+       "t.cir:4:1: error: duplicate element name 'r1' (first defined at line 2)\nr1 c d 2k\n^~"},
+      {"t\nR1 a b\n", "t.cir:2:7: error: missing value for 'r1'\nR1 a b\n      ^"},
+      {"t\nC1 a\n", "t.cir:2:5: error: missing node for 'c1'\nC1 a\n    ^"},
+      {"t\nR1 ( b 1\n", "t.cir:2:4: error: expected a node name, got '('\nR1 ( b 1\n   ^"},
+      {"t\nR1 a b 1k extra\n", "t.cir:2:11: error: unexpected extra token 'extra'\nR1 a b 1k extra\n          ^~~~~"},
+      {"t\nC1 a b 1u IC=1 foo=2\n",
+       "t.cir:2:16: error: unknown parameter 'foo' for 'c1'\nC1 a b 1u IC=1 foo=2\n               ^~~"},
+      {"t\nR1 a b 0\n", "t.cir:2:8: error: resistance of 'r1' must be positive\nR1 a b 0\n       ^"},
+      {"t\nL1 a b -1m\n", "t.cir:2:8: error: inductance of 'l1' must be positive\nL1 a b -1m\n       ^~~"},
+      {"t\nC1 a b {0*1}\n", "t.cir:2:8: error: capacitance of 'c1' must be positive\nC1 a b {0*1}\n       ^~~~~"},
+      {"t\nD1 a b\n", "t.cir:2:7: error: missing model name for 'd1'\nD1 a b\n      ^"},
+      {"t\n+ R1 a b 1\n", "t.cir:2:1: error: continuation line without a card to continue\n+ R1 a b 1\n^"},
+      {"t\nR1 a b 1k\n+ 2k\n", "t.cir:3:3: error: unexpected extra token '2k'\n+ 2k\n  ^~"},
+  });
+}
+
+TEST(ParseDiagnostics, UnsupportedCards) {
+  check({
+      {"t\nQ1 c b e qmod\n", "t.cir:2:1: error: bipolar transistors (Q cards) are not supported yet\nQ1 c b e qmod\n^~"},
+      {"t\n  tline a 0 b 0 z0=50 td=1n\n",
+       "t.cir:2:3: error: lossless transmission lines (T cards) are not supported yet\n  tline a 0 b 0 z0=50 td=1n\n  ^~~~~"},
+      {"t\nO1 a 0 b 0 lmod\n", "t.cir:2:1: error: lossy transmission lines (O cards) are not supported yet\nO1 a 0 b 0 lmod\n^~"},
+      {"t\n.lib foo.lib\n", "t.cir:2:1: error: unknown control card '.lib'\n.lib foo.lib\n^~~~"},
+      {"t\n.endc\n", "t.cir:2:1: error: '.endc' without '.control'\n.endc\n^~~~~"},
+  });
+}
+
+TEST(ParseDiagnostics, Numbers) {
+  check({
+      {"t\nR1 a b 1x2\n", "t.cir:2:8: error: invalid number '1x2'\nR1 a b 1x2\n       ^~~"},
+      {"t\nR1 a b 1k5\n", "t.cir:2:8: error: invalid number '1k5'\nR1 a b 1k5\n       ^~~"},
+      {"t\nV1 a 0 SIN(0 1 x)\n", "t.cir:2:16: error: invalid number 'x'\nV1 a 0 SIN(0 1 x)\n               ^"},
+      {"t\nR1 a b 1k}\n", "t.cir:2:10: error: unmatched '}'\nR1 a b 1k}\n         ^"},
+  });
+}
+
+TEST(ParseDiagnostics, Expressions) {
+  check({
+      {"t\nR1 a b {2*foo}\n", "t.cir:2:11: error: undefined parameter 'foo'\nR1 a b {2*foo}\n          ^~~"},
+      {"t\n.param a=1\nR1 a b { a + Bogus }\n",
+       "t.cir:3:14: error: undefined parameter 'Bogus'\nR1 a b { a + Bogus }\n             ^~~~~"},
+      {"t\nR1 a b {1/0}\n", "t.cir:2:10: error: division by zero\nR1 a b {1/0}\n         ^"},
+      {"t\nR1 a b {(1+2}\n", "t.cir:2:9: error: missing ')'\nR1 a b {(1+2}\n        ^"},
+      {"t\nR1 a b {1+\n", "t.cir:2:8: error: missing '}'\nR1 a b {1+\n       ^"},
+      {"t\nR1 a b {}\n", "t.cir:2:9: error: empty expression\nR1 a b {}\n        ^"},
+      {"t\nR1 a b {1+}\n", "t.cir:2:11: error: unexpected end of expression\nR1 a b {1+}\n          ^"},
+      {"t\nR1 a b {sqrt(-4)}\n", "t.cir:2:9: error: invalid argument to 'sqrt'\nR1 a b {sqrt(-4)}\n        ^~~~"},
+      {"t\n.param a={b} b={a}\nR1 1 0 {a}\n",
+       "t.cir:2:17: error: parameter 'a' is defined in terms of itself\n.param a={b} b={a}\n                ^"},
+      {"t\n.param x = 2*y\n", "t.cir:2:14: error: undefined parameter 'y'\n.param x = 2*y\n             ^"},
+      {"t\n.param 1a=2\n", "t.cir:2:8: error: invalid parameter name '1a'\n.param 1a=2\n       ^~"},
+      {"t\n.param pi=3\n", "t.cir:2:8: error: cannot redefine 'pi'\n.param pi=3\n       ^~"},
+      {"t\n.param a\n", "t.cir:2:9: error: missing '=' after 'a'\n.param a\n        ^"},
+  });
+}
+
+TEST(ParseDiagnostics, Sources) {
+  check({
+      {"t\nV1 a 0 SIN(0 1 1k\n", "t.cir:2:11: error: missing ')'\nV1 a 0 SIN(0 1 1k\n          ^"},
+      {"t\nV1 a 0 SIN(0)\n", "t.cir:2:8: error: 'sin' needs at least 2 parameters\nV1 a 0 SIN(0)\n       ^~~"},
+      {"t\nV1 a 0 SIN(0 1 2 3 4 5 6)\n",
+       "t.cir:2:24: error: 'sin' takes at most 6 parameters\nV1 a 0 SIN(0 1 2 3 4 5 6)\n                       ^"},
+      {"t\nV1 a 0 PULSE(0 1 0 -1n)\n",
+       "t.cir:2:20: error: pulse rise time must not be negative\nV1 a 0 PULSE(0 1 0 -1n)\n                   ^~~"},
+      {"t\nI1 a 0 PWL(0 0 1 1 0.5 2)\n",
+       "t.cir:2:20: error: pwl times must not decrease\nI1 a 0 PWL(0 0 1 1 0.5 2)\n                   ^~~"},
+      {"t\nV1 a 0 PWL(0 0 1)\n",
+       "t.cir:2:16: error: 'pwl' needs time-value pairs (odd number of values)\nV1 a 0 PWL(0 0 1)\n               ^"},
+      {"t\nV1 a 0 EXP(0 1)\n", "t.cir:2:8: error: unsupported source function 'EXP'\nV1 a 0 EXP(0 1)\n       ^~~"},
+      {"t\nV1 a 0 DC 1 DC 2\n", "t.cir:2:13: error: second DC value for 'v1'\nV1 a 0 DC 1 DC 2\n            ^~"},
+      {"t\nV1 a 0 5 6\n", "t.cir:2:10: error: unexpected extra token '6'\nV1 a 0 5 6\n         ^"},
+  });
+}
+
+TEST(ParseDiagnostics, Models) {
+  check({
+      {"t\nD1 a b dx\n", "t.cir:2:8: error: diode model 'dx' is not defined\nD1 a b dx\n       ^~"},
+      {"t\nD1 a b q\n.model q npn(bf=100)\n",
+       "t.cir:2:8: error: model 'q' is not a diode model (it is NPN)\nD1 a b q\n       ^"},
+      {"t\n.model d1 D(von=0.7 foo=1)\n",
+       "t.cir:2:21: error: unknown diode model parameter 'foo'\n.model d1 D(von=0.7 foo=1)\n                    ^~~"},
+      {"t\n.model d1 D(ron=-1)\n", "t.cir:2:17: error: diode parameter 'ron' must not be negative\n.model d1 D(ron=-1)\n                ^~"},
+      {"t\n.model d1 D(is=0)\n", "t.cir:2:16: error: diode parameter 'is' must be positive\n.model d1 D(is=0)\n               ^"},
+      {"t\n.model d1 d n=-1\n", "t.cir:2:15: error: diode parameter 'n' must be positive\n.model d1 d n=-1\n              ^~"},
+      {"t\n.model d1 d\n+ rs=-2\n", "t.cir:3:6: error: diode parameter 'rs' must not be negative\n+ rs=-2\n     ^~"},
+      {"t\n.model m1 NMOS(vto=1)\n", "t.cir:2:11: error: unsupported model type 'NMOS'\n.model m1 NMOS(vto=1)\n          ^~~~"},
+      {"t\n.model d1 D(von=0.7\n", "t.cir:2:12: error: missing ')'\n.model d1 D(von=0.7\n           ^"},
+      {"t\n.model d1 D\n.model D1 D\n", "t.cir:3:8: error: model 'd1' is already defined at line 2\n.model D1 D\n       ^~"},
+  });
+}
+
+TEST(ParseDiagnostics, Couplings) {
+  check({
+      {"t\nK1 L1 L2 1.5\nL1 a 0 1\nL2 b 0 1\n",
+       "t.cir:2:10: error: coupling coefficient of 'k1' must be in (0, 1]\nK1 L1 L2 1.5\n         ^~~"},
+      {"t\nK1 L1 L3 0.5\nL1 a 0 1\nL2 b 0 1\n",
+       "t.cir:2:7: error: coupled inductor 'l3' is not defined\nK1 L1 L3 0.5\n      ^~"},
+      {"t\nK1 L1 R1 0.5\nL1 a 0 1\nR1 b 0 1\n", "t.cir:2:7: error: 'r1' is not an inductor\nK1 L1 R1 0.5\n      ^~"},
+      {"t\nK1 L1 l1 0.5\nL1 a 0 1\n", "t.cir:2:7: error: 'k1' couples 'l1' with itself\nK1 L1 l1 0.5\n      ^~"},
+      {"t\nL1 a 0 1\nL2 b 0 1\nK1 L1 L2 0.5\nK2 L2 L1 0.1\n",
+       "t.cir:5:1: error: inductors 'l2' and 'l1' are already coupled by 'k1'\nK2 L2 L1 0.1\n^~"},
+  });
+}
+
+TEST(ParseDiagnostics, Subcircuits) {
+  const std::string sub = "t\n.subckt s a b\nR1 a b 1\n.ends\n";
+  check({
+      {(sub + "X1 a s\n").c_str(), "t.cir:5:6: error: 'x1' connects 1 node but subcircuit 's' has 2 ports\nX1 a s\n     ^"},
+      {(sub + "X1 a b foo\n").c_str(), "t.cir:5:8: error: subcircuit 'foo' is not defined\nX1 a b foo\n       ^~~"},
+      {(sub + "X1 a b s\nX1 c d s\n").c_str(),
+       "t.cir:6:1: error: duplicate instance name 'x1' (first defined at line 5)\nX1 c d s\n^~"},
+      {(sub + "X1 a b s r=1\n").c_str(), "t.cir:5:10: error: subcircuit 's' has no parameter 'r'\nX1 a b s r=1\n         ^"},
+      {"t\n.subckt s a b\nX1 a b s\n.ends\nX1 a b s\n",
+       "t.cir:3:8: error: recursive instantiation of subcircuit 's'\nX1 a b s\n       ^"},
+      {"t\n.subckt s a b\nR1 a b 1\n", "t.cir:2:1: error: missing '.ends' for subcircuit 's'\n.subckt s a b\n^~~~~~~"},
+      {"t\n.subckt s a b\nR1 a b 1\n.ends t\n", "t.cir:4:7: error: '.ends t' does not match '.subckt s'\n.ends t\n      ^"},
+      {"t\n.ends\n", "t.cir:2:1: error: '.ends' without '.subckt'\n.ends\n^~~~~"},
+      {"t\n.subckt s a a\n.ends\n", "t.cir:2:13: error: duplicate port 'a' in subcircuit 's'\n.subckt s a a\n            ^"},
+      {"t\n.subckt s a gnd\n.ends\n",
+       "t.cir:2:13: error: ground cannot be a port of subcircuit 's'\n.subckt s a gnd\n            ^~~"},
+      {"t\n.subckt s a\n.ends\n.subckt S b\n.ends\n",
+       "t.cir:4:9: error: subcircuit 's' is already defined at line 2\n.subckt S b\n        ^"},
+      {"t\n.subckt s a\n.tran 1 2\n.ends\n", "t.cir:3:1: error: '.tran' is not allowed inside a subcircuit\n.tran 1 2\n^~~~~"},
+      {"t\n.subckt s a\nR1 a a2 1\nR1 a 0 1\n.ends\nX1 a s\n",
+       "t.cir:4:1: error: duplicate element name 'x1.r1' (first defined at line 3)\nR1 a 0 1\n^~"},
+      {"t\n.subckt s a b params: w=1\nR1 a b {w*h}\n.ends\nX1 n 0 s\n",
+       "t.cir:3:11: error: undefined parameter 'h'\nR1 a b {w*h}\n          ^"},
+      {"t\n.subckt s a b\nR1 a b 1\n.ends\nX1 n n s\n",
+       "t.cir:3:6: error: x1.r1 connects node 'n' to itself\nR1 a b 1\n     ^"},
+  });
+}
+
+TEST(ParseDiagnostics, ControlCards) {
+  check({
+      {"t\n.tran 0 1m\n", "t.cir:2:7: error: '.tran' step must be positive\n.tran 0 1m\n      ^"},
+      {"t\n.tran 1u\n", "t.cir:2:9: error: '.tran' needs TSTEP and TSTOP\n.tran 1u\n        ^"},
+      {"t\n.tran 1u 1m 2m\n",
+       "t.cir:2:10: error: '.tran' stop time must be greater than the start time\n.tran 1u 1m 2m\n         ^~"},
+      {"t\n.tran 1u 0\n", "t.cir:2:10: error: '.tran' stop time must be positive\n.tran 1u 0\n         ^"},
+      {"t\n.tran 1u 1m -1\n", "t.cir:2:13: error: '.tran' start time must not be negative\n.tran 1u 1m -1\n            ^~"},
+      {"t\n.tran 1u 1m 0 -1\n",
+       "t.cir:2:15: error: '.tran' maximum step must not be negative\n.tran 1u 1m 0 -1\n              ^~"},
+      {"t\n.tran 1u 1m 0 1n 5\n", "t.cir:2:18: error: unexpected extra token '5'\n.tran 1u 1m 0 1n 5\n                 ^"},
+      {"t\n.tran 1u 1m\n.tran 1u 2m\n", "t.cir:3:1: error: duplicate '.tran' card (first at line 2)\n.tran 1u 2m\n^~~~~"},
+      {"t\nR1 a 0 1\n.ic v(b)=1\n", "t.cir:3:5: error: unknown node 'b'\n.ic v(b)=1\n    ^~~~"},
+      {"t\nR1 a 0 1\n.ic v(0)=1\n", "t.cir:3:7: error: cannot set the initial voltage of ground\n.ic v(0)=1\n      ^"},
+      {"t\nR1 a 0 1\n.ic i(a)=1\n", "t.cir:3:5: error: expected 'v(node)=value', got 'i'\n.ic i(a)=1\n    ^"},
+      {"t\nR1 a 0 1\n.ic v(a)\n", "t.cir:3:9: error: expected 'v(node)=value' after ')'\n.ic v(a)\n        ^"},
+  });
+}
+
+TEST(ParseDiagnostics, Probes) {
+  check({
+      {"t\nR1 a 0 1\n.print tran v(a) x(b)\n",
+       "t.cir:3:18: error: invalid probe 'x(b)': expected v(node), v(node1,node2) or i(element)\n"
+       ".print tran v(a) x(b)\n                 ^~~~"},
+      {"t\nR1 a 0 1\n.save v(a,0,1)\n",
+       "t.cir:3:7: error: invalid probe 'v(a,0,1)': expected v(node), v(node1,node2) or i(element)\n"
+       ".save v(a,0,1)\n      ^~~~~~~~"},
+      {"t\nR1 a 0 1\n.save @r1[i]\n",
+       "t.cir:3:7: error: invalid probe '@r1[i]': expected v(node), v(node1,node2) or i(element)\n"
+       ".save @r1[i]\n      ^~~~~~"},
+      {"t\nR1 a 0 1\n.print tran v(b)\n", "t.cir:3:13: error: unknown node 'b'\n.print tran v(b)\n            ^~~~"},
+      {"t\nR1 a 0 1\n.print tran v(a,zz)\n", "t.cir:3:13: error: unknown node 'zz'\n.print tran v(a,zz)\n            ^~~~~~~"},
+      {"t\nR1 a 0 1\n.print tran i(r2)\n", "t.cir:3:13: error: unknown element 'r2'\n.print tran i(r2)\n            ^~~~~"},
+      {"t\nL1 a 0 1\nL2 a 0 1\nK1 l1 l2 1\n.print tran i(k1)\n",
+       "t.cir:5:13: error: 'k1' has no current (it is a coupling)\n.print tran i(k1)\n            ^~~~~"},
+      {"t\nR1 a 0 1\n.save v(a\n", "t.cir:3:8: error: missing ')'\n.save v(a\n       ^"},
+  });
+}
+
+TEST(ParseDiagnostics, LexicalAndIncludes) {
+  check({
+      {"t\n.include \"x.inc\n", "t.cir:2:10: error: missing closing quote\n.include \"x.inc\n         ^"},
+      {"t\n.include nowhere/x.inc\n",
+       "t.cir:2:10: error: cannot open include file 'nowhere/x.inc'\n.include nowhere/x.inc\n         ^~~~~~~~~~~~~"},
+      {"t\n.control\nrun\n", "t.cir:2:1: error: missing '.endc' for '.control'\n.control\n^~~~~~~~"},
+      {"t\nR1 a\tb {x}\n", "t.cir:2:9: error: undefined parameter 'x'\nR1 a\tb {x}\n    \t   ^"},
+  });
+}
+
+TEST(ParseDiagnostics, TabsKeepTheCaretAligned) {
+  // format_diagnostic keeps tabs in the padding; the column counts characters.
+  EXPECT_EQ(diag("t\n\tR1\ta\ta\t1\n"), "t.cir:2:7: error: r1 connects node 'a' to itself\n\tR1\ta\ta\t1\n\t  \t \t^");
+}
+
+}  // namespace
+}  // namespace lcs
