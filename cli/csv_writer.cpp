@@ -2,11 +2,24 @@
 
 #include <cerrno>
 #include <cstring>
+#include <climits>
+#include <cstdlib>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "cli/exit_codes.h"
 
 namespace lcs {
+
+AtomicTarget atomic_target(const std::string& path) {
+  struct stat st {};
+  if (stat(path.c_str(), &st) == 0 && !S_ISREG(st.st_mode)) return {false, path};
+  // Through a symbolic link, replace the file it points to, not the link.
+  char resolved[PATH_MAX];
+  if (lstat(path.c_str(), &st) == 0 && S_ISLNK(st.st_mode) && realpath(path.c_str(), resolved))
+    return {true, resolved};
+  return {true, path};
+}
 
 std::string csv_quote(const std::string& field) {
   if (field.find_first_of(",\"\r\n") == std::string::npos) return field;
@@ -24,7 +37,15 @@ CsvSink::CsvSink(std::string path) : path_(std::move(path)) {
     out_ = stdout;
     return;
   }
-  std::string templ = path_ + ".tmp-XXXXXX";
+  const AtomicTarget target = atomic_target(path_);
+  if (!target.replace) {  // a device or FIFO (/dev/null, a pipe): write into it in place
+    out_ = std::fopen(path_.c_str(), "w");
+    if (!out_) throw CliError(kExitUsage, "error: cannot write '" + path_ + "': " + std::strerror(errno));
+    in_place_ = true;
+    return;
+  }
+  final_path_ = target.path;
+  std::string templ = final_path_ + ".tmp-XXXXXX";
   int fd = mkstemp(templ.data());
   if (fd < 0)
     throw CliError(kExitUsage, "error: cannot write '" + path_ + "': " + std::strerror(errno));
@@ -33,6 +54,10 @@ CsvSink::CsvSink(std::string path) : path_(std::move(path)) {
 }
 
 CsvSink::~CsvSink() {
+  if (in_place_ && !finished_ && out_) {
+    std::fclose(out_);
+    return;
+  }
   if (!to_stdout_ && !finished_ && out_) {
     std::fclose(out_);
     std::remove(temp_path_.c_str());
@@ -61,10 +86,15 @@ void CsvSink::finish() {
     std::fflush(out_);
     return;
   }
+  if (in_place_) {
+    std::fclose(out_);
+    out_ = nullptr;
+    return;
+  }
   const bool ok = std::fflush(out_) == 0 && fsync(fileno(out_)) == 0;
   std::fclose(out_);
   out_ = nullptr;
-  if (!ok || std::rename(temp_path_.c_str(), path_.c_str()) != 0) {
+  if (!ok || std::rename(temp_path_.c_str(), final_path_.c_str()) != 0) {
     std::remove(temp_path_.c_str());
     throw CliError(kExitUsage, "error: cannot write '" + path_ + "': " + std::strerror(errno));
   }

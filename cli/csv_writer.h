@@ -1,6 +1,7 @@
 // Waveform CSV (SPEC §3): header `time,<probe>,...`, RFC 4180 quoting, one row per output time,
-// 15 significant digits. A file is written to a temporary name beside it and renamed into place
-// by finish(), so a reader never sees a torn file.
+// 15 significant digits. A regular file is written to a temporary name beside it and renamed
+// into place by finish(), so a reader never sees a torn file; a device or FIFO (/dev/null, a
+// pipe) is written in place, never replaced.
 #pragma once
 
 #include <cstdio>
@@ -20,10 +21,18 @@ class CsvSink : public OutputSink {
   const std::string& path() const { return path_; }
 
  private:
-  std::string path_, temp_path_;
+  std::string path_, final_path_, temp_path_;
   std::FILE* out_ = nullptr;
-  bool to_stdout_ = false, finished_ = false;
+  bool to_stdout_ = false, in_place_ = false, finished_ = false;
 };
+
+// How to write `path` atomically: replace = false for devices and FIFOs (write in place);
+// otherwise the path to rename onto (a symbolic link's target, so the link survives).
+struct AtomicTarget {
+  bool replace = true;
+  std::string path;
+};
+AtomicTarget atomic_target(const std::string& path);
 
 std::string csv_quote(const std::string& field);
 

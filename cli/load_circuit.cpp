@@ -41,7 +41,7 @@ std::vector<Probe> parse_probe_list(const std::string& list) {
     const char c = k < list.size() ? list[k] : ',';
     if (c == '(') ++depth;
     if (c == ')') --depth;
-    if (c != ',' || depth > 0) continue;
+    if (k < list.size() && (c != ',' || depth > 0)) continue;  // an unclosed '(' ends at the end
     std::string text = list.substr(start, k - start);
     const size_t a = text.find_first_not_of(" \t"), b = text.find_last_not_of(" \t");
     if (a != std::string::npos) {

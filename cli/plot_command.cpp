@@ -56,10 +56,14 @@ int plot_command(const PlotArgs& args) {
   for (size_t c = 1; c < header.size(); ++c) panels[header[c].rfind("v(", 0) == 0 ? 0 : 1].push_back(c + 1);
   const int used = (!panels[0].empty()) + (!panels[1].empty());
 
-  std::string temp = png + ".tmp-XXXXXX";
-  const int fd = mkstemp(temp.data());
-  if (fd < 0) throw CliError(kExitUsage, "error: cannot write '" + png + "'");
-  close(fd);
+  const AtomicTarget target = atomic_target(png);
+  std::string temp = target.path;
+  if (target.replace) {
+    temp += ".tmp-XXXXXX";
+    const int fd = mkstemp(temp.data());
+    if (fd < 0) throw CliError(kExitUsage, "error: cannot write '" + png + "'");
+    close(fd);
+  }
   std::string script = "set terminal pngcairo size 1200," + std::to_string(used > 1 ? 900 : 500) +
                        " noenhanced font ',10'\nset output " + gnuplot_string(temp) +
                        "\nset datafile separator comma\nset grid\nset key outside right\n"
@@ -81,8 +85,8 @@ int plot_command(const PlotArgs& args) {
   if (!gp) throw CliError(kExitUsage, "error: cannot start gnuplot (install gnuplot-nox)");
   std::fputs(script.c_str(), gp);
   const int status = pclose(gp);
-  if (status != 0 || std::rename(temp.c_str(), png.c_str()) != 0) {
-    std::remove(temp.c_str());
+  if (status != 0 || (target.replace && std::rename(temp.c_str(), target.path.c_str()) != 0)) {
+    if (target.replace) std::remove(temp.c_str());
     throw CliError(kExitUsage, "error: gnuplot could not draw '" + png + "'");
   }
   std::fprintf(stderr, "lcspice: wrote %s\n", png.c_str());

@@ -1,4 +1,7 @@
 // The command line as SPEC §1, §3 and §4 fix it, exercised through the real binary.
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <regex>
 
 #include <gtest/gtest.h>
@@ -36,6 +39,8 @@ std::vector<BadNetlist> bad_netlists() {
   return out;
 }
 
+void PrintTo(const BadNetlist& b, std::ostream* os) { *os << b.path; }
+
 class BadNetlistTest : public ::testing::TestWithParam<BadNetlist> {};
 
 TEST_P(BadNetlistTest, ExitCodeAndDiagnostic) {
@@ -64,7 +69,9 @@ TEST_P(BadNetlistTest, ExitCodeAndDiagnostic) {
     const std::string caret = r.err_line(2);
     EXPECT_EQ(caret.find('^'), static_cast<size_t>(column - 1)) << caret;
   }
-  if (b.expect_exit == 2) EXPECT_FALSE(fs::exists(csv)) << "nothing is simulated on input errors";
+  if (b.expect_exit == 2) {
+    EXPECT_FALSE(fs::exists(csv)) << "nothing is simulated on input errors";
+  }
   for (const auto& entry : fs::directory_iterator(dir))
     EXPECT_EQ(entry.path().string().find(".tmp-"), std::string::npos) << "left " << entry.path();
 }
@@ -97,9 +104,9 @@ TEST(BadNetlists, TopologyErrorsPointAtEveryElementInvolved) {
   const std::string path = source_path("tests/bad_netlists/90-voltage-source-loop.cir").string();
   Result r = run_lcspice("run '" + path + "'", dir);
   ASSERT_EQ(r.code, 2);
-  EXPECT_EQ(r.err_line(1), path + ":5:1: note: voltage source v2 is here");
+  EXPECT_EQ(r.err_line(1), path + ":6:1: note: voltage source v2 is here");
   EXPECT_EQ(r.err_line(2), "V2 a 0 DC 3");
-  EXPECT_EQ(r.err_line(4), path + ":4:1: note: voltage source v1 is here");
+  EXPECT_EQ(r.err_line(4), path + ":5:1: note: voltage source v1 is here");
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -124,7 +131,9 @@ TEST(Csv, HeaderQuotingDigitsAndIncreasingTimes) {
       ASSERT_TRUE(std::regex_match(f, m, number)) << f;
       EXPECT_GE(m[1].length() + 1, 12) << f;
     }
-    if (k > 0) EXPECT_GT(csv.rows[k][0], csv.rows[k - 1][0]);
+    if (k > 0) {
+      EXPECT_GT(csv.rows[k][0], csv.rows[k - 1][0]);
+    }
   }
   EXPECT_DOUBLE_EQ(csv.rows[0][1], 10.0);  // IC=10 on the tank capacitor
 }
@@ -158,6 +167,37 @@ TEST(Csv, ExistingFileIsReplacedWhole) {
                          dir);
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_EQ(read_file(dir / "w.csv").rfind("time,v(a)\n", 0), 0u);
+}
+
+// A FIFO (like /dev/null or a pipe) is written in place, never replaced by a regular file.
+TEST(Csv, FifoIsWrittenInPlace) {
+  const fs::path dir = scratch_dir("fifo");
+  const fs::path fifo = dir / "pipe", copy = dir / "copy.csv";
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  const std::string reader = "cat '" + fifo.string() + "' > '" + copy.string() + "' &";
+  ASSERT_EQ(std::system(reader.c_str()), 0);
+  Result r = run_lcspice("run '" + source_path("circuits/lc_tank_bridge.cir").string() +
+                             "' --tstop 3e-6 --probe 'v(a)' -o '" + fifo.string() + "'",
+                         dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  struct stat st {};
+  ASSERT_EQ(stat(fifo.c_str(), &st), 0);
+  EXPECT_TRUE(S_ISFIFO(st.st_mode)) << "the FIFO was replaced";
+  for (int k = 0; k < 100 && read_file(copy).size() < 10; ++k) usleep(10000);
+  EXPECT_EQ(read_file(copy).rfind("time,v(a)\n", 0), 0u);
+}
+
+// A symbolic link keeps pointing at the (replaced) file.
+TEST(Csv, SymlinkTargetIsReplacedNotTheLink) {
+  const fs::path dir = scratch_dir("symlink");
+  std::ofstream(dir / "real.csv") << "old\n";
+  fs::create_symlink(dir / "real.csv", dir / "link.csv");
+  Result r = run_lcspice("run '" + source_path("circuits/lc_tank_bridge.cir").string() +
+                             "' --tstop 2e-6 --probe 'v(a)' -o '" + (dir / "link.csv").string() + "'",
+                         dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(fs::is_symlink(dir / "link.csv"));
+  EXPECT_EQ(read_file(dir / "real.csv").rfind("time,v(a)\n", 0), 0u);
 }
 
 // ---------------------------------------------------------------------------------------------

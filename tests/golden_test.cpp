@@ -1,8 +1,12 @@
 // Golden waveforms: every circuit in tests/golden/manifest.tsv runs with implicit Euler at its
 // .tran TSTEP and every probe is compared with tests/golden/<circuit>.csv, a reference computed
-// at TSTEP/64 and checked against TSTEP/32 (tests/golden/generate.sh). The tolerance is on
-//   max_t |y(t) - y_ref(t)| / range(y_ref)
-// for every probe, stated per circuit in the manifest.
+// at TSTEP/64 and checked against TSTEP/32 (tests/golden/generate.sh). Every probe has two
+// stated tolerances in the manifest, relative to the probe's range over the run:
+//   max  = max_t |y(t) - y_ref(t)|        (the worst instant)
+//   mean = mean_t |y(t) - y_ref(t)|       (time-averaged; first order even across jumps)
+// A first-order method places a switching instant within O(h), so signals that jump or switch
+// steeply (diode currents, a node whose diode turns off) have large max errors that do not
+// shrink with h; their mean error still does. See README, "Golden waveforms".
 #include <cmath>
 
 #include <gtest/gtest.h>
@@ -16,9 +20,14 @@ namespace {
 
 using namespace cli_testing;
 
+struct ProbeTolerance {
+  std::string probe;
+  double max = 0, mean = 0;
+};
+
 struct GoldenCase {
   std::string circuit;
-  double tolerance = 0;
+  std::vector<ProbeTolerance> probes;
 };
 
 std::vector<GoldenCase> manifest() {
@@ -28,12 +37,16 @@ std::vector<GoldenCase> manifest() {
   while (std::getline(in, line)) {
     if (line.empty() || line[0] == '#') continue;
     std::istringstream fields(line);
-    GoldenCase c;
-    fields >> c.circuit >> c.tolerance;
-    out.push_back(c);
+    std::string circuit;
+    ProbeTolerance t;
+    fields >> circuit >> t.probe >> t.max >> t.mean;
+    if (out.empty() || out.back().circuit != circuit) out.push_back({circuit, {}});
+    out.back().probes.push_back(t);
   }
   return out;
 }
+
+void PrintTo(const GoldenCase& c, std::ostream* os) { *os << c.circuit; }
 
 class GoldenWaveform : public ::testing::TestWithParam<GoldenCase> {};
 
@@ -54,23 +67,27 @@ TEST_P(GoldenWaveform, EveryProbeWithinTolerance) {
   Csv ref = parse_csv(read_file(source_path("tests/golden/" + c.circuit + ".csv")));
   ASSERT_EQ(ref.header.size(), sink.names.size() + 1);
   ASSERT_EQ(ref.rows.size(), sink.times.size());
+  ASSERT_EQ(c.probes.size(), sink.names.size()) << "every probe needs a stated tolerance";
   for (size_t p = 0; p < sink.names.size(); ++p) {
     ASSERT_EQ(ref.header[p + 1], sink.names[p]);
-    double lo = INFINITY, hi = -INFINITY, worst = 0, worst_t = 0;
+    ASSERT_EQ(c.probes[p].probe, sink.names[p]);
+    double lo = INFINITY, hi = -INFINITY, worst = 0, worst_t = 0, sum = 0;
     for (size_t k = 0; k < ref.rows.size(); ++k) {
       ASSERT_NEAR(ref.rows[k][0], sink.times[k], 1e-9 * o.tstop);
       const double y_ref = ref.rows[k][p + 1];
       lo = std::min(lo, y_ref);
       hi = std::max(hi, y_ref);
       const double e = std::abs(sink.rows[k](p) - y_ref);
+      sum += e;
       if (e > worst) worst = e, worst_t = sink.times[k];
     }
     const double range = hi - lo > 0 ? hi - lo : 1.0;
-    EXPECT_LE(worst / range, c.tolerance)
-        << c.circuit << " " << sink.names[p] << ": max error " << worst << " at t = " << worst_t
-        << " over range " << range;
-    std::printf("  %-22s %-10s max|err|/range = %.3e (tolerance %.1e)\n", c.circuit.c_str(),
-                sink.names[p].c_str(), worst / range, c.tolerance);
+    const double max_rel = worst / range, mean_rel = sum / ref.rows.size() / range;
+    EXPECT_LE(max_rel, c.probes[p].max) << c.circuit << " " << sink.names[p] << ": max error "
+                                        << worst << " at t = " << worst_t << ", range " << range;
+    EXPECT_LE(mean_rel, c.probes[p].mean) << c.circuit << " " << sink.names[p];
+    std::printf("golden\t%s\t%s\t%.3e\t%.3e\n", c.circuit.c_str(), sink.names[p].c_str(),
+                max_rel, mean_rel);
   }
 }
 

@@ -2,6 +2,7 @@
 // Not part of the public interface (lcp.h); may change without notice.
 #pragma once
 
+#include <cstdint>
 #include <vector>
 
 #include <Eigen/Dense>
@@ -43,6 +44,10 @@ class LemkeEngine {
   // M must be the matrix given to set_matrix. out.z / out.w are resized only if needed.
   void solve(const Eigen::MatrixXd& M, const Eigen::VectorXd& q, const LemkeOptions& options,
              LcpSolution& out);
+  // After a Solved result (n <= 64): bit i set when z_i is basic in the final complementary
+  // basis, including a basic z_i at zero level (degenerate vertex). That basis matrix is
+  // nonsingular, unlike the block of the support {z_i > 0} when solutions are not unique.
+  std::uint64_t basic_z_mask() const;
 
  private:
   void pivot(int row, int entering);

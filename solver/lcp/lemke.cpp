@@ -146,6 +146,13 @@ int LemkeEngine::lexicographic_leaving_row(double pivot_tol) {
   return best;
 }
 
+std::uint64_t LemkeEngine::basic_z_mask() const {
+  std::uint64_t mask = 0;
+  for (int i = 0; i < n_ && i < 64; ++i)
+    if (basis_[i] >= n_ && basis_[i] < 2 * n_) mask |= std::uint64_t{1} << (basis_[i] - n_);
+  return mask;
+}
+
 void LemkeEngine::finish(const Eigen::MatrixXd& M, const Eigen::VectorXd& q, double qn,
                          const LemkeOptions& options, bool solved, LcpSolution& out) {
   y_.setZero();
@@ -209,6 +216,7 @@ void LemkeEngine::solve(const Eigen::MatrixXd& M, const Eigen::VectorXd& q,
   out.pivots = 0;
   out.status = LcpStatus::Solved;
   if ((q.array() >= 0.0).all()) {
+    for (int i = 0; i < n_; ++i) basis_[i] = i;  // the all-w basis
     out.z.setZero(n_);
     out.w = q;
     return;

@@ -1,6 +1,7 @@
 // Warm-started LCP solver for a fixed M and a sequence of q (one LCP per integrator step).
 //
-// Hot path (warm hit): the previous active set J = {i : z_i > 0} (a bitmask) selects a cached
+// Hot path (warm hit): the previous basis J (Lemke's basic z set, or the J of the last warm hit;
+// a bitmask) selects a cached
 // LU factorisation of the equilibrated S_JJ; one triangular solve gives y_J, then
 //   y_J >= -tol  and  v_i = (S y + qt)_i >= -tol for i not in J,   tol = feas_tol * max(1, |y|_inf)
 // (normalised units, see lcp_internal.h) accepts the answer. Negative y_J within tol are clamped
@@ -117,10 +118,9 @@ const LcpSolution& LcpWarmSolver::solve(const Eigen::VectorXd& q) {
       if (ok) {
         last_.status = LcpStatus::Solved;
         last_.pivots = 0;
-        std::uint64_t mask = 0;
-        for (int a = 0; a < k; ++a)
-          if (last_.z(m.J[a]) > 0.0) mask |= std::uint64_t{1} << m.J[a];
-        active_ = mask;
+        // Keep the basis that worked, zero-level z_j included: at a degenerate vertex (a
+        // continuum of solutions, e.g. the potential of a sub-circuit that no conducting diode
+        // ties down) the support {z > 0} alone has a singular block.
         ++stats_.warm_hits;
         return last_;
       }
@@ -131,7 +131,8 @@ const LcpSolution& LcpWarmSolver::solve(const Eigen::VectorXd& q) {
   ++stats_.lemke_calls;
   stats_.lemke_pivots += last_.pivots;
   if (last_.status == LcpStatus::Solved && n <= kMaxWarmN) {
-    std::uint64_t mask = 0;
+    // The final complementary basis, not the support of z (see the warm-hit branch).
+    std::uint64_t mask = impl_->engine.basic_z_mask();
     for (int i = 0; i < n; ++i)
       if (last_.z(i) > 0.0) mask |= std::uint64_t{1} << i;
     active_ = mask;

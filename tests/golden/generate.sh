@@ -28,13 +28,25 @@ grep -v '^#' tests/golden/manifest.tsv | while read -r circuit tol; do
   "$lcspice" run "$net" --method euler --step "$step64" | keep_every 64 > tests/golden/$circuit.csv
   "$lcspice" run "$net" --method euler --step "$step32" | keep_every 32 > "$tmp/$circuit.32.csv"
   echo "$circuit: reference at TSTEP/64 = $step64 s; refinement check against TSTEP/32:"
-  paste -d, tests/golden/$circuit.csv "$tmp/$circuit.32.csv" | awk -F, '
-    NR == 1 { n = NF / 2; for (i = 2; i <= n; i++) name[i] = $i; next }
+  paste -d, tests/golden/$circuit.csv "$tmp/$circuit.32.csv" | awk '
+    function split_csv(line, out,    n, i, c, field, quoted) {  # RFC 4180 fields of one line
+      n = 0; field = ""; quoted = 0
+      for (i = 1; i <= length(line); i++) {
+        c = substr(line, i, 1)
+        if (c == "\"") quoted = !quoted
+        else if (c == "," && !quoted) { out[++n] = field; field = "" }
+        else field = field c
+      }
+      out[++n] = field
+      return n
+    }
+    { nf = split_csv($0, f) }
+    NR == 1 { n = nf / 2; for (i = 2; i <= n; i++) name[i] = f[i]; next }
     { for (i = 2; i <= n; i++) {
-        a = $i; b = $(i + n); d = a - b; if (d < 0) d = -d
+        a = f[i]; b = f[i + n]; d = a - b; if (d < 0) d = -d
         if (d > diff[i]) diff[i] = d
-        if (!(i in lo) || a < lo[i]) lo[i] = a
-        if (!(i in hi) || a > hi[i]) hi[i] = a } }
+        if (!(i in lo) || a + 0 < lo[i]) lo[i] = a + 0
+        if (!(i in hi) || a + 0 > hi[i]) hi[i] = a + 0 } }
     END { for (i = 2; i <= n; i++) {
         r = hi[i] - lo[i]; if (r == 0) r = 1
         printf "  %-12s max|ref64 - ref32|/range = %.2e\n", name[i], diff[i] / r } }'

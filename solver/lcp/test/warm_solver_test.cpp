@@ -225,3 +225,30 @@ TEST(WarmSolver, WarmHitsDoNotAllocate) {
 
 }  // namespace
 }  // namespace lcs
+
+namespace lcs {
+namespace {
+
+// A continuum of solutions, as when no conducting diode ties down the potential of a
+// sub-circuit: w0 = -z1 + 0, w1 = z0 - c. Every z0 >= c with z1 = 0 solves it, so the support
+// {z0} has the singular block M_00 = 0; Lemke's vertex z0 = c sits on the basis {z0, z1} with
+// z1 basic at zero level. The warm solver must keep that basis: one Lemke call, then warm hits.
+TEST(LcpWarmSolverDegenerate, KeepsLemkesBasisAtAZeroLevelVariable) {
+  Eigen::MatrixXd M(2, 2);
+  M << 0, -1, 1, 0;
+  LcpWarmSolver solver(M);
+  for (int k = 0; k < 200; ++k) {
+    const double c = 1.0 + 0.01 * k;
+    Eigen::VectorXd q(2);
+    q << 0, -c;
+    const LcpSolution& sol = solver.solve(q);
+    ASSERT_EQ(sol.status, LcpStatus::Solved);
+    EXPECT_LE(lcp_residual(M, q, sol.z), 1e-12);
+    EXPECT_NEAR(sol.z(0), c, 1e-12);  // the vertex, continuous from step to step
+  }
+  EXPECT_EQ(solver.stats().lemke_calls, 1);
+  EXPECT_EQ(solver.stats().warm_hits, 199);
+}
+
+}  // namespace
+}  // namespace lcs
