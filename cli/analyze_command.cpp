@@ -95,13 +95,17 @@ void print_text(const Report& r) {
 
   std::printf("\ndiodes (%zu):\n", m.pairs().size());
   std::printf("  %-10s %-8s %-5s %-14s %s\n", "name", "pair", "class", "index (Gk_ii)", "law");
+  std::printf("  (index: first k with a nonzero diagonal entry of the Markov parameter G_k; '-': none,\n"
+              "   the pair's own z never moves its w: it is tied to the others by KCL or KVL)\n");
   for (size_t k = 0; k < m.pairs().size(); ++k) {
     const PairInfo& p = m.pairs()[k];
     std::string law = "VON=" + number(p.law.von) + " V RON=" + number(p.law.ron) + " ohm";
     if (p.fitted) law += " (fitted to Shockley IS/N/RS)";
-    std::printf("  %-10s %-8s %-5s %-14d %s%s\n", g.branches[p.branch].name.c_str(),
+    const int pk = r.index.pair_index[k];
+    std::printf("  %-10s %-8s %-5s %-14s %s%s\n", g.branches[p.branch].name.c_str(),
                 p.voltage_type ? "voltage" : "current", class_of(r, p.branch).c_str(),
-                r.index.pair_index[k], law.c_str(), joins(r, p.branch) ? "  [joins H components]" : "");
+                pk >= 0 ? std::to_string(pk).c_str() : "-", law.c_str(),
+                joins(r, p.branch) ? "  [joins H components]" : "");
   }
 
   std::printf("\nLCS: dx/dt = A x + B z + E u,  w = C x + D z + F u,  0 <= w _|_ z >= 0\n");
@@ -167,6 +171,7 @@ int analyze_command(const AnalyzeArgs& args) {
   const double t1 = netlist.tran ? netlist.tran->tstop : 0.0;
   CircuitModel model = build_model(netlist, 0.0, t1);
   Report r{model, h_components(model.graph()), classify_diodes(model.graph()), lcs_index(model.lcs()), {}};
+  for (const std::string& w : floating_potential_warnings(model)) r.warnings.push_back(w);
   for (const Element& el : netlist.elements)
     if (el.kind == ElementKind::Diode)
       for (const std::string& p : netlist.diode_models.at(el.model).ignored)

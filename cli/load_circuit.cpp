@@ -79,3 +79,50 @@ OutputMap output_map_or_exit(const CircuitModel& model, const std::vector<Probe>
 }
 
 }  // namespace lcs
+
+#include "graph/components.h"
+
+namespace lcs {
+
+namespace {
+
+std::string floating_message(const CircuitModel& model, const NodePartition& h, int component) {
+  const CircuitGraph& g = model.graph();
+  std::vector<std::string> nodes, diodes;
+  for (size_t n = 0; n < g.nodes.size(); ++n)
+    if (h.component[n] == component) nodes.push_back(g.nodes[n]);
+  for (const Branch& b : g.branches)
+    if (b.cls == BranchClass::Diode && (h.component[b.from] == component) != (h.component[b.to] == component))
+      diodes.push_back(b.name);
+  return "nodes " + join_names(nodes) + " reach ground only through diodes (" + join_names(diodes) +
+         ") or current sources: while none of those diodes conducts, their potential is not "
+         "unique and lcspice reports one valid value (a diode at its threshold); currents and "
+         "voltages between these nodes are unique";
+}
+
+}  // namespace
+
+std::vector<std::string> floating_potential_warnings(const CircuitModel& model) {
+  NodePartition h = h_components(model.graph());
+  std::vector<std::string> out;
+  for (int c = 0; c < h.count; ++c)
+    if (c != h.component[0]) out.push_back(floating_message(model, h, c));
+  return out;
+}
+
+std::vector<std::string> floating_probe_warnings(const CircuitModel& model,
+                                                 const std::vector<Probe>& probes) {
+  NodePartition h = h_components(model.graph());
+  std::vector<bool> probed(h.count, false);
+  for (const Probe& p : probes) {
+    if (p.kind != Probe::Kind::NodeVoltage) continue;
+    const int n = model.graph().node_index(p.a);
+    if (n >= 0) probed[h.component[n]] = true;
+  }
+  std::vector<std::string> out;
+  for (int c = 0; c < h.count; ++c)
+    if (c != h.component[0] && probed[c]) out.push_back(floating_message(model, h, c));
+  return out;
+}
+
+}  // namespace lcs

@@ -22,3 +22,13 @@ OutputMap output_map_or_exit(const CircuitModel& model, const std::vector<Probe>
 void warn(const std::string& text);  // "lcspice: warning: ..." on stderr
 
 }  // namespace lcs
+
+namespace lcs {
+// Components of H (5.4.6) that reach ground only through diodes or current sources: while none
+// of their diodes conducts, their potential is not unique (the LCP has a continuum of solutions
+// in the tree diodes' voltage-type z). One message per such component; empty when there are none.
+std::vector<std::string> floating_potential_warnings(const CircuitModel& model);
+// The same, only for components holding a node whose absolute voltage is probed.
+std::vector<std::string> floating_probe_warnings(const CircuitModel& model,
+                                                 const std::vector<Probe>& probes);
+}  // namespace lcs

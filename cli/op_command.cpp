@@ -1,3 +1,5 @@
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 
@@ -18,13 +20,18 @@ void print_point(const CircuitModel& model, const OperatingPoint& op) {
   };
   for (size_t n = 1; n < g.nodes.size(); ++n)
     line("v(" + g.nodes[n] + ")", model.evaluate(model.node_voltage(n), op.x, op.z, 0.0));
+  std::vector<double> current(g.branches.size());
+  double largest = 0;
   for (size_t b = 0; b < g.branches.size(); ++b) {
-    const double i = model.evaluate(model.branch_current(b), op.x, op.z, 0.0);
+    current[b] = model.evaluate(model.branch_current(b), op.x, op.z, 0.0);
+    largest = std::max(largest, std::abs(current[b]));
+  }
+  // A diode conducts when its current stands out of the rounding of the solve.
+  const double on_threshold = std::max(1e-9 * largest, 1e-15);
+  for (size_t b = 0; b < g.branches.size(); ++b) {
     const char* note = "";
-    if (g.branches[b].cls == BranchClass::Diode) {
-      note = i > 0 ? "   (on)" : "   (off)";
-    }
-    line("i(" + g.branches[b].name + ")", i, note);
+    if (g.branches[b].cls == BranchClass::Diode) note = current[b] > on_threshold ? "   (on)" : "   (off)";
+    line("i(" + g.branches[b].name + ")", current[b], note);
   }
 }
 

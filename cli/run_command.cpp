@@ -75,7 +75,9 @@ int run_command(const RunArgs& args) {
   if (!options.IsValid(&why)) throw CliError(kExitUsage, "error: " + why);
 
   CircuitModel model = build_model(netlist, 0.0, options.tstop);
-  OutputMap outputs = output_map_or_exit(model, probes_for(netlist, model, args.probes));
+  const std::vector<Probe> probes = probes_for(netlist, model, args.probes);
+  OutputMap outputs = output_map_or_exit(model, probes);
+  for (const std::string& w : floating_probe_warnings(model, probes)) warn(w);
   CsvSink sink(args.output);
   try {
     TransientSummary summary = run_transient(model, outputs, options, sink);
