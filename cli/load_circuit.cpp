@@ -94,7 +94,10 @@ std::string floating_message(const CircuitModel& model, const NodePartition& h, 
   for (const Branch& b : g.branches)
     if (b.cls == BranchClass::Diode && (h.component[b.from] == component) != (h.component[b.to] == component))
       diodes.push_back(b.name);
-  return "nodes " + join_names(nodes) + " reach ground only through diodes (" + join_names(diodes) +
+  std::vector<std::string> quoted;
+  for (const std::string& n : nodes) quoted.push_back("'" + n + "'");
+  return (nodes.size() == 1 ? "node " + quoted[0] + " reaches" : "nodes " + join_names(quoted) + " reach") +
+         " ground only through diodes (" + join_names(diodes) +
          ") or current sources: while none of those diodes conducts, their potential is not "
          "unique and lcspice reports one valid value (a diode at its threshold); currents and "
          "voltages between these nodes are unique";
