@@ -2,24 +2,12 @@
 
 #include <cerrno>
 #include <cstring>
-#include <climits>
-#include <cstdlib>
-#include <sys/stat.h>
 #include <unistd.h>
 
+#include "cli/atomic_file.h"
 #include "cli/exit_codes.h"
 
 namespace lcs {
-
-AtomicTarget atomic_target(const std::string& path) {
-  struct stat st {};
-  if (stat(path.c_str(), &st) == 0 && !S_ISREG(st.st_mode)) return {false, path};
-  // Through a symbolic link, replace the file it points to, not the link.
-  char resolved[PATH_MAX];
-  if (lstat(path.c_str(), &st) == 0 && S_ISLNK(st.st_mode) && realpath(path.c_str(), resolved))
-    return {true, resolved};
-  return {true, path};
-}
 
 std::string csv_quote(const std::string& field) {
   if (field.find_first_of(",\"\r\n") == std::string::npos) return field;
@@ -45,11 +33,9 @@ CsvSink::CsvSink(std::string path) : path_(std::move(path)) {
     return;
   }
   final_path_ = target.path;
-  std::string templ = final_path_ + ".tmp-XXXXXX";
-  int fd = mkstemp(templ.data());
+  const int fd = create_temp_beside(target, &temp_path_);
   if (fd < 0)
     throw CliError(kExitUsage, "error: cannot write '" + path_ + "': " + std::strerror(errno));
-  temp_path_ = templ;
   out_ = fdopen(fd, "w");
 }
 

@@ -26,13 +26,7 @@ class CsvSink : public OutputSink {
   bool to_stdout_ = false, in_place_ = false, finished_ = false;
 };
 
-// How to write `path` atomically: replace = false for devices and FIFOs (write in place);
-// otherwise the path to rename onto (a symbolic link's target, so the link survives).
-struct AtomicTarget {
-  bool replace = true;
-  std::string path;
-};
-AtomicTarget atomic_target(const std::string& path);
+
 
 std::string csv_quote(const std::string& field);
 

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "cli/commands.h"
-#include "cli/csv_writer.h"
+#include "cli/atomic_file.h"
 #include "cli/exit_codes.h"
 
 namespace lcs {
@@ -59,8 +59,7 @@ int plot_command(const PlotArgs& args) {
   const AtomicTarget target = atomic_target(png);
   std::string temp = target.path;
   if (target.replace) {
-    temp += ".tmp-XXXXXX";
-    const int fd = mkstemp(temp.data());
+    const int fd = create_temp_beside(target, &temp);
     if (fd < 0) throw CliError(kExitUsage, "error: cannot write '" + png + "'");
     close(fd);
   }

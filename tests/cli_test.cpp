@@ -190,6 +190,21 @@ TEST(Csv, FifoIsWrittenInPlace) {
   EXPECT_EQ(read_file(copy).rfind("time,v(a)\n", 0), 0u);
 }
 
+// New files get the usual permissions (0666 less the umask), replaced ones keep theirs.
+TEST(Csv, FilePermissions) {
+  const fs::path dir = scratch_dir("permissions");
+  const std::string run = "run '" + source_path("circuits/lc_tank_bridge.cir").string() +
+                          "' --tstop 2e-6 --probe 'v(a)' -o ";
+  const mode_t old_mask = umask(022);
+  ASSERT_EQ(run_lcspice(run + "'" + (dir / "new.csv").string() + "'", dir).code, 0);
+  std::ofstream(dir / "kept.csv") << "x\n";
+  fs::permissions(dir / "kept.csv", fs::perms(0640));
+  ASSERT_EQ(run_lcspice(run + "'" + (dir / "kept.csv").string() + "'", dir).code, 0);
+  umask(old_mask);
+  EXPECT_EQ(fs::status(dir / "new.csv").permissions(), fs::perms(0644));
+  EXPECT_EQ(fs::status(dir / "kept.csv").permissions(), fs::perms(0640));
+}
+
 // A symbolic link keeps pointing at the (replaced) file.
 TEST(Csv, SymlinkTargetIsReplacedNotTheLink) {
   const fs::path dir = scratch_dir("symlink");

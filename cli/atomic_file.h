@@ -1,0 +1,21 @@
+// Writing an output file so that readers never see it torn: a temporary file beside the target,
+// renamed into place. Devices and FIFOs (/dev/null, a pipe) are written in place instead, and a
+// symbolic link has its target replaced, not the link.
+#pragma once
+
+#include <string>
+
+namespace lcs {
+
+struct AtomicTarget {
+  bool replace = true;  // false: a device or FIFO, write in place
+  std::string path;     // the file to rename onto (a symbolic link's target)
+};
+AtomicTarget atomic_target(const std::string& path);
+
+// Creates the temporary file for `target` (its path in *temp) with the mode the final file
+// should have: the replaced file's, or 0666 less the umask for a new one. Returns the open
+// descriptor, or -1 with errno set.
+int create_temp_beside(const AtomicTarget& target, std::string* temp);
+
+}  // namespace lcs
