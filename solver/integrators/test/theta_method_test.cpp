@@ -40,13 +40,17 @@ Probe i(const std::string& element) { return {Probe::Kind::ElementCurrent, eleme
 // exact discrete recursion v_n = (V - VON)(1 - (1 + h/tau)^-n).
 class RcThroughDiode : public ::testing::TestWithParam<std::pair<double, double>> {};
 
-TEST_P(RcThroughDiode, ImplicitEulerMatchesItsDiscreteClosedForm) {
-  const auto [VON, RON] = GetParam();
-  const double V = 10, R = 1e3, C = 1e-6, tau = (R + RON) * C, h = 2e-5;
+Netlist rc_through_diode(double V, double VON, double RON, double R, double C) {
   NetlistBuilder b;
   b.v("v1", "in", "0", NetlistBuilder::dc(V)).d("d1", "in", "a", VON, RON);
   b.r("r1", "a", "out", R).c("c1", "out", "0", C, 0.0);
-  RunResult r = simulate(b.build(), {v("out"), i("d1")}, "euler", h, 5e-3, true);
+  return b.build();
+}
+
+TEST_P(RcThroughDiode, ImplicitEulerMatchesItsDiscreteClosedForm) {
+  const auto [VON, RON] = GetParam();
+  const double V = 10, R = 1e3, C = 1e-6, tau = (R + RON) * C, h = 2e-5;
+  RunResult r = simulate(rc_through_diode(V, VON, RON, R, C), {v("out"), i("d1")}, "euler", h, 5e-3, true);
   ASSERT_EQ(r.sink.times.size(), 251u);
   for (size_t n = 0; n < r.sink.times.size(); ++n) {
     const double exact = (V - VON) * (1 - std::pow(1 + h / tau, -static_cast<double>(n)));
@@ -60,11 +64,9 @@ TEST_P(RcThroughDiode, ImplicitEulerMatchesItsDiscreteClosedForm) {
 TEST_P(RcThroughDiode, ImplicitEulerIsFirstOrder) {
   const auto [VON, RON] = GetParam();
   const double V = 10, R = 1e3, C = 1e-6, tau = (R + RON) * C, T = 2e-3;
-  NetlistBuilder b;
-  b.v("v1", "in", "0", NetlistBuilder::dc(V)).d("d1", "in", "a", VON, RON);
-  b.r("r1", "a", "out", R).c("c1", "out", "0", C, 0.0);
+  const Netlist netlist = rc_through_diode(V, VON, RON, R, C);
   auto error = [&](double h) {
-    RunResult r = simulate(b.build(), {v("out")}, "euler", h, T, true);
+    RunResult r = simulate(netlist, {v("out")}, "euler", h, T, true);
     double e = 0;
     for (size_t n = 0; n < r.sink.times.size(); ++n)
       e = std::max(e, std::abs(r.sink.rows[n](0) - (V - VON) * (1 - std::exp(-r.sink.times[n] / tau))));

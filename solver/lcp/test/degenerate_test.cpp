@@ -148,17 +148,10 @@ TEST(Degenerate, ZerosAndTiesInQ) {
 // Many random degenerate problems: never cycles, never needs more than a few pivots.
 TEST(Degenerate, RandomIntegerProblemsNeverCycle) {
   std::mt19937 rng(22);
-  std::uniform_int_distribution<int> d(0, 3), qd(-2, 1);
   int plain_cycles = 0;
   for (int t = 0; t < 5000; ++t) {
     const int n = 3 + t % 4;
-    Eigen::MatrixXd M(n, n);
-    Eigen::VectorXd q(n);
-    for (int i = 0; i < n; ++i) {
-      q(i) = qd(rng);
-      for (int j = 0; j < n; ++j) M(i, j) = d(rng);
-      if (M(i, i) == 0) M(i, i) = 1;
-    }
+    const auto [M, q] = lcp_test::random_degenerate_integer_problem(rng, n);
     if (naive_lemke(M, q, false) == Naive::Cycled) ++plain_cycles;
     expect_solved_quickly(M, q, 4 * (n + 1));
     if (HasFailure()) return;

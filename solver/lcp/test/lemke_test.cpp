@@ -349,17 +349,10 @@ TEST(Lemke, WideDynamicRangeCircuitMatrix) {
 // Lemke cannot end on a ray, so it must solve, with few pivots.
 TEST(Lemke, DegenerateStrictlyCopositive) {
   std::mt19937 rng(11);
-  std::uniform_int_distribution<int> d(0, 3), qd(-2, 1);
   int max_pivots_seen = 0;
   for (int t = 0; t < 3000; ++t) {
     const int n = 2 + t % 7;
-    Eigen::MatrixXd M(n, n);
-    Eigen::VectorXd q(n);
-    for (int i = 0; i < n; ++i) {
-      q(i) = qd(rng);
-      for (int j = 0; j < n; ++j) M(i, j) = d(rng);
-      if (M(i, i) == 0) M(i, i) = 1;
-    }
+    const auto [M, q] = lcp_test::random_degenerate_integer_problem(rng, n);
     LcpSolution s = expect_solved(M, q, 1e-12);
     EXPECT_LE(s.pivots, 4 * (n + 1)) << "M=\n" << M << "\nq=" << q.transpose();
     max_pivots_seen = std::max(max_pivots_seen, s.pivots);

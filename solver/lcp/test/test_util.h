@@ -105,4 +105,21 @@ inline double w_mismatch(const Eigen::MatrixXd& M, const Eigen::VectorXd& q,
   return r;
 }
 
+// Small nonnegative integer matrices with a positive diagonal (strictly copositive) and integer
+// q in [-2, 1]: full of ties in the minimum-ratio test, the degenerate case Lemke must survive.
+struct IntegerProblem {
+  Eigen::MatrixXd M;
+  Eigen::VectorXd q;
+};
+inline IntegerProblem random_degenerate_integer_problem(std::mt19937& rng, int n) {
+  std::uniform_int_distribution<int> d(0, 3), qd(-2, 1);
+  IntegerProblem p{Eigen::MatrixXd(n, n), Eigen::VectorXd(n)};
+  for (int i = 0; i < n; ++i) {
+    p.q(i) = qd(rng);
+    for (int j = 0; j < n; ++j) p.M(i, j) = d(rng);
+    if (p.M(i, i) == 0) p.M(i, i) = 1;
+  }
+  return p;
+}
+
 }  // namespace lcs::lcp_test
