@@ -6,9 +6,27 @@
 
 #include "cli/commands.h"
 #include "cli/exit_codes.h"
+#include "netlist/number.h"
 #include "solver/integrators/method_registry.h"
 
 namespace lcs {
+
+namespace {
+
+// A numeric option that reads SPICE numbers (20u, 1.5meg, 1e-6).
+CLI::Option* add_number(CLI::App* cmd, const std::string& name, std::optional<double>& target,
+                        const std::string& help) {
+  return cmd->add_option_function<std::string>(
+      name,
+      [&target, name](const std::string& text) {
+        const std::optional<double> v = parse::parse_number(text);
+        if (!v) throw CLI::ValidationError(name, "'" + text + "' is not a finite number");
+        target = *v;
+      },
+      help);
+}
+
+}  // namespace
 
 int run_cli(int argc, char** argv) {
   CLI::App app{"lcspice: circuits of ideal diodes as linear complementarity systems"};
@@ -20,9 +38,9 @@ int run_cli(int argc, char** argv) {
   run_cmd->add_option("netlist", run.netlist, "netlist file")->required();
   run_cmd->add_option("-o", run.output, "CSV path ('-' or absent: standard output)");
   run_cmd->add_option("--method", run.method, "integration method: " + method_names());
-  run_cmd->add_option("--theta", run.theta, "theta of --method theta (default 0.5)");
-  run_cmd->add_option("--step", run.step, "fixed step (default: the .tran TSTEP)");
-  run_cmd->add_option("--tstop", run.tstop, "overrides the .tran TSTOP");
+  add_number(run_cmd, "--theta", run.theta, "theta of --method theta (default 0.5)");
+  add_number(run_cmd, "--step", run.step, "fixed step (default: the .tran TSTEP)");
+  add_number(run_cmd, "--tstop", run.tstop, "overrides the .tran TSTOP");
   run_cmd->add_option("--probe", run.probes, "comma-separated probes, overrides .print/.save");
   run_cmd->add_option("--diode", run.diode, "diode model: ideal (complementarity with VON/RON)");
   run_cmd->add_flag("--stats", run.stats, "print a run summary to standard error");

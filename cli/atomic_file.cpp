@@ -1,18 +1,70 @@
 #include "cli/atomic_file.h"
 
 #include <climits>
+#include <csignal>
+#include <cstring>
 #include <cstdlib>
 #include <sys/stat.h>
 #include <unistd.h>
 
 namespace lcs {
 
+namespace {
+
+// Temporary files in flight, removed if SIGINT/SIGTERM/SIGHUP ends the program first. Plain
+// arrays: the handler may only use async-signal-safe calls.
+constexpr int kSlots = 8;
+char g_temps[kSlots][PATH_MAX];
+volatile sig_atomic_t g_used[kSlots];
+
+void remove_temps_and_die(int sig) {
+  for (int k = 0; k < kSlots; ++k)
+    if (g_used[k]) unlink(g_temps[k]);
+  signal(sig, SIG_DFL);
+  raise(sig);
+}
+
+void track(const std::string& temp) {
+  static const bool installed = [] {
+    for (int sig : {SIGINT, SIGTERM, SIGHUP}) signal(sig, remove_temps_and_die);
+    return true;
+  }();
+  (void)installed;
+  if (temp.size() >= PATH_MAX) return;
+  for (int k = 0; k < kSlots; ++k)
+    if (!g_used[k]) {
+      std::memcpy(g_temps[k], temp.c_str(), temp.size() + 1);
+      g_used[k] = 1;
+      return;
+    }
+}
+
+}  // namespace
+
+void release_temp(const std::string& temp) {
+  for (int k = 0; k < kSlots; ++k)
+    if (g_used[k] && temp == g_temps[k]) g_used[k] = 0;
+}
+
 AtomicTarget atomic_target(const std::string& path) {
   struct stat st {};
   if (stat(path.c_str(), &st) == 0 && !S_ISREG(st.st_mode)) return {false, path};
-  char resolved[PATH_MAX];
-  if (lstat(path.c_str(), &st) == 0 && S_ISLNK(st.st_mode) && realpath(path.c_str(), resolved))
-    return {true, resolved};
+  if (lstat(path.c_str(), &st) == 0 && S_ISLNK(st.st_mode)) {
+    char resolved[PATH_MAX];
+    if (realpath(path.c_str(), resolved)) return {true, resolved};
+    // A dangling link: create the file it points to (relative to the link's folder).
+    char target[PATH_MAX];
+    const ssize_t len = readlink(path.c_str(), target, sizeof target - 1);
+    if (len > 0) {
+      target[len] = '\0';
+      std::string t(target);
+      if (t[0] != '/') {
+        const size_t slash = path.rfind('/');
+        t = (slash == std::string::npos ? std::string() : path.substr(0, slash + 1)) + t;
+      }
+      return {true, t};
+    }
+  }
   return {true, path};
 }
 
@@ -30,6 +82,7 @@ int create_temp_beside(const AtomicTarget& target, std::string* temp) {
     mode = 0666 & ~mask;
   }
   fchmod(fd, mode);
+  track(*temp);
   return fd;
 }
 

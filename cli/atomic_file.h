@@ -16,6 +16,9 @@ AtomicTarget atomic_target(const std::string& path);
 // Creates the temporary file for `target` (its path in *temp) with the mode the final file
 // should have: the replaced file's, or 0666 less the umask for a new one. Returns the open
 // descriptor, or -1 with errno set.
+// The temporary file is removed if SIGINT, SIGTERM or SIGHUP ends the program before
+// release_temp() (called once it has been renamed into place or removed).
 int create_temp_beside(const AtomicTarget& target, std::string* temp);
+void release_temp(const std::string& temp);
 
 }  // namespace lcs

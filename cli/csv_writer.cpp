@@ -47,6 +47,7 @@ CsvSink::~CsvSink() {
   if (!to_stdout_ && !finished_ && out_) {
     std::fclose(out_);
     std::remove(temp_path_.c_str());
+    release_temp(temp_path_);
   }
 }
 
@@ -60,6 +61,7 @@ void CsvSink::begin(const std::vector<std::string>& names) {
 }
 
 void CsvSink::row(double t, const Eigen::VectorXd& values) {
+  ++rows_;
   std::fprintf(out_, "%.14e", t);
   for (int k = 0; k < values.size(); ++k) std::fprintf(out_, ",%.14e", values(k));
   std::fputc('\n', out_);
@@ -80,7 +82,9 @@ void CsvSink::finish() {
   const bool ok = std::fflush(out_) == 0 && fsync(fileno(out_)) == 0;
   std::fclose(out_);
   out_ = nullptr;
-  if (!ok || std::rename(temp_path_.c_str(), final_path_.c_str()) != 0) {
+  const bool renamed = ok && std::rename(temp_path_.c_str(), final_path_.c_str()) == 0;
+  release_temp(temp_path_);
+  if (!renamed) {
     std::remove(temp_path_.c_str());
     throw CliError(kExitUsage, "error: cannot write '" + path_ + "': " + std::strerror(errno));
   }

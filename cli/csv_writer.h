@@ -19,11 +19,13 @@ class CsvSink : public OutputSink {
   void row(double t, const Eigen::VectorXd& values) override;
   void finish() override;
   const std::string& path() const { return path_; }
+  long rows() const { return rows_; }
 
  private:
   std::string path_, final_path_, temp_path_;
   std::FILE* out_ = nullptr;
   bool to_stdout_ = false, in_place_ = false, finished_ = false;
+  long rows_ = 0;
 };
 
 

@@ -64,7 +64,11 @@ std::vector<Probe> parse_probe_list(const std::string& list) {
 
 std::vector<Probe> probes_for(const Netlist& netlist, const CircuitModel& model,
                               const std::string& cli_list) {
-  if (!cli_list.empty()) return parse_probe_list(cli_list);
+  if (!cli_list.empty()) {
+    std::vector<Probe> probes = parse_probe_list(cli_list);
+    if (probes.empty()) throw CliError(kExitUsage, "error: --probe '" + cli_list + "' names no probe");
+    return probes;
+  }
   if (!netlist.probes.empty()) return netlist.probes;
   return model.default_probes();
 }

@@ -1,6 +1,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <stdexcept>
 #include <iostream>
 
 #include "cli/commands.h"
@@ -19,11 +20,11 @@ void print_point(const CircuitModel& model, const OperatingPoint& op) {
     std::printf("  %-16s = %22.14e%s\n", name.c_str(), value, note);
   };
   for (size_t n = 1; n < g.nodes.size(); ++n)
-    line("v(" + g.nodes[n] + ")", model.evaluate(model.node_voltage(n), op.x, op.z, 0.0));
+    line("v(" + g.nodes[n] + ")", model.evaluate_dc(model.node_voltage(n), op.x, op.z, 0.0));
   std::vector<double> current(g.branches.size());
   double largest = 0;
   for (size_t b = 0; b < g.branches.size(); ++b) {
-    current[b] = model.evaluate(model.branch_current(b), op.x, op.z, 0.0);
+    current[b] = model.evaluate_dc(model.branch_current(b), op.x, op.z, 0.0);
     largest = std::max(largest, std::abs(current[b]));
   }
   // A diode conducts when its current stands out of the rounding of the solve.
@@ -46,11 +47,15 @@ int op_command(const OpArgs& args) {
     else points.push_back(solve_operating_point(model, 0.0));
   } catch (const NumericalFailure& e) {
     throw CliError(kExitNumerical, std::string("lcspice: error: ") + e.what());
+  } catch (const std::invalid_argument&) {  // enumeration is exponential: bounded at 24 pairs
+    throw CliError(kExitUsage, "error: op --all enumerates circuits of at most 24 diodes; this one has " +
+                                   std::to_string(model.pairs().size()));
   }
   if (points.empty())
     throw CliError(kExitNumerical, "lcspice: error: the operating point has no solution");
   for (const std::string& s : points.front().undetermined)
-    warn("no DC path for " + s + ": its operating-point value comes from a 1e-9 relative leak");
+    warn("no DC path for " + s + ": the operating point leaves it undetermined and sets it to 0 "
+         "(use UIC with IC= or .ic to choose it)");
   std::printf("* operating point at t = 0: %s\n", netlist.title.c_str());
   if (args.all) std::printf("* %zu solution%s\n", points.size(), points.size() == 1 ? "" : "s");
   for (size_t k = 0; k < points.size(); ++k) {

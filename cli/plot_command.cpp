@@ -84,7 +84,9 @@ int plot_command(const PlotArgs& args) {
   if (!gp) throw CliError(kExitUsage, "error: cannot start gnuplot (install gnuplot-nox)");
   std::fputs(script.c_str(), gp);
   const int status = pclose(gp);
-  if (status != 0 || (target.replace && std::rename(temp.c_str(), target.path.c_str()) != 0)) {
+  const bool ok = status == 0 && (!target.replace || std::rename(temp.c_str(), target.path.c_str()) == 0);
+  if (target.replace) release_temp(temp);
+  if (!ok) {
     if (target.replace) std::remove(temp.c_str());
     throw CliError(kExitUsage, "error: gnuplot could not draw '" + png + "'");
   }

@@ -52,6 +52,8 @@ int run_command(const RunArgs& args) {
     options.method = args.method;
   }
   if (args.theta) options.method_options.theta = *args.theta;
+  if (args.theta && options.method != "theta")
+    warn("--theta is used only by --method theta; method " + options.method + " ignores it");
   if (args.diode != "ideal")
     throw CliError(kExitUsage, "error: unknown diode model '" + args.diode + "' (known: ideal)");
 
@@ -71,6 +73,8 @@ int run_command(const RunArgs& args) {
   }
   if (args.step) options.step = *args.step;
   if (args.tstop) options.tstop = *args.tstop;
+  if (!netlist.tran)  // source defaults (SIN frequency, PULSE edges and width) follow the run
+    for (Element& el : netlist.elements) el.waveform.reresolve(options.step, options.tstop);
   std::string why;
   if (!options.IsValid(&why)) throw CliError(kExitUsage, "error: " + why);
 
@@ -86,10 +90,11 @@ int run_command(const RunArgs& args) {
     if (!sink.path().empty() && sink.path() != "-")
       std::cerr << "lcspice: wrote " << summary.rows << " rows to " << sink.path() << "\n";
   } catch (const NumericalFailure& e) {
-    throw CliError(kExitNumerical, std::string("lcspice: error: numerical failure ") + e.what() +
-                                       (sink.path().empty() || sink.path() == "-"
-                                            ? ""
-                                            : "; rows computed so far are in " + sink.path()));
+    std::string where;
+    if (!sink.path().empty() && sink.path() != "-")
+      where = sink.rows() > 0 ? "; rows computed so far are in " + sink.path()
+                              : "; no row was computed (" + sink.path() + " holds the header only)";
+    throw CliError(kExitNumerical, std::string("lcspice: error: numerical failure ") + e.what() + where);
   }
   return kExitOk;
 }

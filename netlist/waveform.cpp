@@ -171,8 +171,15 @@ struct SinShape {
 
 }  // namespace
 
+void Waveform::reresolve(double tstep, double tstop) {
+  if (written >= 0) params.resize(written);
+  resolved = false;
+  resolve(tstep, tstop);
+}
+
 void Waveform::resolve(double tstep, double tstop) {
   if (resolved) return;
+  if (written < 0) written = static_cast<int>(params.size());
   switch (kind) {
     case Kind::Dc:
     case Kind::Pwl:

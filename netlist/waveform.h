@@ -17,11 +17,15 @@ struct Waveform {
   //   PWL(t1 v1 t2 v2 ...)             times non-decreasing
   std::vector<double> params;
   bool resolved = false;
+  int written = -1;            // how many params the card wrote (set by the first resolve())
 
   // Fills ngspice defaults that depend on the analysis: SIN FREQ = 1/TSTOP; PULSE TR = TF = TSTEP,
   // PW = PER = TSTOP (TD = THETA = PHASE = 0). Called by the parser once .tran is known
   // (with tstep = tstop = 0 when there is none; zero-length edges then count as jumps).
   void resolve(double tstep, double tstop);
+  // Drops the defaults filled by an earlier resolve() and fills them again: for a run whose
+  // TSTEP/TSTOP come from the command line rather than a .tran card.
+  void reresolve(double tstep, double tstop);
 
   double value(double t) const;       // ngspice value at time t (t < 0 is treated as t = 0)
   double derivative(double t) const;  // d/dt value; right derivative at corners

@@ -2,6 +2,9 @@
 #pragma once
 
 #include <sys/wait.h>
+#include <unistd.h>
+
+#include <gtest/gtest.h>
 
 #include <cstdlib>
 #include <filesystem>
@@ -33,9 +36,24 @@ inline std::string read_file(const fs::path& p) {
   return os.str();
 }
 
+inline fs::path scratch_root() {
+  return fs::temp_directory_path() / ("lcspice-test-" + std::to_string(::getpid()));
+}
+
+// Removes this process's scratch directories when the test program ends.
+class ScratchCleanup : public ::testing::Environment {
+ public:
+  void TearDown() override {
+    std::error_code ignored;
+    fs::remove_all(scratch_root(), ignored);
+  }
+};
+inline ::testing::Environment* const kScratchCleanup =
+    ::testing::AddGlobalTestEnvironment(new ScratchCleanup);
+
 // A fresh scratch directory per test.
 inline fs::path scratch_dir(const std::string& name) {
-  fs::path dir = fs::temp_directory_path() / ("lcspice-test-" + std::to_string(::getpid())) / name;
+  fs::path dir = scratch_root() / name;
   fs::remove_all(dir);
   fs::create_directories(dir);
   return dir;

@@ -218,6 +218,48 @@ TEST(Csv, SymlinkTargetIsReplacedNotTheLink) {
   EXPECT_EQ(read_file(dir / "real.csv").rfind("time,v(a)\n", 0), 0u);
 }
 
+TEST(Csv, DanglingSymlinkCreatesItsTarget) {
+  const fs::path dir = scratch_dir("dangling");
+  fs::create_symlink("target.csv", dir / "link.csv");
+  Result r = run_lcspice("run '" + source_path("circuits/lc_tank_bridge.cir").string() +
+                             "' --tstop 2e-6 --probe 'v(a)' -o '" + (dir / "link.csv").string() + "'",
+                         dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(fs::is_symlink(dir / "link.csv"));
+  EXPECT_EQ(read_file(dir / "target.csv").rfind("time,v(a)\n", 0), 0u);
+}
+
+// Interrupted runs remove their temporary file (SIGINT and SIGTERM).
+TEST(Csv, InterruptedRunLeavesNoTemporaryFile) {
+  const fs::path dir = scratch_dir("interrupted");
+  std::ofstream(dir / "long.cir") << "long\nV1 a 0 SIN(0 1 1k)\nR1 a b 1k\nC1 b 0 1u\n.tran 1n 1\n.end\n";
+  for (const char* sig : {"INT", "TERM"}) {
+    const std::string cmd = std::string("timeout -s ") + sig + " 0.5 '" + LCSPICE_BINARY + "' run '" +
+                            (dir / "long.cir").string() + "' -o '" + (dir / "out.csv").string() +
+                            "' </dev/null >/dev/null 2>&1";
+    const int status = std::system(cmd.c_str());
+    EXPECT_EQ(WEXITSTATUS(status), 124) << sig << ": the run was meant to be interrupted";
+    for (const auto& entry : fs::directory_iterator(dir))
+      EXPECT_EQ(entry.path().filename().string().find(".tmp-"), std::string::npos) << sig << " left " << entry.path();
+    EXPECT_FALSE(fs::exists(dir / "out.csv"));
+  }
+}
+
+TEST(Usage, NumbersTakeSpiceSuffixes) {
+  const fs::path dir = scratch_dir("suffixes");
+  Result r = run_lcspice("run '" + source_path("circuits/lc_tank_bridge.cir").string() +
+                             "' --step 20u --tstop 100u --probe 'v(a)'",
+                         dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(parse_csv(r.out).rows.size(), 6u);
+  Result bad = run_lcspice("run '" + source_path("circuits/lc_tank_bridge.cir").string() + "' --tstop inf", dir);
+  EXPECT_EQ(bad.code, 1);
+  EXPECT_EQ(bad.err_line(0), "--tstop: 'inf' is not a finite number");
+  Result empty = run_lcspice("run '" + source_path("circuits/lc_tank_bridge.cir").string() + "' --probe ','", dir);
+  EXPECT_EQ(empty.code, 1);
+  EXPECT_EQ(empty.err_line(0), "error: --probe ',' names no probe");
+}
+
 // ---------------------------------------------------------------------------------------------
 // Usage errors (exit 1) and help
 

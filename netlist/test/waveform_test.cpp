@@ -295,3 +295,27 @@ TEST(WaveformUnresolved, EvaluatesWithZeroAnalysisDefaults) {
 
 }  // namespace
 }  // namespace lcs
+
+namespace lcs {
+namespace {
+
+TEST(WaveformReresolve, DefaultsFollowTheNewAnalysis) {
+  Waveform w;
+  w.kind = Waveform::Kind::Pulse;
+  w.params = {0, 1};  // TD TR TF PW PER all defaulted
+  w.resolve(0, 0);
+  w.reresolve(0.25, 1.0);
+  ASSERT_EQ(w.params.size(), 7u);
+  EXPECT_EQ(w.params[3], 0.25);  // TR = TSTEP
+  EXPECT_EQ(w.params[5], 1.0);   // PW = TSTOP
+  EXPECT_DOUBLE_EQ(w.value(0.5), 1.0);
+  Waveform s;
+  s.kind = Waveform::Kind::Sin;
+  s.params = {0, 1};
+  s.resolve(0, 0);
+  s.reresolve(0.1, 2.0);
+  EXPECT_DOUBLE_EQ(s.params[2], 0.5);  // FREQ = 1/TSTOP
+}
+
+}  // namespace
+}  // namespace lcs

@@ -1,5 +1,7 @@
 #include "solver/integrators/theta_method.h"
 
+#include <algorithm>
+
 #include "solver/model/numerical_failure.h"
 
 namespace lcs {
@@ -43,7 +45,17 @@ ThetaMethod::StepFactors& ThetaMethod::factors(double h, double theta) {
 void ThetaMethod::DoStart(double t0, double h_run, const Eigen::VectorXd& x, Eigen::VectorXd& z) {
   // z(t0+) from an implicit Euler LCP with a tiny step: the rational complementarity problem
   // of 4.5 at large s. Only theta < 1 reuses z_n; for theta = 1 it is just the t0 output.
-  const double h = 1e-6 * h_run;
+  // The step must be tiny against the circuit's fastest rate too, not only against h_run: the
+  // error of this z is about h times that rate, |A| or, for a pair with D_ii > 0 (index 0),
+  // the rate sum_j |(CB)_ij| / D_ii at which conduction through it moves the state.
+  const Lcs& s = model_.lcs();
+  double rate = s.A.size() > 0 ? s.A.cwiseAbs().rowwise().sum().maxCoeff() : 0.0;
+  if (s.pairs() > 0 && s.states() > 0) {
+    const Eigen::MatrixXd CB = s.C * s.B;
+    for (int i = 0; i < s.pairs(); ++i)
+      if (s.D(i, i) > 0) rate = std::max(rate, CB.row(i).cwiseAbs().sum() / s.D(i, i));
+  }
+  const double h = 1e-8 * (rate > 0 ? std::min(h_run, 1.0 / rate) : h_run);
   StepFactors& f = factors(h, 1.0);
   u1_ = model_.input_values(t0 + h);
   q_ = f.CPhi * x + f.CPu1F * u1_;

@@ -55,11 +55,17 @@ TransientSummary run_transient(const CircuitModel& model, const OutputMap& outpu
 
   std::unique_ptr<TimeStepper> stepper =
       find_method(options.method)->make(model, options.method_options);
-  InitialState init = initial_state(model, options.uic, 0.0);
-  summary.warnings = init.warnings;
-  Eigen::VectorXd x = init.x, z(model.lcs().pairs());
-  stepper->Start(0.0, options.step, x, z);
-  sink.begin(outputs.names);
+  sink.begin(outputs.names);  // a failure from here on still leaves a (header-only) file
+  Eigen::VectorXd x, z(model.lcs().pairs());
+  try {
+    InitialState init = initial_state(model, options.uic, 0.0);
+    summary.warnings = init.warnings;
+    x = init.x;
+    stepper->Start(0.0, options.step, x, z);
+  } catch (const NumericalFailure&) {
+    sink.finish();
+    throw;
+  }
   summary.cpu_setup = process_cpu_seconds() - cpu0;
 
   Eigen::VectorXd y(outputs.names.size());

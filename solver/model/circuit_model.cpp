@@ -143,21 +143,25 @@ CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& opt
   Eigen::MatrixXd Es(ns, ns);
   for (int c = 0; c < ns; ++c) Es.col(c) = EqP.col(statics[c]);
   Eigen::MatrixXd rhs = EqR;
-  for (int b = 0; b < nb; ++b) {
+  for (int b = 0; b < nb && ns > 0; ++b) {
     if (role[b] == Role::State) rhs.col(state_of[b]) += EqP.col(b);
     if (role[b] == Role::Forced && EqP.col(b).cwiseAbs().maxCoeff() > 0)
       throw std::logic_error("circuit model: forced branch in a static equation");
   }
-  Eigen::FullPivLU<Eigen::MatrixXd> es_lu(Es);
-  if (ns > 0 && !es_lu.isInvertible()) {
-    std::vector<int> elements;
-    for (int b : statics) elements.push_back(g.branches[b].element);
-    throw TopologyError("the resistive part of the circuit has no unique solution", elements);
-  }
   // P: every primary unknown as a row over [x_phys | z | u | du]; forced rows filled below.
   Eigen::MatrixXd P = Eigen::MatrixXd::Zero(nb, ncol);
   if (ns > 0) {
-    Eigen::MatrixXd sol = -es_lu.solve(rhs);
+    // Rows scaled to unit size first, so that a 1e16 ohm resistor next to a 1 V source is not
+    // mistaken for a singular system.
+    Eigen::VectorXd row_scale = Es.cwiseAbs().rowwise().maxCoeff();
+    for (int r = 0; r < ns; ++r) row_scale(r) = row_scale(r) > 0 ? 1.0 / row_scale(r) : 1.0;
+    Eigen::FullPivLU<Eigen::MatrixXd> es_lu(row_scale.asDiagonal() * Es);
+    if (!es_lu.isInvertible()) {
+      std::vector<int> elements;
+      for (int b : statics) elements.push_back(g.branches[b].element);
+      throw TopologyError("the resistive part of the circuit has no unique solution", elements);
+    }
+    Eigen::MatrixXd sol = -es_lu.solve(row_scale.asDiagonal() * rhs);
     for (int r = 0; r < ns; ++r) P.row(statics[r]) = sol.row(r);
   }
   for (int b = 0; b < nb; ++b)
@@ -239,16 +243,16 @@ CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& opt
     }
   }
   Eigen::MatrixXd Rfull = Rp * P;  // forced rows of P are still zero and Rp never uses them
-  Eigen::FullPivLU<Eigen::MatrixXd> m_lu(Mdyn);
-  if (n > 0 && !m_lu.isInvertible()) {
-    std::vector<int> elements;
-    for (int b : inds) elements.push_back(g.branches[b].element);
-    throw TopologyError("the inductance matrix is singular (perfectly coupled inductors, k = 1, "
-                        "are not supported yet; use k < 1)",
-                        elements);
-  }
-  Eigen::MatrixXd Xdot(n, ncol);  // physical x' = A x + B z + E u + Gamma u'
+  Eigen::MatrixXd Xdot = Eigen::MatrixXd::Zero(n, ncol);  // physical x' = A x + B z + E u + Gamma u'
   if (n > 0) {
+    Eigen::FullPivLU<Eigen::MatrixXd> m_lu(Mdyn);
+    if (!m_lu.isInvertible()) {
+      std::vector<int> elements;
+      for (int b : inds) elements.push_back(g.branches[b].element);
+      throw TopologyError("the inductance matrix is singular (perfectly coupled inductors, k = 1, "
+                          "are not supported yet; use k < 1)",
+                          elements);
+    }
     Xdot = m_lu.solve(Rfull);
     Xdot.rightCols(nu) = m_lu.solve(Kdu);
   }
@@ -345,6 +349,11 @@ double CircuitModel::evaluate(const OutputRow& row, const Eigen::VectorXd& x,
                               const Eigen::VectorXd& z, double t) const {
   return row.g.dot(x) + row.h.dot(z) + row.j.dot(input_values(t)) +
          row.k.dot(input_derivatives(t));
+}
+
+double CircuitModel::evaluate_dc(const OutputRow& row, const Eigen::VectorXd& x,
+                                 const Eigen::VectorXd& z, double t) const {
+  return row.g.dot(x) + row.h.dot(z) + row.j.dot(input_values(t));
 }
 
 std::vector<Probe> CircuitModel::default_probes() const {

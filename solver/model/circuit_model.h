@@ -90,6 +90,9 @@ class CircuitModel {
   OutputRow node_voltage(int node) const;
   double evaluate(const OutputRow& row, const Eigen::VectorXd& x, const Eigen::VectorXd& z,
                   double t) const;
+  // The same at DC (operating point): sources held at their value at t, du/dt = 0.
+  double evaluate_dc(const OutputRow& row, const Eigen::VectorXd& x, const Eigen::VectorXd& z,
+                     double t) const;
 
   // SPEC §3 defaults: every node voltage, then the current of every V, L and D element.
   std::vector<Probe> default_probes() const;

@@ -1,6 +1,7 @@
 #include "solver/model/initial_state.h"
 
 #include <map>
+#include <set>
 
 #include "solver/model/operating_point.h"
 
@@ -21,8 +22,8 @@ InitialState initial_state(const CircuitModel& model, bool uic, double t0) {
       std::string list;
       for (const std::string& s : op.undetermined) list += (list.empty() ? "" : ", ") + s;
       init.warnings.push_back("no DC path for " + list +
-                              ": the operating point sets it by a 1e-9 relative leak; "
-                              "use UIC and IC= to choose it");
+                              ": the operating point leaves it undetermined and sets it to 0 "
+                              "(use UIC with IC= or .ic to choose it)");
     }
   }
   Eigen::VectorXd x_lcs = model.lcs_state(physical, t0);
@@ -33,9 +34,10 @@ InitialState initial_state(const CircuitModel& model, bool uic, double t0) {
     auto it = node_ic.find(g.nodes[node]);
     if (it != node_ic.end()) return it->second;
     if (node == 0 || uic) return 0.0;
-    return model.evaluate(model.node_voltage(node), x_lcs, z, t0);
+    return model.evaluate_dc(model.node_voltage(node), x_lcs, z, t0);
   };
 
+  std::set<std::string> used_node_ics;
   std::vector<int> state_of_branch(g.branches.size(), -1);
   for (int j = 0; j < n; ++j) state_of_branch[model.states()[j].branch] = j;
   for (int b = 0; b < static_cast<int>(g.branches.size()); ++b) {
@@ -55,8 +57,14 @@ InitialState initial_state(const CircuitModel& model, bool uic, double t0) {
       physical(j) = *el.ic;
     } else if (cap && (node_ic.count(g.nodes[br.from]) || node_ic.count(g.nodes[br.to]))) {
       physical(j) = node_value(br.from) - node_value(br.to);
+      used_node_ics.insert(g.nodes[br.from]);
+      used_node_ics.insert(g.nodes[br.to]);
     }
   }
+  for (const NodeIc& ic : netlist.node_ics)
+    if (!used_node_ics.count(ic.node))
+      init.warnings.push_back(".ic v(" + ic.node + ") ignored: no capacitor whose voltage is a "
+                              "state of the circuit connects to node '" + ic.node + "'");
   init.x = model.lcs_state(physical, t0);
   return init;
 }

@@ -1,11 +1,15 @@
 #include "solver/model/operating_point.h"
 
+#include <algorithm>
+
 #include "solver/lcp/lcp.h"
 #include "solver/model/numerical_failure.h"
 
 namespace lcs {
 
 namespace {
+
+double max_abs(const Eigen::VectorXd& v) { return v.size() > 0 ? v.cwiseAbs().maxCoeff() : 0.0; }
 
 struct StaticProblem {
   Eigen::MatrixXd M;        // D - C A^-1 B
@@ -27,7 +31,7 @@ StaticProblem static_problem(const CircuitModel& model, double t) {
       Eigen::MatrixXd kernel = lu.kernel();
       for (int j = 0; j < n; ++j)
         if (kernel.row(j).cwiseAbs().maxCoeff() > 1e-9) p.undetermined.push_back(model.states()[j].label);
-      const double scale = A.cwiseAbs().maxCoeff();
+      const double scale = A.size() > 0 ? A.cwiseAbs().maxCoeff() : 0.0;
       A -= (scale > 0 ? 1e-9 * scale : 1e-9) * Eigen::MatrixXd::Identity(n, n);
     }
     Eigen::PartialPivLU<Eigen::MatrixXd> lu_reg(A);
@@ -50,6 +54,61 @@ OperatingPoint point_from(const StaticProblem& p, const Eigen::VectorXd& z) {
   return op;
 }
 
+// With the conducting set J = {z_i > 0} known, the operating point solves the linear system
+//   A x + B_J z_J = -E u,   C_J x + D_JJ z_J = -F_J u
+// exactly. This replaces the regularised solution, whose x = (B z + E u)/eps loses every digit
+// when A is singular only because a diode current is what holds a state (a capacitor charged
+// through a diode). States the system leaves free (no DC path at all) take the minimum-norm
+// value 0, as SPICE's GMIN would give. Returns false when the result is not complementary.
+bool polish(const CircuitModel& model, double t, OperatingPoint& op) {
+  const Lcs& s = model.lcs();
+  const int n = s.states(), m = s.pairs();
+  std::vector<int> J;
+  for (int i = 0; i < m; ++i)
+    if (op.z(i) > 0) J.push_back(i);
+  const int k = static_cast<int>(J.size());
+  if (n + k == 0) return true;
+  const Eigen::VectorXd u = model.input_values(t);
+  Eigen::MatrixXd K = Eigen::MatrixXd::Zero(n + k, n + k);
+  Eigen::VectorXd rhs(n + k);
+  K.topLeftCorner(n, n) = s.A;
+  rhs.head(n) = -s.E * u;
+  for (int a = 0; a < k; ++a) {
+    K.block(0, n + a, n, 1) = s.B.col(J[a]);
+    K.block(n + a, 0, 1, n) = s.C.row(J[a]);
+    for (int c = 0; c < k; ++c) K(n + a, n + c) = s.D(J[a], J[c]);
+    rhs(n + a) = -s.F.row(J[a]).dot(u);
+  }
+  // Row scaling: the rows mix 1/C-sized and ohm-sized coefficients.
+  Eigen::VectorXd scale = K.cwiseAbs().rowwise().maxCoeff();
+  for (int r = 0; r < n + k; ++r) scale(r) = scale(r) > 0 ? 1.0 / scale(r) : 1.0;
+  Eigen::MatrixXd Ks = scale.asDiagonal() * K;
+  Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(Ks);
+  cod.setThreshold(1e-12);
+  const Eigen::VectorXd sol = cod.solve(scale.asDiagonal() * rhs);
+  const double residual = (Ks * sol - scale.asDiagonal() * rhs).cwiseAbs().maxCoeff();
+  if (!(residual <= 1e-9 * std::max(1.0, max_abs(scale.asDiagonal() * rhs))))
+    return false;
+  Eigen::VectorXd z = Eigen::VectorXd::Zero(m);
+  for (int a = 0; a < k; ++a) z(J[a]) = sol(n + a);
+  const Eigen::VectorXd x = sol.head(n);
+  const Eigen::VectorXd w = s.C * x + s.D * z + s.F * u;
+  const double tol = 1e-9 * std::max({1.0, max_abs(w), max_abs(z)});
+  for (int i = 0; i < m; ++i)
+    if (z(i) < -tol || w(i) < -tol) return false;
+  op.x = x;
+  op.z = z.cwiseMax(0.0);
+  op.undetermined.clear();
+  if (cod.rank() < n + k) {
+    Eigen::FullPivLU<Eigen::MatrixXd> lu(Ks);
+    lu.setThreshold(1e-12);
+    const Eigen::MatrixXd kernel = lu.kernel();
+    for (int j = 0; j < n; ++j)
+      if (kernel.row(j).cwiseAbs().maxCoeff() > 1e-9) op.undetermined.push_back(model.states()[j].label);
+  }
+  return true;
+}
+
 }  // namespace
 
 OperatingPoint solve_operating_point(const CircuitModel& model, double t) {
@@ -60,13 +119,17 @@ OperatingPoint solve_operating_point(const CircuitModel& model, double t) {
                                   lcp_status_name(sol.status) + ")");
   OperatingPoint op = point_from(p, sol.z);
   op.pivots = sol.pivots;
+  polish(model, t, op);
   return op;
 }
 
 std::vector<OperatingPoint> enumerate_operating_points(const CircuitModel& model, double t) {
   StaticProblem p = static_problem(model, t);
   std::vector<OperatingPoint> out;
-  for (const Eigen::VectorXd& z : enumerate_lcp_solutions(p.M, p.q)) out.push_back(point_from(p, z));
+  for (const Eigen::VectorXd& z : enumerate_lcp_solutions(p.M, p.q)) {
+    out.push_back(point_from(p, z));
+    polish(model, t, out.back());
+  }
   return out;
 }
 

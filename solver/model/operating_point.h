@@ -16,8 +16,8 @@ struct OperatingPoint {
   Eigen::VectorXd x;  // LCS state
   Eigen::VectorXd z;
   int pivots = 0;
-  // States with no DC path (A singular): their values come from a 1e-9 relative leak, the
-  // limit of a very long implicit Euler step from zero, as SPICE's GMIN does. Labels listed.
+  // States with no DC path at all (not even through a conducting diode): undetermined by the
+  // circuit; they take the minimum-norm value (0), as SPICE's GMIN would give. Labels listed.
   std::vector<std::string> undetermined;
 };
 

@@ -60,3 +60,22 @@ TEST(InitialState, InductorIcAndDependentCapacitorWarning) {
 
 }  // namespace
 }  // namespace lcs
+
+namespace lcs {
+namespace {
+
+TEST(InitialState, IcOnANodeWithoutAStateCapacitorIsReported) {
+  NetlistBuilder b;
+  b.v("v1", "in", "0", NetlistBuilder::dc(5)).r("r1", "in", "a", 1e3).r("r2", "a", "b", 1e3);
+  b.c("c1", "b", "0", 1e-6);
+  Netlist n = b.build();
+  n.node_ics.push_back({"a", 2.0, {}});
+  CircuitModel m = CircuitModel::build(n, {});
+  InitialState init = initial_state(m, true, 0.0);
+  ASSERT_EQ(init.warnings.size(), 1u);
+  EXPECT_EQ(init.warnings[0], ".ic v(a) ignored: no capacitor whose voltage is a state of the "
+                              "circuit connects to node 'a'");
+}
+
+}  // namespace
+}  // namespace lcs
