@@ -2,11 +2,11 @@
 // .tran TSTEP and every probe is compared with tests/golden/<circuit>.csv, a reference computed
 // at TSTEP/64 and checked against TSTEP/32 (tests/golden/generate.sh). Every probe has two
 // stated tolerances in the manifest, relative to the probe's range over the run:
-//   max  = max_t |y(t) - y_ref(t)|        (the worst instant)
-//   mean = mean_t |y(t) - y_ref(t)|       (time-averaged; first order even across jumps)
-// A first-order method places a switching instant within O(h), so signals that jump or switch
-// steeply (diode currents, a node whose diode turns off) have large max errors that do not
-// shrink with h; their mean error still does. See README, "Golden waveforms".
+//   max  = max |y(t) - y_ref(t)| away from steep edges: samples within 2 steps of a reference
+//          step that moves more than 5 % of the range are left out, because a first-order
+//          method places a switching instant within O(h) and a shifted edge costs its full
+//          height at one sample, however small h is;
+//   mean = mean |y(t) - y_ref(t)| over every sample, edges included (first order across jumps).
 #include <cmath>
 
 #include <gtest/gtest.h>
@@ -74,17 +74,23 @@ TEST_P(GoldenWaveform, EveryProbeWithinTolerance) {
     double lo = INFINITY, hi = -INFINITY, worst = 0, worst_t = 0, sum = 0;
     for (size_t k = 0; k < ref.rows.size(); ++k) {
       ASSERT_NEAR(ref.rows[k][0], sink.times[k], 1e-9 * o.tstop);
-      const double y_ref = ref.rows[k][p + 1];
-      lo = std::min(lo, y_ref);
-      hi = std::max(hi, y_ref);
-      const double e = std::abs(sink.rows[k](p) - y_ref);
-      sum += e;
-      if (e > worst) worst = e, worst_t = sink.times[k];
+      lo = std::min(lo, ref.rows[k][p + 1]);
+      hi = std::max(hi, ref.rows[k][p + 1]);
     }
     const double range = hi - lo > 0 ? hi - lo : 1.0;
+    std::vector<bool> near_edge(ref.rows.size(), false);
+    for (size_t k = 1; k < ref.rows.size(); ++k)
+      if (std::abs(ref.rows[k][p + 1] - ref.rows[k - 1][p + 1]) > 0.05 * range)
+        for (size_t j = k >= 3 ? k - 3 : 0; j <= k + 2 && j < ref.rows.size(); ++j) near_edge[j] = true;
+    for (size_t k = 0; k < ref.rows.size(); ++k) {
+      const double e = std::abs(sink.rows[k](p) - ref.rows[k][p + 1]);
+      sum += e;
+      if (!near_edge[k] && e > worst) worst = e, worst_t = sink.times[k];
+    }
     const double max_rel = worst / range, mean_rel = sum / ref.rows.size() / range;
-    EXPECT_LE(max_rel, c.probes[p].max) << c.circuit << " " << sink.names[p] << ": max error "
-                                        << worst << " at t = " << worst_t << ", range " << range;
+    EXPECT_LE(max_rel, c.probes[p].max) << c.circuit << " " << sink.names[p]
+                                        << ": max error away from edges " << worst << " at t = "
+                                        << worst_t << ", range " << range;
     EXPECT_LE(mean_rel, c.probes[p].mean) << c.circuit << " " << sink.names[p];
     std::printf("golden\t%s\t%s\t%.3e\t%.3e\n", c.circuit.c_str(), sink.names[p].c_str(),
                 max_rel, mean_rel);
