@@ -56,6 +56,24 @@ int run_cli(int argc, char** argv) {
   analyze_cmd->add_option("netlist", analyze.netlist, "netlist file")->required();
   analyze_cmd->add_flag("--json", analyze.json, "machine-readable report");
 
+  ValidateArgs validate;
+  CLI::App* validate_cmd = app.add_subcommand(
+      "validate", "run the circuit in ngspice (Shockley diodes) too and compare every probe");
+  validate_cmd->add_option("netlist", validate.netlist, "netlist file")->required();
+  validate_cmd->add_option("--tol", validate.tol, "tolerance on max|error|/range per probe (default 0.02)");
+  validate_cmd->add_option("--report", validate.report,
+                           "write the table as CSV here, and per-probe PNG overlays beside it");
+  validate_cmd->add_flag("--print-deck", validate.print_deck, "print the ngspice deck and stop");
+  validate_cmd->add_option("--emission", validate.emission,
+                           "emission coefficient N of the Shockley diodes (default 0.05)");
+  validate_cmd->add_option("--max-step", validate.max_step, "ngspice's maximum step (default TSTEP)");
+  validate_cmd->add_option("--method", validate.method, "lcspice method: " + method_names());
+  validate_cmd->add_option("--step", validate.step, "lcspice step (default TSTEP/10)");
+  validate_cmd->add_option("--probe", validate.probes, "comma-separated probes, overrides .print/.save");
+  validate_cmd->add_option("--timeout", validate.timeout, "seconds of wall time for ngspice (default 600)");
+  validate_cmd->add_option("--ngspice-option", validate.ngspice_options,
+                           "an .options word for the ngspice deck (repeatable), e.g. rshunt=1e9");
+
   PlotArgs plot;
   CLI::App* plot_cmd = app.add_subcommand("plot", "plot a waveform CSV against time (PNG, gnuplot)");
   plot_cmd->add_option("csv", plot.csv, "waveform CSV")->required();
@@ -79,6 +97,7 @@ int run_cli(int argc, char** argv) {
     if (op_cmd->parsed()) return op_command(op);
     if (analyze_cmd->parsed()) return analyze_command(analyze);
     if (plot_cmd->parsed()) return plot_command(plot);
+    if (validate_cmd->parsed()) return validate_command(validate);
   } catch (const CliError& e) {
     std::cerr << e.what() << "\n";
     return e.code();

@@ -3,6 +3,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace lcs {
 
@@ -24,6 +25,17 @@ struct AnalyzeArgs {
   bool json = false;
 };
 int analyze_command(const AnalyzeArgs& args);
+
+struct ValidateArgs {
+  std::string netlist, report, probes, method;
+  double tol = 0.02;          // relative to each probe's range
+  double emission = 0.05;     // N of the Shockley diodes standing in for ideal ones
+  double timeout = 600;       // seconds of wall time for ngspice
+  std::optional<double> step, max_step;
+  std::vector<std::string> ngspice_options;  // extra `.options` words for the ngspice deck
+  bool print_deck = false;
+};
+int validate_command(const ValidateArgs& args);
 
 struct PlotArgs {
   std::string csv, output;

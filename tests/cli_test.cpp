@@ -281,8 +281,9 @@ TEST(Usage, HelpListsOnlyWhatExists) {
   const fs::path dir = scratch_dir("help");
   Result r = run_lcspice("--help", dir);
   EXPECT_EQ(r.code, 0);
-  for (const char* cmd : {"run", "op", "analyze"}) EXPECT_NE(r.out.find(cmd), std::string::npos) << cmd;
-  for (const char* absent : {"validate", "bench", "radau", "event", "smooth"})
+  for (const char* cmd : {"run", "op", "analyze", "validate", "plot"})
+    EXPECT_NE(r.out.find(cmd), std::string::npos) << cmd;
+  for (const char* absent : {"bench", "radau", "event", "smooth"})
     EXPECT_EQ(r.out.find(absent), std::string::npos) << absent;
 }
 

@@ -1,0 +1,251 @@
+// `lcspice validate`: the same circuit in lcspice (ideal diodes) and in ngspice (Shockley diodes,
+// in-process through libngspice), every probe compared on lcspice's time grid.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+
+#include <unistd.h>
+
+#include "cli/atomic_file.h"
+#include "cli/commands.h"
+#include "cli/csv_writer.h"
+#include "cli/exit_codes.h"
+#include "cli/load_circuit.h"
+#include "ngspice/deck_translation.h"
+#include "ngspice/ngspice_session.h"
+#include "solver/integrators/transient.h"
+#include "solver/model/diode_law.h"
+#include "solver/model/numerical_failure.h"
+
+namespace lcs {
+
+namespace {
+
+struct ProbeComparison {
+  std::string name;
+  double max_error = 0, range = 0, worst_time = 0;
+  double relative() const { return max_error / (range > 0 ? range : 1.0); }
+};
+
+// Linear interpolation of (t, y) at time s (t increasing; clamped at the ends).
+double interpolate(const std::vector<double>& t, const std::vector<double>& y, double s) {
+  if (s <= t.front()) return y.front();
+  if (s >= t.back()) return y.back();
+  const size_t k = std::upper_bound(t.begin(), t.end(), s) - t.begin();
+  const double w = (s - t[k - 1]) / (t[k] - t[k - 1]);
+  return y[k - 1] + w * (y[k] - y[k - 1]);
+}
+
+std::vector<double> ngspice_series(const NgspiceResult& r, const ProbeSource& src,
+                                   const std::string& probe) {
+  auto vector = [&](const std::string& name) -> const std::vector<double>& {
+    auto it = r.vectors.find(name);
+    if (it == r.vectors.end())
+      throw CliError(kExitNumerical, "lcspice: error: ngspice returned no vector '" + name +
+                                         "' for probe " + probe);
+    return it->second;
+  };
+  std::vector<double> y(r.time.size(), 0.0);
+  if (!src.plus.empty()) y = vector(src.plus);
+  if (!src.minus.empty()) {
+    const std::vector<double>& m = vector(src.minus);
+    for (size_t k = 0; k < y.size(); ++k) y[k] -= m[k];
+  }
+  return y;
+}
+
+std::string file_stem(const std::string& path) {
+  const size_t dot = path.rfind('.');
+  return dot != std::string::npos && path.find('/', dot) == std::string::npos ? path.substr(0, dot) : path;
+}
+
+std::string sanitized(const std::string& probe) {
+  std::string s;
+  for (char c : probe) s += std::isalnum(static_cast<unsigned char>(c)) || c == '.' ? c : '_';
+  while (!s.empty() && s.back() == '_') s.pop_back();
+  return s;
+}
+
+void write_atomically(const std::string& path, const std::string& text) {
+  const AtomicTarget target = atomic_target(path);
+  std::string temp = target.path;
+  if (target.replace) {
+    const int fd = create_temp_beside(target, &temp);
+    if (fd < 0) throw CliError(kExitUsage, "error: cannot write '" + path + "'");
+    close(fd);
+  }
+  {
+    std::ofstream out(temp);
+    out << text;
+    if (!out) throw CliError(kExitUsage, "error: cannot write '" + path + "'");
+  }
+  if (target.replace && std::rename(temp.c_str(), target.path.c_str()) != 0) {
+    std::remove(temp.c_str());
+    throw CliError(kExitUsage, "error: cannot write '" + path + "'");
+  }
+}
+
+// The report: the table as CSV, both waveforms per probe as CSV, one PNG overlay per probe.
+void write_report(const std::string& path, const std::vector<ProbeComparison>& rows, double tol,
+                  const MemorySink& ours, const std::vector<std::vector<double>>& theirs) {
+  std::ostringstream table;
+  table << "probe,max_abs_error,range,max_error_over_range,time_of_worst,tolerance,within\n";
+  char buf[256];
+  for (const ProbeComparison& c : rows) {
+    std::snprintf(buf, sizeof buf, ",%.6e,%.6e,%.6e,%.9e,%.3e,%s\n", c.max_error, c.range,
+                  c.relative(), c.worst_time, tol, c.relative() <= tol ? "yes" : "no");
+    table << csv_quote(c.name) << buf;
+  }
+  write_atomically(path, table.str());
+
+  const std::string stem = file_stem(path);
+  std::ostringstream waves;
+  waves << "time";
+  for (const ProbeComparison& c : rows) waves << "," << csv_quote("lcspice " + c.name) << "," << csv_quote("ngspice " + c.name);
+  waves << "\n";
+  for (size_t k = 0; k < ours.times.size(); ++k) {
+    std::snprintf(buf, sizeof buf, "%.14e", ours.times[k]);
+    waves << buf;
+    for (size_t p = 0; p < rows.size(); ++p) {
+      std::snprintf(buf, sizeof buf, ",%.14e,%.14e", ours.rows[k](p), theirs[p][k]);
+      waves << buf;
+    }
+    waves << "\n";
+  }
+  const std::string waves_path = stem + "_waveforms.csv";
+  write_atomically(waves_path, waves.str());
+
+  std::string script = "set datafile separator comma\nset grid\nset key outside right\n"
+                       "set terminal pngcairo size 1100,450 noenhanced font ',10'\n"
+                       "set xlabel 'time [s]'\n";
+  for (size_t p = 0; p < rows.size(); ++p) {
+    const std::string png = stem + "_" + sanitized(rows[p].name) + ".png";
+    script += "set output '" + png + "'\nset title '" + rows[p].name +
+              ": lcspice (ideal diodes) and ngspice (Shockley)'\nplot '" + waves_path +
+              "' skip 1 using 1:" + std::to_string(2 + 2 * p) + " with lines lw 2 title 'lcspice', '" +
+              waves_path + "' skip 1 using 1:" + std::to_string(3 + 2 * p) +
+              " with lines lw 1 dt 2 title 'ngspice'\n";
+  }
+  script += "set output\n";
+  std::FILE* gp = popen("gnuplot 2>&1", "w");
+  if (!gp) throw CliError(kExitUsage, "error: cannot start gnuplot for the report");
+  std::fputs(script.c_str(), gp);
+  if (pclose(gp) != 0) throw CliError(kExitUsage, "error: gnuplot could not draw the report");
+}
+
+}  // namespace
+
+int validate_command(const ValidateArgs& args) {
+  Netlist netlist = load_netlist(args.netlist);
+  if (!netlist.tran) {
+    SourceLocation file_only;
+    file_only.file = netlist.file;
+    throw CliError(kExitNetlist, format_diagnostic(file_only, "error", "no .tran card: nothing to validate"));
+  }
+  TransientOptions run;
+  run.method = args.method.empty() ? "euler" : args.method;
+  if (!find_method(run.method))
+    throw CliError(kExitUsage, "error: unknown method '" + run.method + "' (known: " + method_names() + ")");
+  // lcspice's own first-order error must sit well below the model gap being checked.
+  run.step = args.step ? *args.step : netlist.tran->tstep / 10;
+  run.tstop = netlist.tran->tstop;
+  run.tstart = netlist.tran->tstart;
+  run.uic = netlist.tran->uic;
+  std::string why;
+  if (!run.IsValid(&why)) throw CliError(kExitUsage, "error: " + why);
+  if (!(args.tol > 0)) throw CliError(kExitUsage, "error: --tol must be positive");
+  if (!(args.emission > 0)) throw CliError(kExitUsage, "error: --emission must be positive");
+
+  CircuitModel model = build_model(netlist, 0.0, run.tstop);
+  std::vector<Probe> probes = probes_for(netlist, model, args.probes);
+  // The comparison needs every diode current too, for the expected model gap.
+  std::vector<Probe> all = probes;
+  for (const PairInfo& p : model.pairs())
+    all.push_back({Probe::Kind::ElementCurrent, netlist.elements[p.element].name, "", {}});
+  OutputMap outputs = output_map_or_exit(model, all);
+
+  TranslationOptions topt;
+  topt.emission = args.emission;
+  if (args.max_step) topt.max_step = *args.max_step;
+  topt.options = args.ngspice_options;
+  if (const char* hook = std::getenv("LCSPICE_TEST_NGSPICE_REVERSE_DIODE")) topt.reversed_diodes.insert(hook);
+  TranslatedDeck deck = translate_to_ngspice(model, all, topt);
+  if (args.print_deck) {
+    for (const std::string& line : deck.lines) std::cout << line << "\n";
+    return kExitOk;
+  }
+
+  MemorySink ours;
+  try {
+    run_transient(model, outputs, run, ours);
+  } catch (const NumericalFailure& e) {
+    throw CliError(kExitNumerical, std::string("lcspice: error: numerical failure ") + e.what());
+  }
+  NgspiceResult theirs;
+  try {
+    NgspiceRun nr;
+    nr.deck = deck.lines;
+    nr.timeout_seconds = args.timeout;
+    theirs = run_ngspice_transient(nr);
+  } catch (const NgspiceError& e) {
+    std::string text = std::string("lcspice: error: ngspice failed: ") + e.what();
+    const auto& m = e.messages();
+    for (size_t k = m.size() > 8 ? m.size() - 8 : 0; k < m.size(); ++k) text += "\n  ngspice: " + m[k];
+    throw CliError(kExitNumerical, text);
+  }
+  if (theirs.time.size() < 2)
+    throw CliError(kExitNumerical, "lcspice: error: ngspice returned fewer than 2 time points");
+
+  std::vector<ProbeComparison> rows;
+  std::vector<std::vector<double>> interpolated;
+  for (size_t p = 0; p < probes.size(); ++p) {
+    const std::string name = outputs.names[p];
+    const std::vector<double> y = ngspice_series(theirs, deck.probes.at(name), name);
+    ProbeComparison c;
+    c.name = name;
+    double lo = INFINITY, hi = -INFINITY;
+    std::vector<double> at_ours(ours.times.size());
+    for (size_t k = 0; k < ours.times.size(); ++k) {
+      const double mine = ours.rows[k](p);
+      at_ours[k] = interpolate(theirs.time, y, ours.times[k]);
+      lo = std::min(lo, mine);
+      hi = std::max(hi, mine);
+      const double e = std::abs(mine - at_ours[k]);
+      if (e > c.max_error) c.max_error = e, c.worst_time = ours.times[k];
+    }
+    c.range = hi - lo;
+    rows.push_back(c);
+    interpolated.push_back(std::move(at_ours));
+  }
+
+  // Expected gap between the models: about N Vt ln(I/IS) per conducting ideal junction.
+  double peak = 0;
+  for (size_t p = probes.size(); p < all.size(); ++p)
+    for (const Eigen::VectorXd& row : ours.rows) peak = std::max(peak, row(p));
+  const double gap = peak > 0 ? args.emission * kThermalVoltage * std::log(peak / topt.saturation_current) : 0.0;
+
+  std::printf("validate %s\n", netlist.file.c_str());
+  std::printf("  lcspice: ideal diodes, %s, h = %g s, %zu rows\n", run.method.c_str(), run.step, ours.times.size());
+  std::printf("  ngspice: Shockley diodes (N = %g, IS = %g A) behind VON sources, %zu time points, "
+              "%.3f s CPU\n", args.emission, topt.saturation_current, theirs.time.size(),
+              theirs.analysis_cpu_seconds);
+  std::printf("  expected model gap: about %.3g V per conducting junction (N Vt ln(I/IS) at the "
+              "peak diode current %.3g A)\n\n", gap, peak);
+  std::printf("  %-16s %12s %12s %14s %14s\n", "probe", "max|error|", "range", "max|err|/range", "at t");
+  bool ok = true;
+  for (const ProbeComparison& c : rows) {
+    const bool within = c.relative() <= args.tol;
+    ok = ok && within;
+    std::printf("  %-16s %12.4e %12.4e %14.4e %14.6e  %s\n", c.name.c_str(), c.max_error, c.range,
+                c.relative(), c.worst_time, within ? "ok" : "OUTSIDE");
+  }
+  if (!args.report.empty()) write_report(args.report, rows, args.tol, ours, interpolated);
+  std::printf("\n%s: every probe within %g of its range\n", ok ? "PASS" : "FAIL", args.tol);
+  if (!ok) std::printf("(a probe outside tolerance: exit code 4)\n");
+  return ok ? kExitOk : kExitValidate;
+}
+
+}  // namespace lcs

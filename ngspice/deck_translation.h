@@ -1,0 +1,61 @@
+// An lcspice netlist as an ngspice deck with smooth (Shockley) diodes: the witness that
+// `lcspice validate` compares against. The whole translation is defined here:
+//
+//  - Ideal diode (VON, RON) -> a voltage source VON in series with a Shockley diode of emission
+//    coefficient N (default 0.05), IS (default 1e-14) and RS = RON:
+//        anode --[+ VON -]-- mid --|>|-- cathode
+//    As N -> 0 the Shockley curve tends to the ideal one; the two differ by about
+//    N*Vt*ln(i/IS) per conducting junction (the "model gap"). The threshold source doubles as
+//    the diode's ammeter.
+//  - Diode cards that give only smooth parameters (IS, N, RS; lcspice fitted a chord to them)
+//    keep those parameters, behind a 0 V ammeter.
+//  - R, L (IC=), C (IC=), K, V and I (DC, SIN, PULSE, PWL) are written as they are, with their
+//    flattened names (an element `r1` of instance `x1` becomes `r_x1.r1`: ngspice reads the
+//    element type from the first letter). PULSE edges of zero length, which lcspice treats as
+//    jumps, become 1e-9 TSTOP (ngspice would silently substitute TSTEP).
+//  - Every probed current other than a voltage source's gets a 0 V ammeter in series, so
+//    i(element) is read from the ammeter's branch current (same direction as SPEC §3).
+//  - `.tran TSTEP TSTOP TSTART TMAX [UIC]` with TMAX = TSTEP unless the netlist gives a smaller
+//    one (ngspice's default maximum step, (TSTOP-TSTART)/50, gives wrong answers with sharp
+//    diodes), `.ic` as it is, `.options` from TranslationOptions.
+#pragma once
+
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "solver/model/circuit_model.h"
+
+namespace lcs {
+
+struct TranslationOptions {
+  double emission = 0.05;            // N of the Shockley diodes standing in for ideal ones
+  double saturation_current = 1e-14; // IS of those diodes
+  double max_step = 0;               // ngspice TMAX; 0: TSTEP (or the netlist's smaller TMAX)
+  std::vector<std::string> options;  // extra `.options` words, e.g. "reltol=1e-4"
+  // Test hook: diodes written anode/cathode swapped in the deck only (`validate` must fail).
+  std::set<std::string> reversed_diodes;
+};
+
+// Where an lcspice probe's value comes from among ngspice's vectors: value = plus - minus
+// (minus empty: 0).
+struct ProbeSource {
+  std::string plus, minus;
+};
+
+struct TranslatedDeck {
+  std::vector<std::string> lines;            // title first, `.end` last
+  std::map<std::string, ProbeSource> probes; // by lcspice probe name ("v(a)", "i(d1)")
+  std::vector<std::string> ideal_diodes;     // diodes given a threshold source + sharp Shockley
+};
+
+// `model` supplies the diode laws and the probes' elements; `probes` are the lcspice probes the
+// comparison needs. Throws std::invalid_argument for a netlist without .tran.
+TranslatedDeck translate_to_ngspice(const CircuitModel& model, const std::vector<Probe>& probes,
+                                    const TranslationOptions& options);
+
+// The ngspice vector name of a node ("0" is not a vector: ground).
+std::string ngspice_node_vector(const std::string& node);
+
+}  // namespace lcs

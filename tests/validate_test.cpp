@@ -1,0 +1,124 @@
+// `lcspice validate` on every circuit of circuits/validation.tsv: lcspice (ideal diodes) against
+// ngspice (Shockley diodes, in-process) within the tolerance stated next to the netlists. Also:
+// a deliberately wrong deck must fail (exit 4), and ngspice failures must surface as errors.
+#include <set>
+
+#include <gtest/gtest.h>
+
+#include "tests/cli_support.h"
+
+namespace lcs {
+namespace {
+
+using namespace cli_testing;
+
+struct ValidationCase {
+  std::string circuit, tolerance, options;  // options: extra validate arguments, or "-"
+  bool skip = false;                        // "skip" in the tolerance column: reason required
+  std::string reason;
+};
+
+void PrintTo(const ValidationCase& c, std::ostream* os) { *os << c.circuit; }
+
+std::vector<ValidationCase> manifest() {
+  std::vector<ValidationCase> out;
+  std::istringstream in(read_file(source_path("circuits/validation.tsv")));
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    std::vector<std::string> f;
+    std::istringstream fields(line);
+    std::string cell;
+    while (std::getline(fields, cell, '\t')) f.push_back(cell);
+    ValidationCase c;
+    c.circuit = f.at(0);
+    c.tolerance = f.at(1);
+    c.options = f.size() > 2 ? f[2] : "-";
+    c.reason = f.size() > 3 ? f[3] : "";
+    c.skip = c.tolerance == "skip";
+    out.push_back(c);
+  }
+  return out;
+}
+
+TEST(ValidationManifest, CoversEveryCircuitAndGivesReasons) {
+  std::set<std::string> listed;
+  for (const ValidationCase& c : manifest()) {
+    listed.insert(c.circuit);
+    EXPECT_FALSE(c.reason.empty()) << c.circuit << ": every line says why its tolerance is what it is";
+  }
+  for (const auto& entry : fs::directory_iterator(source_path("circuits"))) {
+    if (entry.path().extension() != ".cir") continue;
+    EXPECT_TRUE(listed.count(entry.path().stem().string())) << entry.path() << " is not in circuits/validation.tsv";
+  }
+}
+
+// Each word single-quoted for the shell (probe lists contain parentheses).
+std::string shell_words(const std::string& options) {
+  std::istringstream in(options);
+  std::string word, out;
+  while (in >> word) out += (out.empty() ? "'" : " '") + word + "'";
+  return out;
+}
+
+class Validation : public ::testing::TestWithParam<ValidationCase> {};
+
+TEST_P(Validation, AgreesWithNgspiceWithinTolerance) {
+  const ValidationCase& c = GetParam();
+  if (c.skip) GTEST_SKIP() << c.reason;
+  const fs::path dir = scratch_dir("validate_" + c.circuit);
+  Result r = run_lcspice("validate '" + source_path("circuits/" + c.circuit + ".cir").string() +
+                             "' --tol " + c.tolerance + (c.options == "-" ? "" : " " + shell_words(c.options)),
+                         dir);
+  EXPECT_EQ(r.code, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("PASS: every probe within"), std::string::npos) << r.out;
+  std::printf("%s", r.out.c_str());
+}
+
+INSTANTIATE_TEST_SUITE_P(Circuits, Validation, ::testing::ValuesIn(manifest()),
+                         [](const ::testing::TestParamInfo<ValidationCase>& info) {
+                           return info.param.circuit;
+                         });
+
+// The comparison can fail: the same circuit with one diode reversed only in the ngspice deck
+// (the test hook LCSPICE_TEST_NGSPICE_REVERSE_DIODE) is far outside any tolerance.
+TEST(ValidationCanFail, ReversedDiodeInTheNgspiceDeckExitsFour) {
+  const fs::path dir = scratch_dir("validate_reversed");
+  const std::string cmd = "env LCSPICE_TEST_NGSPICE_REVERSE_DIODE=d1 '" + std::string(LCSPICE_BINARY) +
+                          "' validate '" + source_path("circuits/half_wave_rectifier.cir").string() +
+                          "' --report '" + (dir / "report.csv").string() + "' >'" +
+                          (dir / "out.txt").string() + "' 2>&1";
+  const int status = std::system(cmd.c_str());
+  EXPECT_EQ(WEXITSTATUS(status), 4) << read_file(dir / "out.txt");
+  const std::string out = read_file(dir / "out.txt");
+  EXPECT_NE(out.find("FAIL: every probe within"), std::string::npos) << out;
+  EXPECT_NE(out.find("OUTSIDE"), std::string::npos) << out;
+  // The report: the table, both waveforms, one overlay per probe.
+  Csv table = parse_csv(read_file(dir / "report.csv"));
+  EXPECT_EQ(table.header.front(), "probe");
+  EXPECT_TRUE(fs::exists(dir / "report_waveforms.csv"));
+  EXPECT_TRUE(fs::exists(dir / "report_v.out.png") || fs::exists(dir / "report_v_out.png"));
+}
+
+TEST(ValidationErrors, NgspiceTimeoutIsAClearError) {
+  const fs::path dir = scratch_dir("validate_timeout");
+  Result r = run_lcspice("validate '" + source_path("circuits/cockcroft_walton.cir").string() +
+                             "' --timeout 0.001",
+                         dir);
+  EXPECT_EQ(r.code, 3) << r.out << r.err;
+  EXPECT_EQ(r.err_line(0).rfind("lcspice: error: ngspice failed: ", 0), 0u) << r.err;
+}
+
+TEST(ValidationErrors, PrintDeckShowsTheTranslation) {
+  const fs::path dir = scratch_dir("validate_deck");
+  Result r = run_lcspice("validate --print-deck '" + source_path("circuits/half_wave_rectifier.cir").string() + "'", dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("v_thr_d1 in lcs_d1_mid DC 0.7"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("d1 lcs_d1_mid n1 lcs_m_d1"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find(".model lcs_m_d1 D(IS=1e-14 N=0.05 RS=0.1)"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find(".tran 2e-05 0.06 0 2e-05"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.substr(r.out.size() - 5), ".end\n");
+}
+
+}  // namespace
+}  // namespace lcs
