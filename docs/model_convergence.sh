@@ -13,8 +13,10 @@ trap 'rm -rf "$tmp"' EXIT
 out=docs/model_convergence.tsv
 echo -e "circuit\tsweep\tN\tngspice_tmax_over_tstep\tworst_probe\tmax_err_over_range\tngspice_cpu_s\toutcome" > "$out"
 
-worst() {  # the report table's largest max_error_over_range and its probe
-  awk -F, 'NR > 1 { v = $(NF-3) + 0; if (v > best) { best = v; name = $1 } } END { printf "%s\t%.4e", name, best }' "$1"
+worst() {  # the report table's largest max_error_over_range and its probe (names may be quoted)
+  awk -F, 'NR > 1 { v = $(NF-3) + 0; name = $0; sub(/,[^,]*,[^,]*,[^,]*,[^,]*,[^,]*,[^,]*$/, "", name)
+                    gsub(/"/, "", name); if (v > best) { best = v; worst = name } }
+           END { printf "%s\t%.4e", worst, best }' "$1"
 }
 
 run_case() {  # circuit sweep N k
@@ -25,14 +27,16 @@ run_case() {  # circuit sweep N k
     if (u ~ /m$/) m = 1e-3; else if (u ~ /u$/) m = 1e-6; else if (u ~ /n$/) m = 1e-9
     printf "%.6g", v * m * k }')
   log=$tmp/$circuit-$n-$k.log
+  # the probes the validation suite compares (circuits/validation.tsv)
+  probes=$(awk -F'\t' -v c="$circuit" '$1 == c { if (match($3, /--probe [^ ]+/)) print substr($3, RSTART + 8, RLENGTH - 8) }' circuits/validation.tsv)
   "$lcspice" validate circuits/$circuit.cir --emission "$n" --max-step "$tmax" --tol 1e9 \
-      --timeout 300 --report "$tmp/r.csv" > "$log" 2>&1
+      --timeout 60 --report "$tmp/r.csv" ${probes:+--probe "$probes"} > "$log" 2>&1
   local code=$?
   if [ $code -eq 0 ]; then
     cpu=$(grep -oE '[0-9.]+ s CPU' "$log" | awk '{print $1}')
     echo -e "$circuit\t$sweep\t$n\t$k\t$(worst "$tmp/r.csv")\t$cpu\tok" >> "$out"
   else
-    why=$(grep -m1 'ngspice failed' "$log" | sed 's/.*ngspice failed: //' | cut -c1-60)
+    why=$(grep -m1 'ngspice failed' "$log" | sed 's/.*ngspice failed: //' | cut -c1-70)
     echo -e "$circuit\t$sweep\t$n\t$k\t-\t-\t-\tngspice failed: $why" >> "$out"
   fi
 }
@@ -43,6 +47,9 @@ for circuit in half_wave_rectifier lc_tank_bridge; do
 done
 column -t -s $'\t' "$out"
 
+for c in half_wave_rectifier lc_tank_bridge; do
+  awk -F'\t' -v c=$c '$1 == c && $2 == "emission" && $8 == "ok" { print $3, $6 }' "$out" > "$tmp/$c.dat"
+done
 gnuplot <<GP
 set terminal pngcairo size 900,550 noenhanced font ',10'
 set output 'docs/model_convergence.png'
@@ -51,9 +58,9 @@ set grid
 set key top left
 set xlabel 'emission coefficient N of the Shockley diodes in ngspice'
 set ylabel 'max |lcspice - ngspice| / range (worst probe)'
-set title 'ngspice (Shockley) approaches lcspice (ideal diodes) as N -> 0'
-plot '< awk -F"\t" "\$1==\"half_wave_rectifier\" && \$2==\"emission\" && \$8==\"ok\"" $out' using 3:6 with linespoints lw 2 title 'half-wave LC rectifier', \
-     '< awk -F"\t" "\$1==\"lc_tank_bridge\" && \$2==\"emission\" && \$8==\"ok\"" $out' using 3:6 with linespoints lw 2 title 'LC tank + bridge', \
-     x * 0.05 with lines dt 2 title 'slope 1'
+set title 'ngspice (Shockley diodes) against lcspice (ideal diodes) as N -> 0'
+plot '$tmp/half_wave_rectifier.dat' using 1:2 with linespoints lw 2 title 'half-wave LC rectifier', \
+     '$tmp/lc_tank_bridge.dat' using 1:2 with linespoints lw 2 title 'LC tank + bridge', \
+     0.1 * x with lines dt 2 title 'proportional to N'
 GP
 echo "wrote $out and docs/model_convergence.png"
