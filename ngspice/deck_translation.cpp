@@ -3,6 +3,8 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "solver/model/diode_law.h"
+
 namespace lcs {
 
 namespace {
@@ -82,16 +84,15 @@ TranslatedDeck translate_to_ngspice(const CircuitModel& model, const std::vector
       const std::string mid = "lcs_" + el.name + "_mid";
       const std::string meter = deck_name('v', "thr_" + el.name);
       const std::string mname = "lcs_m_" + el.name;
-      if (pair.fitted) {  // the card's own Shockley parameters
-        deck.lines.push_back(meter + " " + anode + " " + mid + " DC 0");
-        models.push_back(".model " + mname + " D(IS=" + num(card.is) + " N=" + num(card.n) +
-                         " RS=" + num(card.rs) + ")");
-      } else {
-        deck.lines.push_back(meter + " " + anode + " " + mid + " DC " + num(pair.law.von));
-        models.push_back(".model " + mname + " D(IS=" + num(options.saturation_current) +
-                         " N=" + num(options.emission) + " RS=" + num(pair.law.ron) + ")");
-        deck.ideal_diodes.push_back(el.name);
-      }
+      ResolvedDiodeLaw law;
+      law.law = pair.law;
+      law.fitted = pair.fitted;
+      const SmoothDiodeLaw smooth =
+          smooth_equivalent(card, law, options.emission, options.saturation_current);
+      deck.lines.push_back(meter + " " + anode + " " + mid + " DC " + num(smooth.series_von));
+      models.push_back(".model " + mname + " D(IS=" + num(smooth.is) + " N=" + num(smooth.n) +
+                       " RS=" + num(smooth.rs) + ")");
+      if (!pair.fitted) deck.ideal_diodes.push_back(el.name);
       deck.lines.push_back(name + " " + mid + " " + cathode + " " + mname);
       deck.probes["i(" + el.name + ")"] = {meter + "#branch", ""};
       continue;

@@ -25,4 +25,16 @@ ResolvedDiodeLaw resolve_diode_law(const DiodeModel& model, double ifit);
 
 double shockley_voltage(const DiodeModel& model, double current);
 
+// The smooth diode that stands in for an ideal one (ngspice decks in `validate`, and the smooth
+// integrator later): a source VON in series with a Shockley diode of emission coefficient
+// `emission`, saturation current `saturation_current` and RS = RON. As the emission coefficient
+// goes to 0 it tends to the ideal law; at current i it needs about N Vt ln(i/IS) more voltage.
+// A card whose law was fitted to its own IS/N/RS keeps those (and no series source).
+struct SmoothDiodeLaw {
+  double series_von = 0;  // V, the threshold source in series
+  double is = 1e-14, n = 1, rs = 0;
+};
+SmoothDiodeLaw smooth_equivalent(const DiodeModel& card, const ResolvedDiodeLaw& law,
+                                 double emission, double saturation_current);
+
 }  // namespace lcs
