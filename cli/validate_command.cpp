@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <memory>
 #include <iostream>
 #include <sstream>
 
@@ -18,6 +19,7 @@
 #include "ngspice/ngspice_session.h"
 #include "solver/integrators/transient.h"
 #include "solver/model/diode_law.h"
+#include "solver/model/initial_state.h"
 #include "solver/model/numerical_failure.h"
 
 namespace lcs {
@@ -26,8 +28,12 @@ namespace {
 
 struct ProbeComparison {
   std::string name;
-  double max_error = 0, range = 0, worst_time = 0;
-  double relative() const { return max_error / (range > 0 ? range : 1.0); }
+  double max_error = 0, range = 0, magnitude = 0, worst_time = 0;
+  // Relative to the range; a probe that is constant in lcspice is measured against its size.
+  double relative() const {
+    const double scale = range > 0 ? range : magnitude > 0 ? magnitude : 1.0;
+    return max_error / scale;
+  }
 };
 
 // Linear interpolation of (t, y) at time s (t increasing; clamped at the ends).
@@ -69,23 +75,57 @@ std::string sanitized(const std::string& probe) {
   return s;
 }
 
-void write_atomically(const std::string& path, const std::string& text) {
-  const AtomicTarget target = atomic_target(path);
-  std::string temp = target.path;
-  if (target.replace) {
-    const int fd = create_temp_beside(target, &temp);
-    if (fd < 0) throw CliError(kExitUsage, "error: cannot write '" + path + "'");
-    close(fd);
+std::string gnuplot_string(const std::string& s) {  // single quotes doubled inside
+  std::string out = "'";
+  for (char c : s) out += c == '\'' ? std::string("''") : std::string(1, c);
+  return out + "'";
+}
+
+// A file that is written under a temporary name and renamed into place by commit().
+class AtomicFile {
+ public:
+  explicit AtomicFile(const std::string& path) : path_(path), target_(atomic_target(path)) {
+    temp_ = target_.path;
+    if (target_.replace) {
+      const int fd = create_temp_beside(target_, &temp_);
+      if (fd < 0) throw CliError(kExitUsage, "error: cannot write '" + path + "'");
+      close(fd);
+    }
   }
+  ~AtomicFile() {
+    if (!committed_ && target_.replace) {
+      std::remove(temp_.c_str());
+      release_temp(temp_);
+    }
+  }
+  const std::string& temp() const { return temp_; }
+  void commit() {
+    if (target_.replace) {
+      const bool ok = std::rename(temp_.c_str(), target_.path.c_str()) == 0;
+      release_temp(temp_);
+      if (!ok) {
+        std::remove(temp_.c_str());
+        committed_ = true;
+        throw CliError(kExitUsage, "error: cannot write '" + path_ + "'");
+      }
+    }
+    committed_ = true;
+  }
+
+ private:
+  std::string path_, temp_;
+  AtomicTarget target_;
+  bool committed_ = false;
+};
+
+void write_atomically(const std::string& path, const std::string& text) {
+  AtomicFile file(path);
   {
-    std::ofstream out(temp);
+    std::ofstream out(file.temp());
     out << text;
     if (!out) throw CliError(kExitUsage, "error: cannot write '" + path + "'");
   }
-  if (target.replace && std::rename(temp.c_str(), target.path.c_str()) != 0) {
-    std::remove(temp.c_str());
-    throw CliError(kExitUsage, "error: cannot write '" + path + "'");
-  }
+  file.commit();
 }
 
 // The report: the table as CSV, both waveforms per probe as CSV, one PNG overlay per probe.
@@ -121,19 +161,21 @@ void write_report(const std::string& path, const std::vector<ProbeComparison>& r
   std::string script = "set datafile separator comma\nset grid\nset key outside right\n"
                        "set terminal pngcairo size 1100,450 noenhanced font ',10'\n"
                        "set xlabel 'time [s]'\n";
+  std::vector<std::unique_ptr<AtomicFile>> pngs;
   for (size_t p = 0; p < rows.size(); ++p) {
-    const std::string png = stem + "_" + sanitized(rows[p].name) + ".png";
-    script += "set output '" + png + "'\nset title '" + rows[p].name +
-              ": lcspice (ideal diodes) and ngspice (Shockley)'\nplot '" + waves_path +
-              "' skip 1 using 1:" + std::to_string(2 + 2 * p) + " with lines lw 2 title 'lcspice', '" +
-              waves_path + "' skip 1 using 1:" + std::to_string(3 + 2 * p) +
-              " with lines lw 1 dt 2 title 'ngspice'\n";
+    pngs.push_back(std::make_unique<AtomicFile>(stem + "_" + sanitized(rows[p].name) + ".png"));
+    script += "set output " + gnuplot_string(pngs.back()->temp()) + "\nset title " +
+              gnuplot_string(rows[p].name + ": lcspice (ideal diodes) and ngspice (Shockley)") +
+              "\nplot " + gnuplot_string(waves_path) + " skip 1 using 1:" + std::to_string(2 + 2 * p) +
+              " with lines lw 2 title 'lcspice', " + gnuplot_string(waves_path) + " skip 1 using 1:" +
+              std::to_string(3 + 2 * p) + " with lines lw 1 dt 2 title 'ngspice'\n";
   }
   script += "set output\n";
   std::FILE* gp = popen("gnuplot 2>&1", "w");
   if (!gp) throw CliError(kExitUsage, "error: cannot start gnuplot for the report");
   std::fputs(script.c_str(), gp);
   if (pclose(gp) != 0) throw CliError(kExitUsage, "error: gnuplot could not draw the report");
+  for (auto& png : pngs) png->commit();
 }
 
 }  // namespace
@@ -156,11 +198,20 @@ int validate_command(const ValidateArgs& args) {
   run.uic = netlist.tran->uic;
   std::string why;
   if (!run.IsValid(&why)) throw CliError(kExitUsage, "error: " + why);
-  if (!(args.tol > 0)) throw CliError(kExitUsage, "error: --tol must be positive");
-  if (!(args.emission > 0)) throw CliError(kExitUsage, "error: --emission must be positive");
+  auto positive = [](double v) { return v > 0 && std::isfinite(v); };
+  if (!positive(args.tol)) throw CliError(kExitUsage, "error: --tol must be a positive number");
+  if (!positive(args.emission)) throw CliError(kExitUsage, "error: --emission must be a positive number");
+  if (!positive(args.timeout)) throw CliError(kExitUsage, "error: --timeout must be a positive number of seconds");
+  if (args.max_step && !positive(*args.max_step))
+    throw CliError(kExitUsage, "error: --max-step must be a positive number");
 
   CircuitModel model = build_model(netlist, 0.0, run.tstop);
   std::vector<Probe> probes = probes_for(netlist, model, args.probes);
+  if (probes.empty()) {
+    SourceLocation file_only;
+    file_only.file = netlist.file;
+    throw CliError(kExitNetlist, format_diagnostic(file_only, "error", "nothing to compare: the circuit has no probes"));
+  }
   // The comparison needs every diode current too, for the expected model gap.
   std::vector<Probe> all = probes;
   for (const PairInfo& p : model.pairs())
@@ -172,6 +223,25 @@ int validate_command(const ValidateArgs& args) {
   if (args.max_step) topt.max_step = *args.max_step;
   topt.options = args.ngspice_options;
   if (const char* hook = std::getenv("LCSPICE_TEST_NGSPICE_REVERSE_DIODE")) topt.reversed_diodes.insert(hook);
+  const bool element_ics = std::any_of(netlist.elements.begin(), netlist.elements.end(),
+                                       [](const Element& el) { return el.ic.has_value(); });
+  if (!run.uic && element_ics) {
+    // ngspice honours IC= only with UIC; lcspice applies it over the operating point. Start
+    // ngspice from lcspice's initial state instead: every capacitor voltage and inductor current.
+    try {
+      const InitialState init = initial_state(model, false, 0.0);
+      const Eigen::VectorXd z0 = Eigen::VectorXd::Zero(model.lcs().pairs());
+      const CircuitGraph& g = model.graph();
+      for (size_t b = 0; b < g.branches.size(); ++b) {
+        if (g.branches[b].cls == BranchClass::Capacitor)
+          topt.initial_conditions[g.branches[b].name] = model.evaluate_dc(model.branch_voltage(b), init.x, z0, 0.0);
+        if (g.branches[b].cls == BranchClass::Inductor)
+          topt.initial_conditions[g.branches[b].name] = model.evaluate_dc(model.branch_current(b), init.x, z0, 0.0);
+      }
+    } catch (const NumericalFailure& e) {
+      throw CliError(kExitNumerical, std::string("lcspice: error: numerical failure ") + e.what());
+    }
+  }
   TranslatedDeck deck = translate_to_ngspice(model, all, topt);
   if (args.print_deck) {
     for (const std::string& line : deck.lines) std::cout << line << "\n";
@@ -213,6 +283,7 @@ int validate_command(const ValidateArgs& args) {
       at_ours[k] = interpolate(theirs.time, y, ours.times[k]);
       lo = std::min(lo, mine);
       hi = std::max(hi, mine);
+      c.magnitude = std::max(c.magnitude, std::abs(mine));
       const double e = std::abs(mine - at_ours[k]);
       if (e > c.max_error) c.max_error = e, c.worst_time = ours.times[k];
     }
@@ -229,11 +300,15 @@ int validate_command(const ValidateArgs& args) {
 
   std::printf("validate %s\n", netlist.file.c_str());
   std::printf("  lcspice: ideal diodes, %s, h = %g s, %zu rows\n", run.method.c_str(), run.step, ours.times.size());
-  std::printf("  ngspice: Shockley diodes (N = %g, IS = %g A) behind VON sources, %zu time points, "
-              "%.3f s CPU\n", args.emission, topt.saturation_current, theirs.time.size(),
-              theirs.analysis_cpu_seconds);
-  std::printf("  expected model gap: about %.3g V per conducting junction (N Vt ln(I/IS) at the "
-              "peak diode current %.3g A)\n\n", gap, peak);
+  std::printf("  ngspice: %zu time points, %.3f s CPU\n", theirs.time.size(), theirs.analysis_cpu_seconds);
+  if (!deck.ideal_diodes.empty())
+    std::printf("  ideal diodes as VON sources + Shockley diodes (N = %g, IS = %g A); expected model gap:\n"
+                "  about %.3g V per conducting junction (N Vt ln(I/IS) at the peak diode current %.3g A)\n",
+                args.emission, topt.saturation_current, gap, peak);
+  if (deck.ideal_diodes.size() < model.pairs().size())
+    std::printf("  diodes with their own IS/N/RS: compared as the card gives them (the gap is the "
+                "card's Shockley curve against lcspice's VON/RON)\n");
+  std::printf("\n");
   std::printf("  %-16s %12s %12s %14s %14s\n", "probe", "max|error|", "range", "max|err|/range", "at t");
   bool ok = true;
   for (const ProbeComparison& c : rows) {
@@ -242,9 +317,10 @@ int validate_command(const ValidateArgs& args) {
     std::printf("  %-16s %12.4e %12.4e %14.4e %14.6e  %s\n", c.name.c_str(), c.max_error, c.range,
                 c.relative(), c.worst_time, within ? "ok" : "OUTSIDE");
   }
-  if (!args.report.empty()) write_report(args.report, rows, args.tol, ours, interpolated);
   std::printf("\n%s: every probe within %g of its range\n", ok ? "PASS" : "FAIL", args.tol);
   if (!ok) std::printf("(a probe outside tolerance: exit code 4)\n");
+  std::fflush(stdout);
+  if (!args.report.empty()) write_report(args.report, rows, args.tol, ours, interpolated);
   return ok ? kExitOk : kExitValidate;
 }
 

@@ -1,5 +1,6 @@
 #include "ngspice/deck_translation.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <stdexcept>
 
@@ -35,17 +36,43 @@ char letter_of(ElementKind kind) {
 }
 
 std::string waveform_text(Waveform w, double tstop) {
-  if (w.kind == Waveform::Kind::Pulse) {
-    // lcspice: a zero rise/fall time is a jump; ngspice would replace it by TSTEP.
-    for (size_t k : {3u, 4u})
-      if (k < w.params.size() && w.params[k] == 0.0) w.params[k] = 1e-9 * tstop;
+  if (w.kind == Waveform::Kind::Pulse && w.params.size() >= 7) {
+    // lcspice: a zero rise/fall time is a jump, and at the instant itself the value after it.
+    // ngspice would replace a zero by TSTEP: give it a tiny edge that ends at the jump.
+    const double eps = 1e-6 * tstop;
+    double& td = w.params[2];
+    double& tr = w.params[3];
+    double& tf = w.params[4];
+    double& pw = w.params[5];
+    if (tr == 0.0) td -= eps, tr = eps;
+    if (tf == 0.0) pw = std::max(0.0, pw - eps), tf = eps;
   }
   return w.describe();
 }
 
+// Names made up by the translation, kept clear of the netlist's own element and node names.
+class NameBook {
+ public:
+  explicit NameBook(const Netlist& n) {
+    for (const Element& el : n.elements) {
+      used_.insert(el.name);
+      for (const std::string& node : el.nodes) used_.insert(node);
+    }
+  }
+  std::string fresh(const std::string& wanted) {
+    std::string name = wanted;
+    for (int k = 2; used_.count(name); ++k) name = wanted + "_" + std::to_string(k);
+    used_.insert(name);
+    return name;
+  }
+
+ private:
+  std::set<std::string> used_;
+};
+
 }  // namespace
 
-std::string ngspice_node_vector(const std::string& node) { return node; }
+std::string ngspice_node_vector(const std::string& node) { return node == "0" ? "" : node; }
 
 TranslatedDeck translate_to_ngspice(const CircuitModel& model, const std::vector<Probe>& probes,
                                     const TranslationOptions& options) {
@@ -62,12 +89,12 @@ TranslatedDeck translate_to_ngspice(const CircuitModel& model, const std::vector
     else deck.probes[p.name()] = {ngspice_node_vector(p.a),
                                   p.kind == Probe::Kind::NodePairVoltage ? ngspice_node_vector(p.b) : ""};
   }
-  for (const Probe& p : probes)
-    if (p.kind == Probe::Kind::NodeVoltage && p.a == "0") deck.probes[p.name()] = {"", ""};
 
   std::map<std::string, const PairInfo*> pair_of;
   for (const PairInfo& p : model.pairs()) pair_of[netlist.elements[p.element].name] = &p;
 
+  NameBook names(netlist);
+  const bool uic = tran.uic || !options.initial_conditions.empty();
   std::vector<std::string> models;
   for (const Element& el : netlist.elements) {
     if (el.kind == ElementKind::Coupling) continue;
@@ -81,9 +108,9 @@ TranslatedDeck translate_to_ngspice(const CircuitModel& model, const std::vector
       const DiodeModel& card = netlist.diode_models.at(el.model);
       std::string anode = a, cathode = b;
       if (options.reversed_diodes.count(el.name)) std::swap(anode, cathode);
-      const std::string mid = "lcs_" + el.name + "_mid";
-      const std::string meter = deck_name('v', "thr_" + el.name);
-      const std::string mname = "lcs_m_" + el.name;
+      const std::string mid = names.fresh("lcs_" + el.name + "_mid");
+      const std::string meter = names.fresh(deck_name('v', "thr_" + el.name));
+      const std::string mname = names.fresh("lcs_m_" + el.name);
       ResolvedDiodeLaw law;
       law.law = pair.law;
       law.fitted = pair.fitted;
@@ -92,7 +119,7 @@ TranslatedDeck translate_to_ngspice(const CircuitModel& model, const std::vector
       deck.lines.push_back(meter + " " + anode + " " + mid + " DC " + num(smooth.series_von));
       models.push_back(".model " + mname + " D(IS=" + num(smooth.is) + " N=" + num(smooth.n) +
                        " RS=" + num(smooth.rs) + ")");
-      if (!pair.fitted) deck.ideal_diodes.push_back(el.name);
+      if (!(pair.fitted || card.has_is || card.has_n || card.has_rs)) deck.ideal_diodes.push_back(el.name);
       deck.lines.push_back(name + " " + mid + " " + cathode + " " + mname);
       deck.probes["i(" + el.name + ")"] = {meter + "#branch", ""};
       continue;
@@ -103,8 +130,8 @@ TranslatedDeck translate_to_ngspice(const CircuitModel& model, const std::vector
       continue;
     }
     if (probed) {  // 0 V ammeter between n+ and the element
-      const std::string meter = deck_name('v', "amm_" + el.name);
-      const std::string mid = "lcs_" + el.name + "_amm";
+      const std::string meter = names.fresh(deck_name('v', "amm_" + el.name));
+      const std::string mid = names.fresh("lcs_" + el.name + "_amm");
       deck.lines.push_back(meter + " " + a + " " + mid + " DC 0");
       deck.probes["i(" + el.name + ")"] = {meter + "#branch", ""};
       a = mid;
@@ -112,9 +139,12 @@ TranslatedDeck translate_to_ngspice(const CircuitModel& model, const std::vector
     std::string line = name + " " + a + " " + b + " ";
     switch (el.kind) {
       case ElementKind::CurrentSource: line += waveform_text(el.waveform, tran.tstop); break;
-      default:
+      default: {
         line += num(el.value);
-        if (el.ic) line += " IC=" + num(*el.ic);
+        auto given = options.initial_conditions.find(el.name);
+        if (given != options.initial_conditions.end()) line += " IC=" + num(given->second);
+        else if (el.ic) line += " IC=" + num(*el.ic);
+      }
     }
     deck.lines.push_back(line);
   }
@@ -129,10 +159,10 @@ TranslatedDeck translate_to_ngspice(const CircuitModel& model, const std::vector
     for (const NodeIc& n : netlist.node_ics) ic += " v(" + n.node + ")=" + num(n.value);
     deck.lines.push_back(ic);
   }
-  double tmax = options.max_step > 0 ? options.max_step : tran.tstep;
-  if (tran.tmax > 0 && tran.tmax < tmax) tmax = tran.tmax;
+  double tmax = tran.tmax > 0 && tran.tmax < tran.tstep ? tran.tmax : tran.tstep;
+  if (options.max_step > 0) tmax = options.max_step;  // asked for explicitly: it wins
   deck.lines.push_back(".tran " + num(tran.tstep) + " " + num(tran.tstop) + " " + num(tran.tstart) +
-                       " " + num(tmax) + (tran.uic ? " uic" : ""));
+                       " " + num(tmax) + (uic ? " uic" : ""));
   if (!options.options.empty()) {
     std::string o = ".options";
     for (const std::string& w : options.options) o += " " + w;

@@ -7,12 +7,19 @@
 //    As N -> 0 the Shockley curve tends to the ideal one; the two differ by about
 //    N*Vt*ln(i/IS) per conducting junction (the "model gap"). The threshold source doubles as
 //    the diode's ammeter.
-//  - Diode cards that give only smooth parameters (IS, N, RS; lcspice fitted a chord to them)
-//    keep those parameters, behind a 0 V ammeter.
+//  - Diode cards that give smooth parameters (IS, N or RS) keep them, behind a 0 V ammeter: the
+//    comparison is then lcspice's ideal law (VON/RON, or the chord fitted to the card) against
+//    the card's own Shockley diode.
 //  - R, L (IC=), C (IC=), K, V and I (DC, SIN, PULSE, PWL) are written as they are, with their
 //    flattened names (an element `r1` of instance `x1` becomes `r_x1.r1`: ngspice reads the
-//    element type from the first letter). PULSE edges of zero length, which lcspice treats as
-//    jumps, become 1e-9 TSTOP (ngspice would silently substitute TSTEP).
+//    element type from the first letter). A PULSE edge of zero length, a jump for lcspice (which
+//    ngspice would silently replace by TSTEP), becomes an edge of 1e-6 TSTOP that ends at the
+//    jump instant, so both agree at the instant itself, where lcspice reports the value after
+//    the jump (shorter edges are lost to ngspice's breakpoint resolution).
+//  - IC= on elements without UIC (lcspice applies it, ngspice would not): the deck gets UIC and
+//    IC= on every capacitor and inductor from lcspice's initial state (initial_conditions).
+//  - Names the translation makes up (threshold sources, ammeters, their nodes) are made unique
+//    against the netlist's own names.
 //  - Every probed current other than a voltage source's gets a 0 V ammeter in series, so
 //    i(element) is read from the ammeter's branch current (same direction as SPEC §3).
 //  - `.tran TSTEP TSTOP TSTART TMAX [UIC]` with TMAX = TSTEP unless the netlist gives a smaller
@@ -36,6 +43,9 @@ struct TranslationOptions {
   std::vector<std::string> options;  // extra `.options` words, e.g. "reltol=1e-4"
   // Test hook: diodes written anode/cathode swapped in the deck only (`validate` must fail).
   std::set<std::string> reversed_diodes;
+  // When set, ngspice starts from these capacitor voltages / inductor currents (by element name)
+  // with UIC: lcspice's own initial state, for netlists whose IC= ngspice would ignore without UIC.
+  std::map<std::string, double> initial_conditions;
 };
 
 // Where an lcspice probe's value comes from among ngspice's vectors: value = plus - minus

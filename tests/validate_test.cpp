@@ -120,5 +120,31 @@ TEST(ValidationErrors, PrintDeckShowsTheTranslation) {
   EXPECT_EQ(r.out.substr(r.out.size() - 5), ".end\n");
 }
 
+// Translation details that would otherwise make correct circuits fail; each failure they guard
+// against showed an error of about the whole range (1.0). The tolerances leave room for lcspice's
+// own implicit Euler error at TSTEP/10: 1.4e-3 on the RC after a jump (h/2tau), 1.3e-2 on the
+// RLC ringing at 1e4 rad/s (damping w^2 h/2 = 50/s over a millisecond).
+TEST(ValidationTranslation, JumpsGroundPairsAndInitialConditionsAgree) {
+  const fs::path dir = scratch_dir("validate_translation");
+  // A PULSE with zero edges (jumps) into an RC: the source itself must agree at the jumps.
+  std::ofstream(dir / "jump.cir") << "jumps\nV1 in 0 PULSE(0 5 0.5m 0 0 1m 2m)\nR1 in out 1k\nC1 out 0 1u\n"
+                                     ".tran 10u 4m\n.end\n";
+  Result jump = run_lcspice("validate '" + (dir / "jump.cir").string() + "' --tol 5e-3", dir);
+  EXPECT_EQ(jump.code, 0) << jump.out << jump.err;
+  // IC= without UIC: lcspice applies it, so ngspice must start from the same state.
+  std::ofstream(dir / "ic.cir") << "cap ic\nC1 a 0 1u IC=5\nR1 a 0 1k\nL1 a b 10m IC=1m\nR2 b 0 10\n"
+                                   ".tran 10u 3m\n.end\n";
+  Result ic = run_lcspice("validate '" + (dir / "ic.cir").string() + "' --tol 3e-2 --probe 'v(a,0),v(0,a),i(l1)'", dir);
+  EXPECT_EQ(ic.code, 0) << ic.out << ic.err;
+  // Nothing to compare, and bad arguments.
+  std::ofstream(dir / "empty.cir") << "title only\n.tran 1u 10u\n.end\n";
+  Result empty = run_lcspice("validate '" + (dir / "empty.cir").string() + "'", dir);
+  EXPECT_EQ(empty.code, 2);
+  EXPECT_EQ(empty.err_line(0), (dir / "empty.cir").string() + ": error: nothing to compare: the circuit has no probes");
+  Result timeout = run_lcspice("validate '" + (dir / "ic.cir").string() + "' --timeout 0", dir);
+  EXPECT_EQ(timeout.code, 1);
+  EXPECT_EQ(timeout.err_line(0), "error: --timeout must be a positive number of seconds");
+}
+
 }  // namespace
 }  // namespace lcs

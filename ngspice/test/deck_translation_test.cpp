@@ -68,7 +68,9 @@ TEST(DeckTranslation, ReversedDiodeHookSubcircuitNamesAmmetersAndJumps) {
   EXPECT_TRUE(has_line(d, "d_x1.d1 lcs_x1.d1_mid in lcs_m_x1.d1"));
   EXPECT_TRUE(has_line(d, "v_amm_x1.r1 x1.mid lcs_x1.r1_amm DC 0"));
   EXPECT_TRUE(has_line(d, "r_x1.r1 lcs_x1.r1_amm 0 50"));
-  EXPECT_TRUE(has_line(d, "v1 in 0 PULSE(0 1 0.0001 1e-12 1e-12 0.0002 0.0005)"));  // jumps stay sharp
+  // Jumps become 1 ns edges (1e-6 TSTOP) that end at the jump instants 1e-4 and 3e-4.
+  EXPECT_TRUE(has_line(d, "v1 in 0 PULSE(0 1 9.9999e-05 1e-09 1e-09 0.000199999 0.0005)"))
+      << d.lines[2];
 }
 
 TEST(SmoothEquivalent, IdealLawMapsToSeriesThresholdAndEmission) {

@@ -26,7 +26,7 @@ ResolvedDiodeLaw resolve_diode_law(const DiodeModel& model, double ifit) {
 
 SmoothDiodeLaw smooth_equivalent(const DiodeModel& card, const ResolvedDiodeLaw& law,
                                  double emission, double saturation_current) {
-  if (law.fitted) return {0.0, card.is, card.n, card.rs};
+  if (law.fitted || card.has_is || card.has_n || card.has_rs) return {0.0, card.is, card.n, card.rs};
   return {law.law.von, saturation_current, emission, law.law.ron};
 }
 

@@ -29,7 +29,8 @@ double shockley_voltage(const DiodeModel& model, double current);
 // integrator later): a source VON in series with a Shockley diode of emission coefficient
 // `emission`, saturation current `saturation_current` and RS = RON. As the emission coefficient
 // goes to 0 it tends to the ideal law; at current i it needs about N Vt ln(i/IS) more voltage.
-// A card whose law was fitted to its own IS/N/RS keeps those (and no series source).
+// A card that gives its own IS, N or RS keeps them (and no series source): the user's smooth
+// diode, against which lcspice's ideal law is compared.
 struct SmoothDiodeLaw {
   double series_von = 0;  // V, the threshold source in series
   double is = 1e-14, n = 1, rs = 0;
