@@ -1,5 +1,9 @@
 #include "cli/atomic_file.h"
 
+#include <cstdio>
+
+#include "cli/exit_codes.h"
+
 #include <climits>
 #include <csignal>
 #include <cstring>
@@ -84,6 +88,33 @@ int create_temp_beside(const AtomicTarget& target, std::string* temp) {
   fchmod(fd, mode);
   track(*temp);
   return fd;
+}
+
+AtomicFile::AtomicFile(const std::string& path) : path_(path), target_(atomic_target(path)) {
+  temp_ = target_.path;
+  if (target_.replace) {
+    const int fd = create_temp_beside(target_, &temp_);
+    if (fd < 0) throw CliError(kExitUsage, "error: cannot write '" + path + "'");
+    close(fd);
+  }
+}
+
+AtomicFile::~AtomicFile() {
+  if (!committed_ && target_.replace) {
+    std::remove(temp_.c_str());
+    release_temp(temp_);
+  }
+}
+
+void AtomicFile::commit() {
+  committed_ = true;
+  if (!target_.replace) return;
+  const bool ok = std::rename(temp_.c_str(), target_.path.c_str()) == 0;
+  release_temp(temp_);
+  if (!ok) {
+    std::remove(temp_.c_str());
+    throw CliError(kExitUsage, "error: cannot write '" + path_ + "'");
+  }
 }
 
 }  // namespace lcs

@@ -21,4 +21,21 @@ AtomicTarget atomic_target(const std::string& path);
 int create_temp_beside(const AtomicTarget& target, std::string* temp);
 void release_temp(const std::string& temp);
 
+// A file written under a temporary name and renamed into place by commit(); destroyed without
+// commit(), the temporary file is removed. For devices and FIFOs temp() is the path itself.
+class AtomicFile {
+ public:
+  explicit AtomicFile(const std::string& path);  // throws CliError (exit 1)
+  ~AtomicFile();
+  AtomicFile(const AtomicFile&) = delete;
+  AtomicFile& operator=(const AtomicFile&) = delete;
+  const std::string& temp() const { return temp_; }
+  void commit();                                  // throws CliError (exit 1)
+
+ private:
+  std::string path_, temp_;
+  AtomicTarget target_;
+  bool committed_ = false;
+};
+
 }  // namespace lcs

@@ -1,8 +1,6 @@
 // `lcspice plot CSV [-o PNG]`: the waveforms of a CSV against time, voltages and currents in
 // separate panels, drawn by gnuplot (pngcairo). The PNG is written under a temporary name and
 // renamed into place, like the CSV.
-#include <unistd.h>
-
 #include <cstdio>
 #include <fstream>
 #include <string>
@@ -10,6 +8,7 @@
 
 #include "cli/commands.h"
 #include "cli/atomic_file.h"
+#include "cli/gnuplot.h"
 #include "cli/exit_codes.h"
 
 namespace lcs {
@@ -35,12 +34,6 @@ std::vector<std::string> csv_header(const std::string& path) {
   return fields;
 }
 
-std::string gnuplot_string(const std::string& s) {
-  std::string out = "'";
-  for (char c : s) out += c == '\'' ? std::string("''") : std::string(1, c);
-  return out + "'";
-}
-
 }  // namespace
 
 int plot_command(const PlotArgs& args) {
@@ -56,15 +49,9 @@ int plot_command(const PlotArgs& args) {
   for (size_t c = 1; c < header.size(); ++c) panels[header[c].rfind("v(", 0) == 0 ? 0 : 1].push_back(c + 1);
   const int used = (!panels[0].empty()) + (!panels[1].empty());
 
-  const AtomicTarget target = atomic_target(png);
-  std::string temp = target.path;
-  if (target.replace) {
-    const int fd = create_temp_beside(target, &temp);
-    if (fd < 0) throw CliError(kExitUsage, "error: cannot write '" + png + "'");
-    close(fd);
-  }
+  AtomicFile file(png);
   std::string script = "set terminal pngcairo size 1200," + std::to_string(used > 1 ? 900 : 500) +
-                       " noenhanced font ',10'\nset output " + gnuplot_string(temp) +
+                       " noenhanced font ',10'\nset output " + gnuplot_string(file.temp()) +
                        "\nset datafile separator comma\nset grid\nset key outside right\n"
                        "set multiplot layout " + std::to_string(used) + ",1 title " +
                        gnuplot_string(args.csv) + "\nset xlabel 'time [s]'\n";
@@ -80,16 +67,8 @@ int plot_command(const PlotArgs& args) {
   }
   script += "unset multiplot\nset output\n";
 
-  std::FILE* gp = popen("gnuplot 2>&1", "w");
-  if (!gp) throw CliError(kExitUsage, "error: cannot start gnuplot (install gnuplot-nox)");
-  std::fputs(script.c_str(), gp);
-  const int status = pclose(gp);
-  const bool ok = status == 0 && (!target.replace || std::rename(temp.c_str(), target.path.c_str()) == 0);
-  if (target.replace) release_temp(temp);
-  if (!ok) {
-    if (target.replace) std::remove(temp.c_str());
-    throw CliError(kExitUsage, "error: gnuplot could not draw '" + png + "'");
-  }
+  run_gnuplot(script, "'" + png + "'");
+  file.commit();
   std::fprintf(stderr, "lcspice: wrote %s\n", png.c_str());
   return kExitOk;
 }

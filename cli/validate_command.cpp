@@ -14,6 +14,7 @@
 #include "cli/commands.h"
 #include "cli/csv_writer.h"
 #include "cli/exit_codes.h"
+#include "cli/gnuplot.h"
 #include "cli/load_circuit.h"
 #include "ngspice/deck_translation.h"
 #include "ngspice/ngspice_session.h"
@@ -75,49 +76,6 @@ std::string sanitized(const std::string& probe) {
   return s;
 }
 
-std::string gnuplot_string(const std::string& s) {  // single quotes doubled inside
-  std::string out = "'";
-  for (char c : s) out += c == '\'' ? std::string("''") : std::string(1, c);
-  return out + "'";
-}
-
-// A file that is written under a temporary name and renamed into place by commit().
-class AtomicFile {
- public:
-  explicit AtomicFile(const std::string& path) : path_(path), target_(atomic_target(path)) {
-    temp_ = target_.path;
-    if (target_.replace) {
-      const int fd = create_temp_beside(target_, &temp_);
-      if (fd < 0) throw CliError(kExitUsage, "error: cannot write '" + path + "'");
-      close(fd);
-    }
-  }
-  ~AtomicFile() {
-    if (!committed_ && target_.replace) {
-      std::remove(temp_.c_str());
-      release_temp(temp_);
-    }
-  }
-  const std::string& temp() const { return temp_; }
-  void commit() {
-    if (target_.replace) {
-      const bool ok = std::rename(temp_.c_str(), target_.path.c_str()) == 0;
-      release_temp(temp_);
-      if (!ok) {
-        std::remove(temp_.c_str());
-        committed_ = true;
-        throw CliError(kExitUsage, "error: cannot write '" + path_ + "'");
-      }
-    }
-    committed_ = true;
-  }
-
- private:
-  std::string path_, temp_;
-  AtomicTarget target_;
-  bool committed_ = false;
-};
-
 void write_atomically(const std::string& path, const std::string& text) {
   AtomicFile file(path);
   {
@@ -171,10 +129,7 @@ void write_report(const std::string& path, const std::vector<ProbeComparison>& r
               std::to_string(3 + 2 * p) + " with lines lw 1 dt 2 title 'ngspice'\n";
   }
   script += "set output\n";
-  std::FILE* gp = popen("gnuplot 2>&1", "w");
-  if (!gp) throw CliError(kExitUsage, "error: cannot start gnuplot for the report");
-  std::fputs(script.c_str(), gp);
-  if (pclose(gp) != 0) throw CliError(kExitUsage, "error: gnuplot could not draw the report");
+  run_gnuplot(script, "the report");
   for (auto& png : pngs) png->commit();
 }
 
