@@ -42,7 +42,13 @@ int run_cli(int argc, char** argv) {
   add_number(run_cmd, "--step", run.step, "fixed step (default: the .tran TSTEP)");
   add_number(run_cmd, "--tstop", run.tstop, "overrides the .tran TSTOP");
   run_cmd->add_option("--probe", run.probes, "comma-separated probes, overrides .print/.save");
-  run_cmd->add_option("--diode", run.diode, "diode model: ideal (complementarity with VON/RON)");
+  add_number(run_cmd, "--rtol", run.rtol, "relative tolerance of event (event times) and smooth");
+  add_number(run_cmd, "--atol", run.atol, "absolute tolerance of smooth (SUNDIALS weighted norm)");
+  add_number(run_cmd, "--emission", run.emission,
+             "smooth: emission coefficient N of the diodes standing in for ideal ones (default 0.05)");
+  run_cmd->add_option("--diode", run.diode,
+                      "diode model: ideal (complementarity with VON/RON; every method but smooth), "
+                      "shockley (smooth diodes, --method smooth), auto (follows the method)");
   run_cmd->add_flag("--stats", run.stats, "print a run summary to standard error");
 
   OpArgs op;

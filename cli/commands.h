@@ -8,8 +8,8 @@
 namespace lcs {
 
 struct RunArgs {
-  std::string netlist, output, method, probes, diode = "ideal";
-  std::optional<double> theta, step, tstop;
+  std::string netlist, output, method, probes, diode;  // diode "": follows the method
+  std::optional<double> theta, step, tstop, rtol, atol, emission;
   bool stats = false;
 };
 int run_command(const RunArgs& args);

@@ -5,7 +5,9 @@
 #include "cli/csv_writer.h"
 #include "cli/exit_codes.h"
 #include "cli/load_circuit.h"
+#include "cli/progress.h"
 #include "solver/integrators/transient.h"
+#include "solver/model/smooth_netlist.h"
 #include "solver/model/numerical_failure.h"
 
 namespace lcs {
@@ -31,6 +33,27 @@ void apply_method_option(const Netlist& netlist, TransientOptions& options) {
   }
 }
 
+// SPEC §1: --diode ideal | shockley | auto. Shockley diodes are integrated by the smooth method
+// only; every other method solves complementarity problems with the ideal law.
+void apply_diode_model(const RunArgs& args, TransientOptions& options) {
+  const std::string& d = args.diode;
+  if (d.empty() || d == "auto") return;
+  if (d == "shockley") {
+    if (args.method.empty()) options.method = "smooth";
+    if (options.method != "smooth")
+      throw CliError(kExitUsage, "error: --diode shockley needs --method smooth (method " +
+                                     options.method + " uses the ideal law)");
+    return;
+  }
+  if (d == "ideal") {
+    if (options.method == "smooth")
+      throw CliError(kExitUsage, "error: --method smooth integrates Shockley diodes; "
+                                 "--diode ideal needs a complementarity method");
+    return;
+  }
+  throw CliError(kExitUsage, "error: unknown diode model '" + d + "' (known: ideal, shockley, auto)");
+}
+
 }  // namespace
 
 int run_command(const RunArgs& args) {
@@ -54,8 +77,16 @@ int run_command(const RunArgs& args) {
   if (args.theta) options.method_options.theta = *args.theta;
   if (args.theta && options.method != "theta")
     warn("--theta is used only by --method theta; method " + options.method + " ignores it");
-  if (args.diode != "ideal")
-    throw CliError(kExitUsage, "error: unknown diode model '" + args.diode + "' (known: ideal)");
+  apply_diode_model(args, options);
+  if (args.rtol) options.method_options.rtol = *args.rtol;
+  if (args.atol) options.method_options.atol = *args.atol;
+  if ((args.rtol || args.atol) && !find_method(options.method)->adaptive())
+    warn("--rtol/--atol are used by the adaptive methods (event, smooth); " + options.method +
+         " has a fixed step (--step)");
+  if (args.emission && options.method != "smooth")
+    warn("--emission is used only by --method smooth; method " + options.method + " ignores it");
+  if (args.emission && !(*args.emission > 0))
+    throw CliError(kExitUsage, "error: --emission must be positive");
 
   if (!netlist.tran && !(args.step && args.tstop)) {
     SourceLocation file_only;
@@ -78,13 +109,23 @@ int run_command(const RunArgs& args) {
   std::string why;
   if (!options.IsValid(&why)) throw CliError(kExitUsage, "error: " + why);
 
+  if (options.method == "smooth") {
+    SmoothingOptions smoothing;
+    if (args.emission) smoothing.emission = *args.emission;
+    netlist = smooth_netlist(netlist, smoothing);
+  }
   CircuitModel model = build_model(netlist, 0.0, options.tstop);
   const std::vector<Probe> probes = probes_for(netlist, model, args.probes);
   OutputMap outputs = output_map_or_exit(model, probes);
   for (const std::string& w : floating_probe_warnings(model, probes)) warn(w);
   CsvSink sink(args.output);
   try {
-    TransientSummary summary = run_transient(model, outputs, options, sink);
+    TransientSummary summary;
+    {
+      ProgressLine progress("run " + options.method);
+      if (progress.enabled()) options.progress = [&progress](double f) { progress.update(f); };
+      summary = run_transient(model, outputs, options, sink);
+    }
     for (const std::string& w : summary.warnings) warn(w);
     if (args.stats) std::cerr << summary.BriefReport() << "\n";
     if (!sink.path().empty() && sink.path() != "-")

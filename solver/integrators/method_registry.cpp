@@ -9,11 +9,13 @@ const std::vector<MethodEntry>& method_registry() {
       {"euler", "implicit Euler (theta = 1), fixed step, one LCP per step",
        [](const CircuitModel& m, const MethodOptions&) {
          return std::make_unique<ThetaMethod>(m, 1.0);
-       }},
+       },
+       {}},
       {"theta", "theta-method (--theta, default 0.5: trapezoidal), fixed step, one LCP per step",
        [](const CircuitModel& m, const MethodOptions& o) {
          return std::make_unique<ThetaMethod>(m, o.theta);
-       }},
+       },
+       {}},
   };
   return table;
 }

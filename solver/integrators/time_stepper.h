@@ -11,10 +11,18 @@
 
 namespace lcs {
 
+// What a run cost, for `--stats` and `bench`. Fields a method does not use stay 0.
 struct StepperStats {
-  long steps = 0;
-  LcpWarmStats lcp;       // summed over the cached LCP matrices
-  int factorisations = 0; // distinct step sizes prepared
+  long steps = 0;           // accepted steps (internal steps for adaptive methods)
+  LcpWarmStats lcp;         // summed over the cached LCP matrices
+  int factorisations = 0;   // distinct step sizes (time-stepping) or mode/step pairs (event) prepared
+  long events = 0;          // located switching events (event, smooth)
+  long mode_switches = 0;   // active-set changes (event)
+  int modes = 0;            // distinct modes visited (event)
+  long rejected_steps = 0;  // error-test or convergence failures (smooth)
+  long residual_evals = 0;  // DAE residual evaluations (smooth)
+  long jacobian_evals = 0;  // Jacobian evaluations (smooth)
+  long newton_iterations = 0;
 };
 
 // Advances (x, z) of a circuit's LCS. Step() is the non-virtual entry point (Drake style).

@@ -27,6 +27,9 @@ bool TransientOptions::IsValid(std::string* why) const {
   if (method == "theta" && !(method_options.theta >= 0 && method_options.theta <= 1))
     return fail("--theta must be in [0, 1]");
   if (tstop / step > 2e9) return fail("TSTOP/step is too large (more than 2e9 steps)");
+  if (!(method_options.rtol >= 0 && method_options.rtol < 1) || !(method_options.atol >= 0) ||
+      !std::isfinite(method_options.atol))
+    return fail("--rtol must be in [0, 1) and --atol non-negative");
   return true;
 }
 
@@ -36,14 +39,81 @@ std::string TransientSummary::BriefReport() const {
       stepper.lcp.solves > 0 ? 100.0 * stepper.lcp.warm_hits / stepper.lcp.solves : 0.0;
   std::snprintf(buf, sizeof buf,
                 "method %s: %ld steps, %ld rows, %ld LCP solves (%.1f%% warm-start hits, %ld Lemke "
-                "calls, %ld pivots), %d step-size factorisations\n"
-                "CPU time: setup %.6f s, steps %.6f s (%.3f us/step), output %.6f s",
+                "calls, %ld pivots), %d factorisations",
                 method.c_str(), stepper.steps, rows, stepper.lcp.solves, hit_rate,
-                stepper.lcp.lemke_calls, stepper.lcp.lemke_pivots, stepper.factorisations,
+                stepper.lcp.lemke_calls, stepper.lcp.lemke_pivots, stepper.factorisations);
+  std::string out = buf;
+  if (stepper.events > 0 || stepper.modes > 0) {
+    std::snprintf(buf, sizeof buf, "\nevents %ld, mode switches %ld, distinct modes %d",
+                  stepper.events, stepper.mode_switches, stepper.modes);
+    out += buf;
+  }
+  if (stepper.residual_evals > 0) {
+    std::snprintf(buf, sizeof buf,
+                  "\nresidual evaluations %ld, Jacobians %ld, Newton iterations %ld, rejected steps %ld",
+                  stepper.residual_evals, stepper.jacobian_evals, stepper.newton_iterations,
+                  stepper.rejected_steps);
+    out += buf;
+  }
+  std::snprintf(buf, sizeof buf, "\nCPU time: setup %.6f s, steps %.6f s (%.3f us/step), output %.6f s",
                 cpu_setup, cpu_steps, stepper.steps > 0 ? 1e6 * cpu_steps / stepper.steps : 0.0,
                 cpu_output);
-  return buf;
+  return out + buf;
 }
+
+namespace {
+
+TransientSummary run_adaptive(const CircuitModel& model, const OutputMap& outputs,
+                              const TransientOptions& options, const MethodEntry& entry,
+                              OutputSink& sink) {
+  TransientSummary summary;
+  summary.method = options.method;
+  const double cpu0 = process_cpu_seconds();
+  std::unique_ptr<ContinuousMethod> method = entry.make_continuous(model, options.method_options);
+  sink.begin(outputs.names);
+  Eigen::VectorXd x0;
+  try {
+    InitialState init = initial_state(model, options.uic, 0.0);
+    summary.warnings = init.warnings;
+    x0 = init.x;
+  } catch (const NumericalFailure&) {
+    sink.finish();
+    throw;
+  }
+  OutputGrid grid;
+  grid.tstep = options.step;
+  grid.tstop = options.tstop;
+  grid.extra = options.extra_output_times;
+
+  Eigen::VectorXd y(outputs.names.size());
+  double last_t = -1;
+  auto emit = [&](double t, const Eigen::VectorXd& x, const Eigen::VectorXd& z, bool) {
+    if (t <= last_t || t < options.tstart * (1 - 1e-12)) return;
+    const double c0 = process_cpu_seconds();
+    y = outputs.G * x + outputs.H * z + outputs.J * model.input_values(t) +
+        outputs.K * model.input_derivatives(t);
+    sink.row(t, y);
+    last_t = t;
+    ++summary.rows;
+    summary.cpu_output += process_cpu_seconds() - c0;
+  };
+  ContinuousMethod::Progress progress;
+  if (options.progress) progress = [&](double t) { options.progress(t / options.tstop); };
+  const double loop0 = process_cpu_seconds();
+  summary.cpu_setup = loop0 - cpu0;
+  try {
+    method->Run(x0, grid, emit, progress);
+  } catch (const NumericalFailure&) {
+    sink.finish();
+    throw;
+  }
+  summary.cpu_steps = process_cpu_seconds() - loop0 - summary.cpu_output;
+  summary.stepper = method->stats();
+  sink.finish();
+  return summary;
+}
+
+}  // namespace
 
 TransientSummary run_transient(const CircuitModel& model, const OutputMap& outputs,
                                const TransientOptions& options, OutputSink& sink) {
@@ -53,8 +123,9 @@ TransientSummary run_transient(const CircuitModel& model, const OutputMap& outpu
   summary.method = options.method;
   const double cpu0 = process_cpu_seconds();
 
-  std::unique_ptr<TimeStepper> stepper =
-      find_method(options.method)->make(model, options.method_options);
+  const MethodEntry& entry = *find_method(options.method);
+  if (entry.adaptive()) return run_adaptive(model, outputs, options, entry, sink);
+  std::unique_ptr<TimeStepper> stepper = entry.make_stepper(model, options.method_options);
   sink.begin(outputs.names);  // a failure from here on still leaves a (header-only) file
   Eigen::VectorXd x, z(model.lcs().pairs());
   try {
@@ -94,6 +165,7 @@ TransientSummary run_transient(const CircuitModel& model, const OutputMap& outpu
       stepper->Step(t, k <= full_steps ? h : t_next - t, x, z);
       t = t_next;
       if (t >= options.tstart * (1 - 1e-12)) emit(t);
+      if (options.progress && (k & 4095) == 0) options.progress(t / options.tstop);
     }
   } catch (const NumericalFailure&) {
     sink.finish();

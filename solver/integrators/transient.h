@@ -1,6 +1,7 @@
 // A transient run: initial state, the fixed-step loop, output rows, and its summary.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -13,10 +14,14 @@ namespace lcs {
 struct TransientOptions {
   std::string method = "euler";
   MethodOptions method_options;
-  double step = 0;     // fixed step h (> 0)
+  double step = 0;     // fixed step h (> 0); for adaptive methods the output spacing (TSTEP)
   double tstart = 0;   // no output rows before tstart
   double tstop = 0;    // > tstart
   bool uic = false;    // start from zero state + IC= instead of the operating point
+  // Adaptive methods only: more output times besides the multiples of `step` (sorted).
+  std::vector<double> extra_output_times;
+  // Called now and then (at most every few thousand steps) with the fraction of [0, tstop] done.
+  std::function<void(double fraction)> progress;
 
   bool IsValid(std::string* why) const;
 };

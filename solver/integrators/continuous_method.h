@@ -1,0 +1,49 @@
+// Methods that choose their own steps (event-driven 8.3, smooth 8.2): they integrate the whole
+// interval and report the state at every output time and at every switching event (SPEC §3).
+#pragma once
+
+#include <functional>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "solver/integrators/time_stepper.h"
+#include "solver/model/circuit_model.h"
+
+namespace lcs {
+
+// Output times: every multiple of `tstep` in [0, tstop] (tstop itself included), plus `extra`
+// (sorted, inside (0, tstop]; `bench` asks for a reference at another solver's time points).
+struct OutputGrid {
+  double tstep = 0, tstop = 0;
+  std::vector<double> extra;
+};
+
+class ContinuousMethod {
+ public:
+  // t, LCS state x, complementarity variables z (for `smooth`: the smooth diode currents and
+  // margins in the same places), and whether t is a switching event rather than a grid time.
+  using Emit = std::function<void(double t, const Eigen::VectorXd& x, const Eigen::VectorXd& z,
+                                  bool event)>;
+  // Called now and then with the time reached, for progress reports.
+  using Progress = std::function<void(double t)>;
+
+  explicit ContinuousMethod(const CircuitModel& model) : model_(model) {}
+  virtual ~ContinuousMethod() = default;
+
+  // From x0 at t = 0 (before any jump an inconsistent x0 causes) to grid.tstop. Emits t = 0 first
+  // (after the jump), then strictly increasing times. Throws NumericalFailure.
+  void Run(const Eigen::VectorXd& x0, const OutputGrid& grid, const Emit& emit,
+           const Progress& progress = {}) {
+    DoRun(x0, grid, emit, progress);
+  }
+  virtual StepperStats stats() const { return stats_; }
+
+ protected:
+  virtual void DoRun(const Eigen::VectorXd& x0, const OutputGrid& grid, const Emit& emit,
+                     const Progress& progress) = 0;
+  const CircuitModel& model_;
+  StepperStats stats_;
+};
+
+}  // namespace lcs
