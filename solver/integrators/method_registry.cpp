@@ -1,5 +1,6 @@
 #include "solver/integrators/method_registry.h"
 
+#include "solver/integrators/event_driven.h"
 #include "solver/integrators/theta_method.h"
 
 namespace lcs {
@@ -11,6 +12,15 @@ const std::vector<MethodEntry>& method_registry() {
          return std::make_unique<ThetaMethod>(m, 1.0);
        },
        {}},
+      {"event",
+       "event-driven: exact matrix exponentials inside each mode, events located by bisection "
+       "(--rtol on event times, default 1e-13), next mode from a tiny-step LCP",
+       {},
+       [](const CircuitModel& m, const MethodOptions& o) {
+         EventOptions e;
+         if (o.rtol > 0) e.rtol = o.rtol;
+         return std::make_unique<EventDriven>(m, e);
+       }},
       {"theta", "theta-method (--theta, default 0.5: trapezoidal), fixed step, one LCP per step",
        [](const CircuitModel& m, const MethodOptions& o) {
          return std::make_unique<ThetaMethod>(m, o.theta);

@@ -1,0 +1,515 @@
+#include "solver/integrators/event_driven.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
+#include <string>
+
+#include <unsupported/Eigen/MatrixFunctions>
+
+#include "solver/integrators/dyadic_time.h"
+#include "solver/integrators/mode_dynamics.h"
+#include "solver/integrators/source_system.h"
+#include "solver/lcp/lcp.h"
+#include "solver/model/numerical_failure.h"
+
+namespace lcs {
+
+namespace {
+
+constexpr int kMaxLevel = 64;
+// A constraint value below -kTol times the size of the terms that make it up is a violation;
+// within +-kZeroTol of them it counts as zero and its derivatives decide (8.3.3).
+constexpr double kTol = 1e-12;
+constexpr double kZeroTol = 1e-9;
+constexpr int kSuspicionLevels = 10;
+constexpr double kNoise = 1e-4;  // kNoise * kTol = 1e-16: rounding of a row times |X|
+
+// Smallest value of the cubic Hermite interpolant with values a, b and slopes da, db (per unit
+// interval) on [0, 1]: a dip between two feasible end points means a possible double crossing.
+double hermite_min(double a, double b, double da, double db) {
+  const double c1 = da, c2 = -3 * a - 2 * da + 3 * b - db, c3 = 2 * a + da - 2 * b + db;
+  double lo = std::min(a, b);
+  auto at = [&](double s) {
+    if (s > 0 && s < 1) lo = std::min(lo, a + s * (c1 + s * (c2 + s * c3)));
+  };
+  if (std::abs(c3) > 1e-300) {
+    const double disc = c2 * c2 - 3 * c3 * c1;
+    if (disc >= 0) {
+      const double r = std::sqrt(disc);
+      at((-c2 + r) / (3 * c3));
+      at((-c2 - r) / (3 * c3));
+    }
+  } else if (std::abs(c2) > 1e-300) {
+    at(-c1 / (2 * c2));
+  }
+  return lo;
+}
+
+}  // namespace
+
+// One mode (active set) with one form of the sources: the augmented linear system
+// d/dt [x; σ] = M [x; σ] and its constraint rows.
+struct Mode {
+  std::vector<bool> active;
+  std::string signature;
+  ModeDynamics dyn;
+  int q = 0;                        // n + dim σ
+  Eigen::MatrixXd M;                // [[Ax, Eu P + Ed P S], [0, S]]
+  Eigen::MatrixXd G, GM, GMM, Gabs, GMabs, GMMabs;  // g_i = z_i (active) or w_i (inactive)
+  Eigen::VectorXd Gnorm, GMnorm, GMMnorm, Pcnorm;  // row norms: the rounding floor of each row
+  Eigen::MatrixXd Z;                // z = Z [x; σ]
+  Eigen::MatrixXd Pc;               // index-one constraints as rows over [x; σ]
+  int level = 0;                    // coarsest step level: h <= 0.5 / (largest oscillation)
+  std::array<Eigen::MatrixXd, kMaxLevel + 1> E;  // exp(M h0 / 2^j), computed on first use
+};
+
+struct EventDriven::Impl {
+  const CircuitModel& model;
+  EventOptions options;
+  StepperStats stats;
+  std::map<std::string, std::unique_ptr<Mode>> modes;
+  std::unique_ptr<SourceSystem> sources;
+  double h0 = 0;
+  int stop_level = 43;
+  int n = 0, m = 0;
+
+  // Mode selection: implicit Euler with the tiny step eta, LCP(Csel x + Fsel u(t + eta), Msel).
+  double eta = 0;
+  Eigen::MatrixXd Csel, Fsel;
+  std::unique_ptr<LcpWarmSolver> selector;
+  // Impulses (4.5): pairs with a zero row of D can take a jump x+ = x + B_J nu.
+  std::vector<int> impulsive;
+  Eigen::MatrixXd CJ, FJ, BJ, CBJ;
+
+  // Run state.
+  Mode* cur = nullptr;
+  DyadicTime pos;
+  Eigen::VectorXd X;       // [x; σ]
+  Eigen::VectorXd ga, da;  // constraint values and slopes at X
+  std::vector<char> below_at_start;  // constraints that began the mode just below zero
+  std::array<Eigen::VectorXd, kMaxLevel + 1> Xb, gb, db, sc;
+
+  Impl(const CircuitModel& mdl, const EventOptions& o) : model(mdl), options(o) {}
+
+  Mode& mode(const std::vector<bool>& active, const std::string& signature);
+  const Eigen::MatrixXd& exponential(Mode& md, int j);
+  void prepare(double tstep, double tstop);
+  bool consistent(Mode& md, const Eigen::VectorXd& X, std::vector<int>* near_zero) const;
+  Mode& select(double t, const Eigen::VectorXd& x, const std::string& signature,
+               const Mode* previous);
+  bool apply_impulse(Eigen::VectorXd& x, const Eigen::VectorXd& u);
+  void refresh_constraints();
+  void project();
+  bool step(int j);  // false at an event
+  void bisect(int j);
+  bool violated(const Eigen::VectorXd& Xv, Eigen::VectorXd& g, Eigen::VectorXd& scale) const;
+  Eigen::VectorXd right;  // bisection: the violated end
+  bool advance_to(const DyadicTime& target, const Progress& progress);
+  Eigen::VectorXd state() const { return X.head(n); }
+  Eigen::VectorXd inputs() const { return sources->P(cur->signature) * X.tail(X.size() - n); }
+};
+
+Mode& EventDriven::Impl::mode(const std::vector<bool>& active, const std::string& signature) {
+  std::string key;
+  for (bool a : active) key.push_back(a ? '1' : '0');
+  key += '|' + signature;
+  auto it = modes.find(key);
+  if (it != modes.end()) return *it->second;
+  auto md = std::make_unique<Mode>();
+  md->active = active;
+  md->signature = signature;
+  md->dyn = ModeDynamics::build(model.lcs(), active);
+  const ModeDynamics& d = md->dyn;
+  const Eigen::MatrixXd P = sources->P(signature), S = sources->S(signature);
+  const int p = static_cast<int>(S.rows());
+  md->q = n + p;
+  if (d.well_posed) {
+    md->M = Eigen::MatrixXd::Zero(md->q, md->q);
+    md->M.topLeftCorner(n, n) = d.Ax;
+    md->M.topRightCorner(n, p) = d.Eu * P + d.Ed * P * S;
+    md->M.bottomRightCorner(p, p) = S;
+    md->G = Eigen::MatrixXd::Zero(m, md->q);
+    md->Z = Eigen::MatrixXd::Zero(m, md->q);
+    for (size_t r = 0; r < d.active.size(); ++r) {
+      const int i = d.active[r];
+      md->G.row(i) << d.Kx.row(r), d.Ku.row(r) * P + d.Kd.row(r) * P * S;
+      md->Z.row(i) = md->G.row(i);
+    }
+    for (size_t r = 0; r < d.inactive.size(); ++r) {
+      const int i = d.inactive[r];
+      md->G.row(i) << d.Wx.row(r), d.Wu.row(r) * P + d.Wd.row(r) * P * S;
+    }
+    md->GM = md->G * md->M;
+    md->GMM = md->GM * md->M;
+    md->Gabs = md->G.cwiseAbs();
+    md->GMabs = md->GM.cwiseAbs();
+    md->GMMabs = md->GMM.cwiseAbs();
+    md->Pc.resize(d.Cc.rows(), md->q);
+    md->Pc << d.Cc, d.Fc * P;
+    md->Gnorm = md->G.rowwise().norm();
+    md->GMnorm = md->GM.rowwise().norm();
+    md->GMMnorm = md->GMM.rowwise().norm();
+    md->Pcnorm = md->Pc.rowwise().norm();
+    double omega = 0;
+    if (md->q > 0) {
+      Eigen::EigenSolver<Eigen::MatrixXd> es(md->M, false);
+      if (es.info() == Eigen::Success) omega = es.eigenvalues().imag().cwiseAbs().maxCoeff();
+    }
+    while (md->level < 40 && h0 / std::ldexp(1.0, md->level) * omega > 0.5) ++md->level;
+  }
+  ++stats.modes;
+  return *modes.emplace(key, std::move(md)).first->second;
+}
+
+const Eigen::MatrixXd& EventDriven::Impl::exponential(Mode& md, int j) {
+  if (md.E[j].size() == 0 && md.q > 0) {
+    md.E[j] = (md.M * std::ldexp(h0, -j)).exp();
+    ++stats.factorisations;
+  }
+  return md.E[j];
+}
+
+void EventDriven::Impl::prepare(double tstep, double tstop) {
+  const Lcs& s = model.lcs();
+  n = s.states();
+  m = s.pairs();
+  h0 = tstep;
+  modes.clear();
+  sources = std::make_unique<SourceSystem>(model, tstop);
+  stop_level = 1;
+  while (stop_level < 62 && std::ldexp(1.0, -stop_level) > options.rtol) ++stop_level;
+
+  // The selection step: tiny against the output step and the circuit's fastest rate (as for
+  // the start of time-stepping), so its solution is the rational complementarity problem's.
+  double rate = s.A.size() > 0 ? s.A.cwiseAbs().rowwise().sum().maxCoeff() : 0.0;
+  if (m > 0 && n > 0) {
+    const Eigen::MatrixXd CB = s.C * s.B;
+    for (int i = 0; i < m; ++i)
+      if (s.D(i, i) > 0) rate = std::max(rate, CB.row(i).cwiseAbs().sum() / s.D(i, i));
+  }
+  eta = 1e-8 * (rate > 0 ? std::min(tstep, 1.0 / rate) : tstep);
+  const Eigen::MatrixXd W = Eigen::MatrixXd::Identity(n, n) - eta * s.A;
+  Eigen::PartialPivLU<Eigen::MatrixXd> lu(W);
+  const Eigen::MatrixXd WB = n > 0 ? Eigen::MatrixXd(lu.solve(s.B)) : Eigen::MatrixXd(0, m);
+  const Eigen::MatrixXd WE = n > 0 ? Eigen::MatrixXd(lu.solve(s.E)) : Eigen::MatrixXd(0, s.inputs());
+  Csel = n > 0 ? Eigen::MatrixXd(s.C * lu.inverse()) : Eigen::MatrixXd(m, 0);
+  Fsel = eta * s.C * WE + s.F;
+  selector = std::make_unique<LcpWarmSolver>(s.D + eta * s.C * WB);
+
+  impulsive.clear();
+  const Eigen::MatrixXd CB = s.C * s.B;
+  for (int i = 0; i < m; ++i)
+    if (s.D.row(i).cwiseAbs().maxCoeff() == 0 && CB(i, i) > 0) impulsive.push_back(i);
+  const int k = static_cast<int>(impulsive.size());
+  CJ.resize(k, n);
+  FJ.resize(k, s.inputs());
+  BJ.resize(n, k);
+  CBJ.resize(k, k);
+  for (int a = 0; a < k; ++a) {
+    CJ.row(a) = s.C.row(impulsive[a]);
+    FJ.row(a) = s.F.row(impulsive[a]);
+    BJ.col(a) = s.B.col(impulsive[a]);
+    for (int b = 0; b < k; ++b) CBJ(a, b) = CB(impulsive[a], impulsive[b]);
+  }
+}
+
+// The mode fits the state if, for every pair, the first of (g, g', g'') that is not zero within
+// tolerance is positive (8.3.3), and its index-one constraints hold.
+bool EventDriven::Impl::consistent(Mode& md, const Eigen::VectorXd& Xs,
+                                   std::vector<int>* near_zero) const {
+  if (!md.dyn.well_posed) return false;
+  const Eigen::VectorXd Xa = Xs.cwiseAbs();
+  const Eigen::VectorXd g = md.G * Xs, d = md.GM * Xs, dd = md.GMM * Xs;
+  // Scales: the size of the terms in each row, plus a floor for the rounding noise that the
+  // mode's matrices carry (entries that should be 0 but are ~1e-16 of their row).
+  const double xn = Xs.norm();
+  const Eigen::VectorXd sg = md.Gabs * Xa + kNoise * xn * md.Gnorm;
+  const Eigen::VectorXd sd = md.GMabs * Xa + kNoise * xn * md.GMnorm;
+  const Eigen::VectorXd sdd = md.GMMabs * Xa + kNoise * xn * md.GMMnorm;
+  bool ok = true;
+  for (int i = 0; i < m; ++i) {
+    const double t0 = kZeroTol * sg(i), t1 = kZeroTol * sd(i), t2 = kZeroTol * sdd(i);
+    if (g(i) > t0) continue;
+    if (near_zero && g(i) >= -t0) near_zero->push_back(i);
+    if (g(i) < -t0) {
+      ok = false;
+    } else if (d(i) < -t1 || (d(i) <= t1 && dd(i) < -t2)) {
+      ok = false;
+    }
+  }
+  if (md.Pc.rows() > 0) {
+    const Eigen::VectorXd r = md.Pc * Xs, sr = md.Pc.cwiseAbs() * Xa + kNoise * xn * md.Pcnorm;
+    for (int i = 0; i < r.size(); ++i)
+      if (std::abs(r(i)) > kZeroTol * sr(i) + 1e-300) ok = false;
+  }
+  return ok;
+}
+
+Mode& EventDriven::Impl::select(double t, const Eigen::VectorXd& x, const std::string& signature,
+                                const Mode* previous) {
+  Eigen::VectorXd sigma;
+  sources->sigma(t, signature, sigma);
+  Eigen::VectorXd Xs(n + sigma.size());
+  Xs << x, sigma;
+  std::vector<bool> active(m, false);
+  if (m > 0) {
+    const Eigen::VectorXd q = Csel * x + Fsel * model.input_values(t + eta);
+    const LcpSolution& sol = selector->solve(q);
+    if (sol.status != LcpStatus::Solved)
+      throw NumericalFailure(t, std::string("no next mode: the switching LCP has no solution (Lemke: ") +
+                                    lcp_status_name(sol.status) + ")");
+    for (int i = 0; i < m; ++i) active[i] = sol.z(i) > 0;
+  }
+  std::vector<int> near_zero;
+  Mode& first = mode(active, signature);
+  if (consistent(first, Xs, &near_zero)) return first;
+  // The pairs at zero in the mode that ran into the event (the ones that switched, and
+  // degenerate ones such as a diode holding a floating node's potential at zero current).
+  if (previous && previous->dyn.well_posed && previous->signature == signature) {
+    const Eigen::VectorXd Xa = Xs.cwiseAbs();
+    const Eigen::VectorXd g = previous->G * Xs;
+    const Eigen::VectorXd sg = previous->Gabs * Xa + kNoise * Xs.norm() * previous->Gnorm;
+    for (int i = 0; i < m; ++i)
+      if (std::abs(g(i)) <= kZeroTol * sg(i) &&
+          std::find(near_zero.begin(), near_zero.end(), i) == near_zero.end())
+        near_zero.push_back(i);
+  }
+  if (near_zero.empty())
+    for (int i = 0; i < m; ++i) near_zero.push_back(i);
+  // Not strictly complementary (8.3.3: the active set is ambiguous): try the pairs at zero the
+  // other way round, fewest changes first.
+  const int k = std::min<int>(static_cast<int>(near_zero.size()), 10);
+  for (int changes = 1; changes <= k; ++changes) {
+    std::vector<bool> pick(k, false);
+    std::fill(pick.begin(), pick.begin() + changes, true);
+    do {
+      std::vector<bool> trial = active;
+      for (int a = 0; a < k; ++a)
+        if (pick[a]) trial[near_zero[a]] = !trial[near_zero[a]];
+      Mode& md = mode(trial, signature);
+      if (consistent(md, Xs, nullptr)) return md;
+    } while (std::prev_permutation(pick.begin(), pick.end()));
+  }
+  std::string pairs;
+  for (int i : near_zero)
+    pairs += (pairs.empty() ? "" : ", ") +
+             model.netlist().elements[model.pairs()[i].element].name;
+  throw NumericalFailure(t, "no consistent mode after a switching event" +
+                                (pairs.empty() ? std::string() : " (pairs at zero: " + pairs + ")"));
+}
+
+bool EventDriven::Impl::apply_impulse(Eigen::VectorXd& x, const Eigen::VectorXd& u) {
+  if (impulsive.empty()) return false;
+  const Eigen::VectorXd q = CJ * x + FJ * u;
+  const double scale = (CJ.cwiseAbs() * x.cwiseAbs() + FJ.cwiseAbs() * u.cwiseAbs()).maxCoeff();
+  if (q.minCoeff() >= -kZeroTol * scale) return false;
+  const LcpSolution sol = solve_lemke(CBJ, q);
+  if (sol.status != LcpStatus::Solved) return false;
+  x += BJ * sol.z;
+  return sol.z.maxCoeff() > 0;
+}
+
+void EventDriven::Impl::refresh_constraints() {
+  ga = cur->G * X;
+  da = cur->GM * X;
+  const Eigen::VectorXd s = cur->Gabs * X.cwiseAbs() + (kNoise * X.norm()) * cur->Gnorm;
+  below_at_start.assign(m, 0);
+  for (int i = 0; i < m; ++i) below_at_start[i] = ga(i) < -kTol * s(i);
+}
+
+void EventDriven::Impl::project() {
+  if (cur->Pc.rows() == 0) return;
+  X.head(n) -= cur->dyn.project * (cur->Pc * X);
+}
+
+bool EventDriven::Impl::violated(const Eigen::VectorXd& Xv, Eigen::VectorXd& g, Eigen::VectorXd& scale) const {
+  g.noalias() = cur->G * Xv;
+  scale.noalias() = cur->Gabs * Xv.cwiseAbs();
+  scale += (kNoise * Xv.norm()) * cur->Gnorm;
+  for (int i = 0; i < m; ++i)
+    if (g(i) < -(kTol * scale(i) + 1e-300) && !below_at_start[i]) return true;
+  return false;
+}
+
+// A constraint is violated when it ends the step below zero. One that starts the mode slightly
+// below (within the mode check's tolerance, and rising, or the mode would not have been chosen)
+// is not watched until it has come back above. A dip of the cubic through the end values and
+// slopes is a possible double crossing: the step is halved, down to kSuspicionLevels below the
+// mode's level (deeper dips are grazing contacts).
+bool EventDriven::Impl::step(int j) {
+  const double L = std::ldexp(h0, -j);
+  Eigen::VectorXd& xb = Xb[j];
+  Eigen::VectorXd& g = gb[j];
+  Eigen::VectorXd& d = db[j];
+  xb.noalias() = exponential(*cur, j) * X;
+  ++stats.steps;
+  if (violated(xb, g, sc[j])) {
+    bisect(j);
+    return false;
+  }
+  d.noalias() = cur->GM * xb;
+  bool suspicious = false;
+  if (j < std::min(stop_level, cur->level + kSuspicionLevels)) {
+    for (int i = 0; i < m && !suspicious; ++i) {
+      const double tol = kTol * sc[j](i) + 1e-300;
+      suspicious = (da(i) < 0 || d(i) > 0) &&
+                   hermite_min(ga(i), g(i), da(i) * L, d(i) * L) <
+                       std::min(-tol, std::min(ga(i), g(i)) - tol);
+    }
+  }
+  if (suspicious) return step(j + 1) && step(j + 1);
+  X.swap(xb);
+  ga.swap(g);
+  da.swap(d);
+  pos = pos.plus(j);
+  for (int i = 0; i < m; ++i)
+    if (below_at_start[i] && ga(i) >= -kTol * sc[j](i)) below_at_start[i] = 0;
+  return true;
+}
+
+// Bisection (8.3.3) on [pos, pos + h0/2^j], whose right end Xb[j] is violated and left end X is
+// not: each midpoint is one cached exponential away from the left end. Ends at the right end of
+// a bracket of length h0/2^stop_level, the first point known to be past the event.
+void EventDriven::Impl::bisect(int j) {
+  right = Xb[j];
+  while (j < stop_level) {
+    ++j;
+    Eigen::VectorXd& mid = Xb[j];
+    mid.noalias() = exponential(*cur, j) * X;
+    ++stats.steps;
+    if (violated(mid, gb[j], sc[j])) {
+      right.swap(mid);
+    } else {
+      X.swap(mid);
+      pos = pos.plus(j);
+    }
+  }
+  X.swap(right);
+  pos = pos.plus(j);
+}
+
+bool EventDriven::Impl::advance_to(const DyadicTime& target, const Progress& progress) {
+  while (pos < target) {
+    int j = cur->level;
+    while (j < kMaxLevel && (!pos.aligned(j) || target < pos.plus(j))) ++j;
+    if (!step(j)) return false;
+    if (progress && (stats.steps & 4095) == 0) progress(pos.seconds(h0));
+  }
+  return true;
+}
+
+EventDriven::EventDriven(const CircuitModel& model, const EventOptions& options)
+    : ContinuousMethod(model), options_(options), impl_(std::make_unique<Impl>(model, options)) {}
+
+EventDriven::~EventDriven() = default;
+
+StepperStats EventDriven::stats() const {
+  StepperStats s = impl_->stats;
+  if (impl_->selector) s.lcp = impl_->selector->stats();
+  return s;
+}
+
+void EventDriven::DoRun(const Eigen::VectorXd& x0, const OutputGrid& grid, const Emit& emit,
+                        const Progress& progress) {
+  Impl& r = *impl_;
+  r.prepare(grid.tstep, grid.tstop);
+  const double h0 = r.h0;
+  const int n = r.n;
+
+  // Stops: source breakpoints (the sources change form), extra output times, and TSTOP when it
+  // is not a multiple of TSTEP. Grid times k*h0 are the dyadic times with f = 0.
+  struct Stop {
+    DyadicTime at;
+    double t;
+    bool breakpoint, output;
+  };
+  std::vector<Stop> stops;
+  for (double b : r.sources->breakpoints()) stops.push_back({DyadicTime::from(b, h0), b, true, false});
+  for (double e : grid.extra)
+    if (e > 0 && e <= grid.tstop) stops.push_back({DyadicTime::from(e, h0), e, false, true});
+  const long kstop = static_cast<long>(std::floor(grid.tstop / h0 * (1 + 1e-12)));
+  DyadicTime end{kstop, 0};
+  if (grid.tstop - kstop * h0 > 1e-9 * h0) {
+    end = DyadicTime::from(grid.tstop, h0);
+    stops.push_back({end, grid.tstop, false, true});
+  }
+  std::sort(stops.begin(), stops.end(), [](const Stop& a, const Stop& b) { return a.at < b.at; });
+
+  auto emit_now = [&](double t, bool event) {
+    const Eigen::VectorXd z = r.cur->Z * r.X;
+    emit(t, r.X.head(n), z, event);
+  };
+  // Jumps, then the mode that holds from t on (4.5); X is rebuilt with the sources' form at t.
+  auto restart = [&](double t, Eigen::VectorXd x) {
+    const std::string sig = r.sources->signature(t);
+    r.apply_impulse(x, r.model.input_values(t));
+    Mode* before = r.cur;
+    r.cur = &r.select(t, x, sig, before);
+    Eigen::VectorXd sigma;
+    r.sources->sigma(t, sig, sigma);
+    r.X.resize(n + sigma.size());
+    r.X << x, sigma;
+    r.project();
+    r.refresh_constraints();
+    return before != nullptr && before->active != r.cur->active;
+  };
+
+  r.pos = DyadicTime{};
+  r.cur = nullptr;
+  restart(0.0, x0);
+  emit_now(0.0, false);
+
+  size_t next_stop = 0;
+  int events_here = 0;
+  DyadicTime last_event{-1, 0};
+  while (r.pos < end) {
+    DyadicTime target{r.pos.k + 1, 0};
+    if (next_stop < stops.size() && stops[next_stop].at < target) target = stops[next_stop].at;
+    if (end < target) target = end;
+    if (!r.advance_to(target, progress)) {
+      const double t = r.pos.seconds(h0);
+      ++r.stats.events;
+      events_here = (r.pos.k == last_event.k && r.pos.f - last_event.f < (std::uint64_t(1) << 24))
+                        ? events_here + 1
+                        : 0;
+      last_event = r.pos;
+      if (events_here > options_.max_events_at_one_time)
+        throw NumericalFailure(t, "event chattering: more than " +
+                                      std::to_string(options_.max_events_at_one_time) +
+                                      " switching events at one instant (grazing contact or a "
+                                      "Zeno point)");
+      if (restart(t, r.state())) ++r.stats.mode_switches;
+      emit_now(t, true);
+      continue;
+    }
+    while (next_stop < stops.size() && stops[next_stop].at <= r.pos) {
+      const Stop& st = stops[next_stop++];
+      if (st.breakpoint) {
+        // The sources change form; the physical state is continuous, the LCS state
+        // x = x_phys - Gamma u jumps with u (circuit_model.h).
+        const Eigen::VectorXd u_left = r.inputs();
+        const Eigen::VectorXd u_right = r.model.input_values(st.t);
+        Eigen::VectorXd x = r.state() - r.model.lcs().Gamma * (u_right - u_left);
+        if (restart(st.t, x)) {
+          ++r.stats.mode_switches;
+          ++r.stats.events;
+          emit_now(st.t, true);
+        }
+      }
+      if (st.output && !(r.pos.f == 0)) emit_now(st.t, false);
+    }
+    if (r.pos.f == 0 && r.pos.k <= kstop) {
+      // Grid time: the sources' state is reset from the waveforms (no drift over long runs).
+      Eigen::VectorXd sigma;
+      r.sources->sigma(r.pos.seconds(h0), r.cur->signature, sigma);
+      r.X.tail(sigma.size()) = sigma;
+      r.project();
+      r.refresh_constraints();
+      emit_now(r.pos.seconds(h0), false);
+    }
+  }
+}
+
+}  // namespace lcs

@@ -1,0 +1,80 @@
+#include "solver/integrators/mode_dynamics.h"
+
+namespace lcs {
+
+namespace {
+
+Eigen::MatrixXd rows(const Eigen::MatrixXd& M, const std::vector<int>& idx) {
+  Eigen::MatrixXd out(idx.size(), M.cols());
+  for (size_t k = 0; k < idx.size(); ++k) out.row(k) = M.row(idx[k]);
+  return out;
+}
+
+Eigen::MatrixXd cols(const Eigen::MatrixXd& M, const std::vector<int>& idx) {
+  Eigen::MatrixXd out(M.rows(), idx.size());
+  for (size_t k = 0; k < idx.size(); ++k) out.col(k) = M.col(idx[k]);
+  return out;
+}
+
+}  // namespace
+
+ModeDynamics ModeDynamics::build(const Lcs& s, const std::vector<bool>& is_active) {
+  ModeDynamics m;
+  for (int i = 0; i < s.pairs(); ++i) (is_active[i] ? m.active : m.inactive).push_back(i);
+  const int n = s.states(), nu = s.inputs(), a = static_cast<int>(m.active.size());
+  const Eigen::MatrixXd Ca = rows(s.C, m.active), Fa = rows(s.F, m.active);
+  const Eigen::MatrixXd Ba = cols(s.B, m.active);
+  const Eigen::MatrixXd Daa = cols(rows(s.D, m.active), m.active);
+
+  // Split the rows of w_α = 0 into D_αα's range (index zero) and left null space (index one).
+  Eigen::MatrixXd U(a, 0), N(a, 0);
+  if (a > 0) {
+    Eigen::JacobiSVD<Eigen::MatrixXd> svd(Daa, Eigen::ComputeFullU);
+    const Eigen::VectorXd& sv = svd.singularValues();
+    const double tol = 1e-10 * (sv.size() > 0 ? sv(0) : 0.0);
+    int r = 0;
+    while (r < sv.size() && sv(r) > tol && sv(r) > 0) ++r;
+    U = svd.matrixU().leftCols(r);
+    N = svd.matrixU().rightCols(a - r);
+  }
+  const int k = static_cast<int>(N.cols());
+  // Q z_α = -(Rx x + Ru u + Rd u'):
+  //   U^T (C_α x + D_αα z_α + F_α u) = 0,   N^T C_α (A x + B_α z_α + E u) + N^T F_α u' = 0.
+  Eigen::MatrixXd Q(a, a), Rx(a, n), Ru(a, nu), Rd(a, nu);
+  Q << U.transpose() * Daa, N.transpose() * Ca * Ba;
+  Rx << U.transpose() * Ca, N.transpose() * Ca * s.A;
+  Ru << U.transpose() * Fa, N.transpose() * Ca * s.E;
+  Rd << Eigen::MatrixXd::Zero(a - k, nu), N.transpose() * Fa;
+  m.Cc = N.transpose() * Ca;
+  m.Fc = N.transpose() * Fa;
+
+  Eigen::FullPivLU<Eigen::MatrixXd> lu(Q);
+  if (a > 0) {
+    const double scale = Q.cwiseAbs().maxCoeff();
+    lu.setThreshold(1e-12);
+    m.well_posed = scale > 0 && lu.isInvertible();
+  } else {
+    m.well_posed = true;
+  }
+  if (!m.well_posed) return m;
+  m.Kx = a > 0 ? Eigen::MatrixXd(-lu.solve(Rx)) : Eigen::MatrixXd(0, n);
+  m.Ku = a > 0 ? Eigen::MatrixXd(-lu.solve(Ru)) : Eigen::MatrixXd(0, nu);
+  m.Kd = a > 0 ? Eigen::MatrixXd(-lu.solve(Rd)) : Eigen::MatrixXd(0, nu);
+  m.Ax = s.A + Ba * m.Kx;
+  m.Eu = s.E + Ba * m.Ku;
+  m.Ed = Ba * m.Kd;
+  const Eigen::MatrixXd Cb = rows(s.C, m.inactive), Fb = rows(s.F, m.inactive);
+  const Eigen::MatrixXd Dba = cols(rows(s.D, m.inactive), m.active);
+  m.Wx = Cb + Dba * m.Kx;
+  m.Wu = Fb + Dba * m.Ku;
+  m.Wd = Dba * m.Kd;
+  if (k > 0) {
+    const Eigen::MatrixXd dir = Ba * N;  // impulse directions
+    m.project = dir * (m.Cc * dir).completeOrthogonalDecomposition().pseudoInverse();
+  } else {
+    m.project = Eigen::MatrixXd::Zero(n, 0);
+  }
+  return m;
+}
+
+}  // namespace lcs

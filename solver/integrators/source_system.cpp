@@ -1,0 +1,115 @@
+#include "solver/integrators/source_system.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace lcs {
+
+namespace {
+constexpr double kTwoPi = 6.283185307179586476925;
+int kind_dimension(char k) { return k == 'c' ? 1 : k == 'r' ? 2 : 3; }
+}  // namespace
+
+SourceSystem::SourceSystem(const CircuitModel& model, double tstop) {
+  for (const InputInfo& info : model.inputs()) {
+    Input in;
+    if (info.element >= 0) {
+      in.waveform = &model.netlist().elements[info.element].waveform;
+      const Waveform& w = *in.waveform;
+      if (w.kind == Waveform::Kind::Sin) {
+        in.vo = w.params.at(0);
+        in.omega = kTwoPi * w.params.at(2);
+        in.td = w.params.at(3);
+        in.theta = w.params.at(4);
+        max_omega_ = std::max(max_omega_, std::abs(in.omega));
+      }
+      for (double b : w.breakpoints(0.0, tstop)) breakpoints_.push_back(b);
+    }
+    inputs_.push_back(in);
+  }
+  std::sort(breakpoints_.begin(), breakpoints_.end());
+  breakpoints_.erase(std::unique(breakpoints_.begin(), breakpoints_.end()), breakpoints_.end());
+}
+
+char SourceSystem::kind(const Input& in, double t) const {
+  if (!in.waveform) return 'c';
+  const Waveform& w = *in.waveform;
+  switch (w.kind) {
+    case Waveform::Kind::Dc:
+      return 'c';
+    case Waveform::Kind::Sin:
+      if (t < in.td || (w.params.at(1) == 0)) return 'c';
+      return (in.omega == 0 && in.theta == 0) ? 'c' : 's';
+    case Waveform::Kind::Pulse:
+    case Waveform::Kind::Pwl:
+      return w.derivative(t) == 0 ? 'c' : 'r';
+  }
+  return 'c';
+}
+
+std::string SourceSystem::signature(double t) const {
+  std::string s;
+  s.reserve(inputs_.size());
+  for (const Input& in : inputs_) s.push_back(kind(in, t));
+  return s;
+}
+
+int SourceSystem::dimension(const std::string& sig) const {
+  int d = 0;
+  for (char k : sig) d += kind_dimension(k);
+  return d;
+}
+
+Eigen::MatrixXd SourceSystem::S(const std::string& sig) const {
+  const int p = dimension(sig);
+  Eigen::MatrixXd S = Eigen::MatrixXd::Zero(p, p);
+  int o = 0;
+  for (size_t k = 0; k < sig.size(); ++k) {
+    if (sig[k] == 'r') S(o, o + 1) = 1;
+    if (sig[k] == 's') {
+      const Input& in = inputs_[k];
+      S(o + 1, o + 2) = 1;
+      S(o + 2, o + 1) = -(in.omega * in.omega + in.theta * in.theta);
+      S(o + 2, o + 2) = -2 * in.theta;
+    }
+    o += kind_dimension(sig[k]);
+  }
+  return S;
+}
+
+Eigen::MatrixXd SourceSystem::P(const std::string& sig) const {
+  Eigen::MatrixXd P = Eigen::MatrixXd::Zero(static_cast<int>(sig.size()), dimension(sig));
+  int o = 0;
+  for (size_t k = 0; k < sig.size(); ++k) {
+    P(k, o) = 1;
+    if (sig[k] == 's') P(k, o + 1) = 1;
+    o += kind_dimension(sig[k]);
+  }
+  return P;
+}
+
+void SourceSystem::sigma(double t, const std::string& sig, Eigen::VectorXd& out) const {
+  out.resize(dimension(sig));
+  int o = 0;
+  for (size_t k = 0; k < sig.size(); ++k) {
+    const Input& in = inputs_[k];
+    const double u = in.waveform ? in.waveform->value(t) : 1.0;
+    switch (sig[k]) {
+      case 'c':
+        out(o) = u;
+        break;
+      case 'r':
+        out(o) = u;
+        out(o + 1) = in.waveform->derivative(t);
+        break;
+      case 's':
+        out(o) = in.vo;
+        out(o + 1) = u - in.vo;
+        out(o + 2) = in.waveform->derivative(t);
+        break;
+    }
+    o += kind_dimension(sig[k]);
+  }
+}
+
+}  // namespace lcs

@@ -1,0 +1,50 @@
+// Independent sources as small autonomous linear systems (for exact integration, 8.3): between
+// two breakpoints every input is u_k(t) = P_k σ_k(t) with dσ_k/dt = S_k σ_k, so the circuit and its
+// sources together form one linear ODE whose matrix exponential is exact for both.
+//   constant (DC, u[0] = 1, a PULSE plateau):  σ = [u],            S = [0]
+//   ramp (a PULSE edge, a PWL segment):         σ = [u, u'],       S = [[0 1] [0 0]]
+//   SIN after TD, u = VO + p with p'' + 2θp' + (ω² + θ²)p = 0:
+//                                               σ = [VO, p, p'],   S = [[0 0 0] [0 0 1] [0 −ω²−θ² −2θ]]
+// S depends only on the kind of each input (and a SIN's ω, θ, fixed for the run); the segment's
+// values live in σ, which is reset from the waveform at every breakpoint and grid time.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "solver/model/circuit_model.h"
+
+namespace lcs {
+
+class SourceSystem {
+ public:
+  // Breakpoints (source corners, SIN starts) in (0, tstop) are collected once.
+  SourceSystem(const CircuitModel& model, double tstop);
+
+  // Which form each input takes on the segment starting at t (one character per input: 'c',
+  // 'r', 's'); segments with the same signature share S and P.
+  std::string signature(double t) const;
+  int dimension(const std::string& signature) const;
+  Eigen::MatrixXd S(const std::string& signature) const;
+  Eigen::MatrixXd P(const std::string& signature) const;  // u = P σ
+  // σ at t on the segment starting at or before t (right values at a corner).
+  void sigma(double t, const std::string& signature, Eigen::VectorXd& out) const;
+
+  const std::vector<double>& breakpoints() const { return breakpoints_; }
+  // Largest angular frequency of the SIN sources (for the step bound), 0 without any.
+  double max_angular_frequency() const { return max_omega_; }
+
+ private:
+  struct Input {
+    const Waveform* waveform = nullptr;  // nullptr: the constant input u[0] = 1
+    double omega = 0, theta = 0, vo = 0, td = 0;
+  };
+  char kind(const Input& in, double t) const;
+  std::vector<Input> inputs_;
+  std::vector<double> breakpoints_;
+  double max_omega_ = 0;
+};
+
+}  // namespace lcs
