@@ -1,0 +1,194 @@
+// Closed-form checks of the event-driven method (8.3): exact inside modes, events where a
+// complementarity variable reaches zero, jumps for inconsistent states, output grid (SPEC §3).
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "solver/integrators/transient.h"
+#include "tests/support/netlist_builder.h"
+
+namespace lcs {
+namespace {
+
+using testing::NetlistBuilder;
+constexpr double kPi = 3.141592653589793238462643;
+
+struct EventRun {
+  MemorySink sink;
+  TransientSummary summary;
+  std::vector<double> event_times;  // rows that are not multiples of the output step
+};
+
+EventRun run_event(const Netlist& netlist, const std::vector<Probe>& probes, double tstep,
+                   double tstop, bool uic, double rtol = 0) {
+  ModelOptions mo;
+  mo.t1 = tstop;
+  CircuitModel model = CircuitModel::build(netlist, mo);
+  TransientOptions o;
+  o.method = "event";
+  o.method_options.rtol = rtol;
+  o.step = tstep;
+  o.tstop = tstop;
+  o.uic = uic;
+  EventRun r;
+  r.summary = run_transient(model, model.output_map(probes), o, r.sink);
+  for (double t : r.sink.times) {
+    const double k = std::round(t / tstep);
+    if (std::abs(t - k * tstep) > 1e-9 * tstep) r.event_times.push_back(t);
+  }
+  return r;
+}
+
+Probe v(const std::string& node) { return {Probe::Kind::NodeVoltage, node, "", {}}; }
+Probe i(const std::string& element) { return {Probe::Kind::ElementCurrent, element, "", {}}; }
+
+// Every multiple of the output step is a row, rows strictly increase (SPEC §3).
+void expect_grid_rows(const EventRun& r, double tstep, double tstop) {
+  const long n = std::lround(tstop / tstep);
+  long found = 0;
+  for (size_t k = 0; k < r.sink.times.size(); ++k) {
+    if (k > 0) {
+      ASSERT_GT(r.sink.times[k], r.sink.times[k - 1]) << "row " << k;
+    }
+    const double t = r.sink.times[k];
+    if (std::abs(t - std::round(t / tstep) * tstep) <= 1e-9 * tstep) ++found;
+  }
+  EXPECT_EQ(found, n + 1);
+  EXPECT_EQ(r.sink.times.back(), tstop);
+}
+
+// Siconos' diode bridge on a charged LC tank (circuits/lc_tank_bridge.cir): whatever pair of
+// diodes conducts, the tank sees R, so v'' + v'/(RC) + v/(LC) = 0 exactly. Acceptance: within
+// 1e-9 relative of the closed form (measured 1.05e-13), with an event at every zero crossing.
+TEST(EventDriven, LcTankBridgeMatchesTheClosedFormTo1e9) {
+  NetlistBuilder b;
+  b.tran(1e-6, 5e-3, true);
+  b.l("l1", "a", "0", 10e-3, 0.0).c("c1", "a", "0", 1e-6, 10.0);
+  b.d("d1", "a", "p").d("d2", "n", "a").d("d3", "0", "p").d("d4", "n", "0");
+  b.r("r1", "p", "n", 1e3);
+  EventRun r = run_event(b.build(), {v("a"), i("d1"), i("d2")}, 1e-6, 5e-3, true);
+  const double R = 1e3, L = 10e-3, C = 1e-6, v0 = 10;
+  const double alpha = 1 / (2 * R * C), wd = std::sqrt(1 / (L * C) - alpha * alpha);
+  auto exact = [&](double t) {
+    return std::exp(-alpha * t) * (v0 * std::cos(wd * t) - alpha * v0 / wd * std::sin(wd * t));
+  };
+  double worst = 0;
+  for (size_t k = 0; k < r.sink.times.size(); ++k)
+    worst = std::max(worst, std::abs(r.sink.rows[k](0) - exact(r.sink.times[k])) / v0);
+  EXPECT_LT(worst, 1e-9);
+  expect_grid_rows(r, 1e-6, 5e-3);
+  // Zero crossings of v: tan(wd t) = wd/alpha, t_k = (atan(wd/alpha) + k pi)/wd.
+  std::vector<double> crossings;
+  for (int k = 0;; ++k) {
+    const double t = (std::atan(wd / alpha) + k * kPi) / wd;
+    if (t > 5e-3) break;
+    crossings.push_back(t);
+  }
+  ASSERT_EQ(r.event_times.size(), crossings.size());
+  for (size_t k = 0; k < crossings.size(); ++k)
+    EXPECT_NEAR(r.event_times[k], crossings[k], 1e-15) << "crossing " << k;
+  EXPECT_EQ(r.summary.stepper.events, static_cast<long>(crossings.size()));
+}
+
+// An RC charged through a diode from a DC source (capacitor empty, UIC): the diode stays on and
+// v(t) = (V - VON)(1 - exp(-t/tau)), tau = (R + RON) C, at every row to rounding.
+TEST(EventDriven, RcThroughDiodeIsExact) {
+  const double V = 10, VON = 0.7, RON = 10, R = 1e3, C = 1e-6, tau = (R + RON) * C;
+  NetlistBuilder b;
+  b.tran(2e-5, 5e-3, true);
+  b.v("v1", "in", "0", NetlistBuilder::dc(V)).d("d1", "in", "a", VON, RON);
+  b.r("r1", "a", "out", R).c("c1", "out", "0", C, 0.0);
+  EventRun r = run_event(b.build(), {v("out"), i("d1")}, 2e-5, 5e-3, true);
+  ASSERT_EQ(r.sink.times.size(), 251u);
+  for (size_t k = 0; k < r.sink.times.size(); ++k) {
+    const double t = r.sink.times[k], ex = (V - VON) * (1 - std::exp(-t / tau));
+    EXPECT_NEAR(r.sink.rows[k](0), ex, 1e-12 * V) << "t = " << t;
+    EXPECT_NEAR(r.sink.rows[k](1), (V - VON - ex) / (R + RON), 1e-12 * V / R) << "t = " << t;
+  }
+  EXPECT_EQ(r.summary.stepper.events, 0);
+}
+
+// Half-wave rectifier into a resistor (no states): v_out = R max(0, v_in - VON)/(R + RON). The
+// diode switches where 10 sin(wt) = VON; the events must sit there to near machine precision.
+TEST(EventDriven, ResistiveRectifierSwitchesWhereTheSourceCrossesTheThreshold) {
+  const double VA = 10, f = 50, VON = 0.7, RON = 0.5, R = 100, tstop = 40e-3, tstep = 1e-4;
+  NetlistBuilder b;
+  b.tran(tstep, tstop, false);
+  b.v("v1", "in", "0", NetlistBuilder::sin(0, VA, f)).d("d1", "in", "out", VON, RON);
+  b.r("r1", "out", "0", R);
+  EventRun r = run_event(b.build(), {v("out"), i("d1")}, tstep, tstop, false);
+  const double w = 2 * kPi * f, t_on = std::asin(VON / VA) / w, t_off = (kPi - std::asin(VON / VA)) / w;
+  const std::vector<double> expected = {t_on, t_off, t_on + 1 / f, t_off + 1 / f};
+  ASSERT_EQ(r.event_times.size(), expected.size());
+  for (size_t k = 0; k < expected.size(); ++k)
+    EXPECT_NEAR(r.event_times[k], expected[k], 1e-15) << "event " << k;
+  for (size_t k = 0; k < r.sink.times.size(); ++k) {
+    const double vin = VA * std::sin(w * r.sink.times[k]);
+    const double ex = R * std::max(0.0, vin - VON) / (R + RON);
+    EXPECT_NEAR(r.sink.rows[k](0), ex, 1e-11 * VA) << "t = " << r.sink.times[k];
+    EXPECT_GE(r.sink.rows[k](1), -1e-15);  // complementarity: the diode current never reverses
+  }
+  expect_grid_rows(r, tstep, tstop);
+}
+
+// A PULSE with zero-length edges (jumps) charges a capacitor through a diode; while the pulse is
+// low the diode blocks and the capacitor holds. Breakpoints restart the mode at the jumps.
+TEST(EventDriven, PulseJumpsChargeAndHold) {
+  const double V = 5, VON = 0.7, R = 1e3, C = 1e-6, tau = R * C;
+  NetlistBuilder b;
+  b.tran(1e-5, 8e-3, true);
+  b.v("v1", "in", "0", NetlistBuilder::pulse({0, V, 1e-3, 0, 0, 2e-3, 4e-3}));
+  b.d("d1", "in", "a", VON, 0).r("r1", "a", "out", R).c("c1", "out", "0", C, 0.0);
+  EventRun r = run_event(b.build(), {v("out")}, 1e-5, 8e-3, true);
+  const double v1 = (V - VON) * (1 - std::exp(-2e-3 / tau));  // held from 3 ms to 5 ms
+  auto exact = [&](double t) {
+    if (t <= 1e-3) return 0.0;
+    if (t <= 3e-3) return (V - VON) * (1 - std::exp(-(t - 1e-3) / tau));
+    if (t <= 5e-3) return v1;
+    if (t <= 7e-3) return (V - VON) - (V - VON - v1) * std::exp(-(t - 5e-3) / tau);
+    return (V - VON) - (V - VON - v1) * std::exp(-2e-3 / tau);
+  };
+  for (size_t k = 0; k < r.sink.times.size(); ++k)
+    EXPECT_NEAR(r.sink.rows[k](0), exact(r.sink.times[k]), 1e-12 * V) << "t = " << r.sink.times[k];
+  expect_grid_rows(r, 1e-5, 8e-3);
+}
+
+// An inconsistent initial state (UIC): a capacitor at 5 V across an ideal diode with VON = 0.7
+// and RON = 0 discharges impulsively to 0.7 V at t = 0 (the impulse LCP of 4.5), then the diode
+// blocks and the capacitor decays through R: v = 0.7 exp(-t/RC).
+TEST(EventDriven, InconsistentInitialStateJumps) {
+  const double VON = 0.7, R = 1e3, C = 1e-6;
+  NetlistBuilder b;
+  b.tran(1e-5, 3e-3, true);
+  b.c("c1", "a", "0", C, 5.0).d("d1", "a", "0", VON, 0).r("r1", "a", "0", R);
+  EventRun r = run_event(b.build(), {v("a"), i("d1")}, 1e-5, 3e-3, true);
+  ASSERT_FALSE(r.sink.times.empty());
+  EXPECT_NEAR(r.sink.rows[0](0), VON, 1e-14);
+  for (size_t k = 0; k < r.sink.times.size(); ++k) {
+    EXPECT_NEAR(r.sink.rows[k](0), VON * std::exp(-r.sink.times[k] / (R * C)), 1e-13)
+        << "t = " << r.sink.times[k];
+    EXPECT_NEAR(r.sink.rows[k](1), 0.0, 1e-15);
+  }
+}
+
+// Exponentials are cached per mode and dyadic step: a periodic circuit computes no new ones
+// once every mode has been visited (bridge rectifier: the third and sixth period cost nothing).
+TEST(EventDriven, PeriodicCircuitPaysSetupOncePerMode) {
+  auto bridge = [](double tstop) {
+    NetlistBuilder b;
+    b.tran(2e-5, tstop, false);
+    b.v("v1", "a", "0", NetlistBuilder::sin(0, 10, 50));
+    b.d("d1", "a", "p", 0.7, 0.05).d("d2", "n", "a", 0.7, 0.05);
+    b.d("d3", "0", "p", 0.7, 0.05).d("d4", "n", "0", 0.7, 0.05);
+    b.c("cl", "p", "n", 100e-6).r("rl", "p", "n", 100);
+    return b.build();
+  };
+  EventRun three = run_event(bridge(60e-3), {v("p")}, 2e-5, 60e-3, false);
+  EventRun six = run_event(bridge(120e-3), {v("p")}, 2e-5, 120e-3, false);
+  EXPECT_EQ(three.summary.stepper.factorisations, six.summary.stepper.factorisations);
+  EXPECT_EQ(three.summary.stepper.modes, six.summary.stepper.modes);
+  EXPECT_EQ(six.summary.stepper.events, 2 * three.summary.stepper.events + 1);
+}
+
+}  // namespace
+}  // namespace lcs
