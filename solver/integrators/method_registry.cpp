@@ -1,5 +1,6 @@
 #include "solver/integrators/method_registry.h"
 
+#include "solver/integrators/radau_iia.h"
 #include "solver/integrators/theta_method.h"
 
 namespace lcs {
@@ -9,6 +10,16 @@ const std::vector<MethodEntry>& method_registry() {
       {"euler", "implicit Euler (theta = 1), fixed step, one LCP per step",
        [](const CircuitModel& m, const MethodOptions&) {
          return std::make_unique<ThetaMethod>(m, 1.0);
+       },
+       {}},
+      {"radau3", "Radau IIA, 2 stages (order 3), fixed step, one LCP of size 2m per step",
+       [](const CircuitModel& m, const MethodOptions&) {
+         return std::make_unique<RadauIIA>(m, 2);
+       },
+       {}},
+      {"radau5", "Radau IIA, 3 stages (order 5), fixed step, one LCP of size 3m per step",
+       [](const CircuitModel& m, const MethodOptions&) {
+         return std::make_unique<RadauIIA>(m, 3);
        },
        {}},
       {"theta", "theta-method (--theta, default 0.5: trapezoidal), fixed step, one LCP per step",
