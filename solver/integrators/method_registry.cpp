@@ -1,6 +1,7 @@
 #include "solver/integrators/method_registry.h"
 
 #include "solver/integrators/event_driven.h"
+#include "solver/integrators/radau_iia.h"
 #include "solver/integrators/theta_method.h"
 
 namespace lcs {
@@ -21,6 +22,16 @@ const std::vector<MethodEntry>& method_registry() {
          if (o.rtol > 0) e.rtol = o.rtol;
          return std::make_unique<EventDriven>(m, e);
        }},
+      {"radau3", "Radau IIA, 2 stages (order 3), fixed step, one LCP of size 2m per step",
+       [](const CircuitModel& m, const MethodOptions&) {
+         return std::make_unique<RadauIIA>(m, 2);
+       },
+       {}},
+      {"radau5", "Radau IIA, 3 stages (order 5), fixed step, one LCP of size 3m per step",
+       [](const CircuitModel& m, const MethodOptions&) {
+         return std::make_unique<RadauIIA>(m, 3);
+       },
+       {}},
       {"theta", "theta-method (--theta, default 0.5: trapezoidal), fixed step, one LCP per step",
        [](const CircuitModel& m, const MethodOptions& o) {
          return std::make_unique<ThetaMethod>(m, o.theta);

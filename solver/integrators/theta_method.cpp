@@ -1,7 +1,6 @@
 #include "solver/integrators/theta_method.h"
 
-#include <algorithm>
-
+#include "solver/integrators/start_complementarity.h"
 #include "solver/model/numerical_failure.h"
 
 namespace lcs {
@@ -18,12 +17,12 @@ ThetaMethod::ThetaMethod(const CircuitModel& model, double theta)
 
 ThetaMethod::~ThetaMethod() = default;
 
-ThetaMethod::StepFactors& ThetaMethod::factors(double h, double theta) {
-  auto key = std::make_pair(h, theta);
-  auto it = cache_.find(key);
+ThetaMethod::StepFactors& ThetaMethod::factors(double h) {
+  auto it = cache_.find(h);
   if (it != cache_.end()) return *it->second;
   const Lcs& s = model_.lcs();
   const int n = s.states();
+  const double theta = theta_;
   auto f = std::make_unique<StepFactors>();
   Eigen::MatrixXd I = Eigen::MatrixXd::Identity(n, n);
   Eigen::PartialPivLU<Eigen::MatrixXd> W(I - h * theta * s.A);
@@ -39,35 +38,16 @@ ThetaMethod::StepFactors& ThetaMethod::factors(double h, double theta) {
   f->CPu1F = s.C * f->Pu1 + s.F;
   f->lcp = std::make_unique<LcpWarmSolver>(s.D + s.C * f->WB);
   ++stats_.factorisations;
-  return *cache_.emplace(key, std::move(f)).first->second;
+  return *cache_.emplace(h, std::move(f)).first->second;
 }
 
 void ThetaMethod::DoStart(double t0, double h_run, const Eigen::VectorXd& x, Eigen::VectorXd& z) {
-  // z(t0+) from an implicit Euler LCP with a tiny step: the rational complementarity problem
-  // of 4.5 at large s. Only theta < 1 reuses z_n; for theta = 1 it is just the t0 output.
-  // The step must be tiny against the circuit's fastest rate too, not only against h_run: the
-  // error of this z is about h times that rate, |A| or, for a pair with D_ii > 0 (index 0),
-  // the rate sum_j |(CB)_ij| / D_ii at which conduction through it moves the state.
-  const Lcs& s = model_.lcs();
-  double rate = s.A.size() > 0 ? s.A.cwiseAbs().rowwise().sum().maxCoeff() : 0.0;
-  if (s.pairs() > 0 && s.states() > 0) {
-    const Eigen::MatrixXd CB = s.C * s.B;
-    for (int i = 0; i < s.pairs(); ++i)
-      if (s.D(i, i) > 0) rate = std::max(rate, CB.row(i).cwiseAbs().sum() / s.D(i, i));
-  }
-  const double h = 1e-8 * (rate > 0 ? std::min(h_run, 1.0 / rate) : h_run);
-  StepFactors& f = factors(h, 1.0);
-  u1_ = model_.input_values(t0 + h);
-  q_ = f.CPhi * x + f.CPu1F * u1_;
-  const LcpSolution& sol = f.lcp->solve(q_);
-  if (sol.status != LcpStatus::Solved)
-    throw NumericalFailure(t0, std::string("no consistent initial complementarity state (Lemke: ") +
-                                   lcp_status_name(sol.status) + ")");
-  z = sol.z;
+  // Only theta < 1 reuses z_n; for theta = 1 it is just the t0 output.
+  z = consistent_start_z(model_, t0, h_run, x, stats_);
 }
 
 void ThetaMethod::DoStep(double t, double h, Eigen::VectorXd& x, Eigen::VectorXd& z) {
-  StepFactors& f = factors(h, theta_);
+  StepFactors& f = factors(h);
   u1_ = model_.input_values(t + h);
   q_ = f.CPhi * x + f.CPu1F * u1_;
   if (theta_ != 1.0) {
@@ -85,15 +65,8 @@ void ThetaMethod::DoStep(double t, double h, Eigen::VectorXd& x, Eigen::VectorXd
 }
 
 StepperStats ThetaMethod::stats() const {
-  StepperStats s = stats_;
-  s.lcp = {};
-  for (const auto& [key, f] : cache_) {
-    const LcpWarmStats& w = f->lcp->stats();
-    s.lcp.solves += w.solves;
-    s.lcp.warm_hits += w.warm_hits;
-    s.lcp.lemke_calls += w.lemke_calls;
-    s.lcp.lemke_pivots += w.lemke_pivots;
-  }
+  StepperStats s = stats_;  // s.lcp holds the start LCP (consistent_start_z)
+  for (const auto& [h, f] : cache_) s.lcp += f->lcp->stats();
   return s;
 }
 

@@ -22,10 +22,10 @@ class ThetaMethod : public TimeStepper {
 
  private:
   struct StepFactors;  // everything that depends only on h, prepared once per step size
-  StepFactors& factors(double h, double theta);
+  StepFactors& factors(double h);
 
   double theta_;
-  std::map<std::pair<double, double>, std::unique_ptr<StepFactors>> cache_;
+  std::map<double, std::unique_ptr<StepFactors>> cache_;
   Eigen::VectorXd u0_, u1_, q_;
 };
 

@@ -62,6 +62,14 @@ struct LcpWarmStats {
   long warm_hits = 0;          // answered by the previous active set (one solve + sign check)
   long lemke_calls = 0;
   long lemke_pivots = 0;
+
+  LcpWarmStats& operator+=(const LcpWarmStats& o) {
+    solves += o.solves;
+    warm_hits += o.warm_hits;
+    lemke_calls += o.lemke_calls;
+    lemke_pivots += o.lemke_pivots;
+    return *this;
+  }
 };
 
 // For a fixed matrix M and a sequence of q (one per time step): first tries the previous

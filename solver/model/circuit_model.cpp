@@ -300,9 +300,13 @@ CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& opt
 
 Eigen::VectorXd CircuitModel::input_values(double t) const {
   Eigen::VectorXd u(inputs_.size());
+  input_values(t, u);
+  return u;
+}
+
+void CircuitModel::input_values(double t, Eigen::Ref<Eigen::VectorXd> u) const {
   for (size_t k = 0; k < inputs_.size(); ++k)
     u(k) = inputs_[k].element < 0 ? 1.0 : netlist_.elements[inputs_[k].element].waveform.value(t);
-  return u;
 }
 
 Eigen::VectorXd CircuitModel::input_derivatives(double t) const {

@@ -81,6 +81,8 @@ class CircuitModel {
   const std::vector<InputInfo>& inputs() const { return inputs_; }
 
   Eigen::VectorXd input_values(double t) const;
+  // The same into u (size inputs()), without allocating for DC and SIN sources.
+  void input_values(double t, Eigen::Ref<Eigen::VectorXd> u) const;
   Eigen::VectorXd input_derivatives(double t) const;
   Eigen::VectorXd physical_state(const Eigen::VectorXd& x, double t) const;
   Eigen::VectorXd lcs_state(const Eigen::VectorXd& physical, double t) const;

@@ -1,0 +1,125 @@
+#include "solver/integrators/radau_iia.h"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "solver/integrators/start_complementarity.h"
+#include "solver/model/numerical_failure.h"
+
+namespace lcs {
+
+ButcherTableau radau_iia_tableau(int stages) {
+  ButcherTableau t;
+  if (stages == 2) {  // order 3, stage order 2
+    t.c.resize(2);
+    t.c << 1.0 / 3, 1.0;
+    t.a.resize(2, 2);
+    t.a << 5.0 / 12, -1.0 / 12,
+           3.0 / 4, 1.0 / 4;
+  } else if (stages == 3) {  // order 5, stage order 3
+    const double r = std::sqrt(6.0);
+    t.c.resize(3);
+    t.c << (4 - r) / 10, (4 + r) / 10, 1.0;
+    t.a.resize(3, 3);
+    t.a << (88 - 7 * r) / 360, (296 - 169 * r) / 1800, (-2 + 3 * r) / 225,
+           (296 + 169 * r) / 1800, (88 + 7 * r) / 360, (-2 - 3 * r) / 225,
+           (16 - r) / 36, (16 + r) / 36, 1.0 / 9;
+  } else {
+    throw std::invalid_argument("Radau IIA: " + std::to_string(stages) +
+                                " stages (2 and 3 are implemented)");
+  }
+  return t;
+}
+
+namespace {
+
+// a ⊗ b (the tensor product of 8.4.2).
+Eigen::MatrixXd kron(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
+  Eigen::MatrixXd k(a.rows() * b.rows(), a.cols() * b.cols());
+  for (Eigen::Index i = 0; i < a.rows(); ++i)
+    for (Eigen::Index j = 0; j < a.cols(); ++j)
+      k.block(i * b.rows(), j * b.cols(), b.rows(), b.cols()) = a(i, j) * b;
+  return k;
+}
+
+}  // namespace
+
+struct RadauIIA::StepFactors {
+  // X = Px x + PZ Z + PU U (X, Z, U stacked by stage);  W = Qx x + Qu U + M Z.
+  // Only the last stage row block of P is kept: x+ = X_s = Sx x + Sz Z + Su U.
+  Eigen::MatrixXd Sx, Sz, Su, Qx, Qu;
+  std::unique_ptr<LcpWarmSolver> lcp;
+};
+
+RadauIIA::RadauIIA(const CircuitModel& model, int stages)
+    : TimeStepper(model), tableau_(radau_iia_tableau(stages)) {
+  const Lcs& s = model.lcs();
+  U_.resize(stages * s.inputs());
+  q_.resize(stages * s.pairs());
+  x_next_.resize(s.states());
+}
+
+RadauIIA::~RadauIIA() = default;
+
+RadauIIA::StepFactors& RadauIIA::factors(double h) {
+  auto it = cache_.find(h);
+  if (it != cache_.end()) return *it->second;
+  const Lcs& s = model_.lcs();
+  const int n = s.states(), m = s.pairs(), k = s.inputs(), st = stages();
+  const Eigen::MatrixXd& a = tableau_.a;
+  const Eigen::MatrixXd Is = Eigen::MatrixXd::Identity(st, st);
+  const Eigen::MatrixXd ones = Eigen::MatrixXd::Ones(st, 1);
+
+  // N X = 1⊗x + h(𝒜⊗B) Z + h(𝒜⊗E) U with N = I - h(𝒜⊗A). N's eigenvalues are 1 - h λ μ
+  // (λ of 𝒜, μ of A); one vanishes only for μ = 1/(h λ), in the right half-plane as λ is, so N
+  // is nonsingular whenever A has no eigenvalue there (a passive circuit).
+  Eigen::MatrixXd Px(st * n, n), PZ(st * n, st * m), PU(st * n, st * k);
+  if (n > 0) {
+    Eigen::PartialPivLU<Eigen::MatrixXd> N(Eigen::MatrixXd::Identity(st * n, st * n) -
+                                           h * kron(a, s.A));
+    Px = N.solve(kron(ones, Eigen::MatrixXd::Identity(n, n)));
+    PZ = N.solve(h * kron(a, s.B));
+    PU = N.solve(h * kron(a, s.E));
+  }
+  auto f = std::make_unique<StepFactors>();
+  f->Sx = Px.bottomRows(n);
+  f->Sz = PZ.bottomRows(n);
+  f->Su = PU.bottomRows(n);
+  const Eigen::MatrixXd IC = kron(Is, s.C);
+  f->Qx = IC * Px;
+  f->Qu = IC * PU + kron(Is, s.F);
+  f->lcp = std::make_unique<LcpWarmSolver>(kron(Is, s.D) + IC * PZ);
+  ++stats_.factorisations;
+  return *cache_.emplace(h, std::move(f)).first->second;
+}
+
+void RadauIIA::DoStart(double t0, double h_run, const Eigen::VectorXd& x, Eigen::VectorXd& z) {
+  z = consistent_start_z(model_, t0, h_run, x, stats_);
+}
+
+void RadauIIA::DoStep(double t, double h, Eigen::VectorXd& x, Eigen::VectorXd& z) {
+  StepFactors& f = factors(h);
+  const int m = model_.lcs().pairs(), k = model_.lcs().inputs();
+  for (int j = 0; j < stages(); ++j)
+    model_.input_values(t + tableau_.c(j) * h, U_.segment(j * k, k));  // U_j = u(t + c_j h)
+  q_.noalias() = f.Qx * x;
+  q_.noalias() += f.Qu * U_;
+  const LcpSolution& sol = f.lcp->solve(q_);
+  if (sol.status != LcpStatus::Solved)
+    throw NumericalFailure(t + h, std::string("the Radau IIA step's LCP has no solution (Lemke: ") +
+                                      lcp_status_name(sol.status) + ")");
+  x_next_.noalias() = f.Sx * x;
+  x_next_.noalias() += f.Sz * sol.z;
+  x_next_.noalias() += f.Su * U_;
+  x = x_next_;
+  z = sol.z.tail(m);
+}
+
+StepperStats RadauIIA::stats() const {
+  StepperStats s = stats_;  // s.lcp holds the start LCP (consistent_start_z)
+  for (const auto& [h, f] : cache_) s.lcp += f->lcp->stats();
+  return s;
+}
+
+}  // namespace lcs

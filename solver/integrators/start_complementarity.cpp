@@ -1,0 +1,51 @@
+#include "solver/integrators/start_complementarity.h"
+
+#include <algorithm>
+#include <string>
+
+#include "solver/lcp/lcp.h"
+#include "solver/model/numerical_failure.h"
+
+namespace lcs {
+
+namespace {
+
+// The step must be tiny against the circuit's fastest rate too, not only against h_run: the
+// error of the start z is about h times that rate, |A| or, for a pair with D_ii > 0 (index 0),
+// the rate sum_j |(CB)_ij| / D_ii at which conduction through it moves the state.
+double start_step(const Lcs& s, double h_run) {
+  double rate = s.A.size() > 0 ? s.A.cwiseAbs().rowwise().sum().maxCoeff() : 0.0;
+  if (s.pairs() > 0 && s.states() > 0) {
+    const Eigen::MatrixXd CB = s.C * s.B;
+    for (int i = 0; i < s.pairs(); ++i)
+      if (s.D(i, i) > 0) rate = std::max(rate, CB.row(i).cwiseAbs().sum() / s.D(i, i));
+  }
+  return 1e-8 * (rate > 0 ? std::min(h_run, 1.0 / rate) : h_run);
+}
+
+}  // namespace
+
+Eigen::VectorXd consistent_start_z(const CircuitModel& model, double t0, double h_run,
+                                   const Eigen::VectorXd& x, StepperStats& stats) {
+  // Implicit Euler: x+ = W^-1 (x + h B z + h E u+), W = I - h A, so
+  // w+ = C W^-1 x + (C W^-1 h E + F) u+  +  (D + C W^-1 h B) z.
+  const Lcs& s = model.lcs();
+  const int n = s.states();
+  const double h = start_step(s, h_run);
+  Eigen::MatrixXd I = Eigen::MatrixXd::Identity(n, n);
+  Eigen::PartialPivLU<Eigen::MatrixXd> W(I - h * s.A);
+  const Eigen::MatrixXd Phi = n > 0 ? W.solve(I) : Eigen::MatrixXd(0, 0);
+  const Eigen::MatrixXd Pu = n > 0 ? W.solve(h * s.E) : Eigen::MatrixXd(0, s.inputs());
+  const Eigen::MatrixXd WB = n > 0 ? W.solve(h * s.B) : Eigen::MatrixXd(0, s.pairs());
+  LcpWarmSolver lcp(s.D + s.C * WB);
+  ++stats.factorisations;
+  const Eigen::VectorXd q = s.C * Phi * x + (s.C * Pu + s.F) * model.input_values(t0 + h);
+  const LcpSolution& sol = lcp.solve(q);
+  stats.lcp += lcp.stats();
+  if (sol.status != LcpStatus::Solved)
+    throw NumericalFailure(t0, std::string("no consistent initial complementarity state (Lemke: ") +
+                                   lcp_status_name(sol.status) + ")");
+  return sol.z;
+}
+
+}  // namespace lcs
