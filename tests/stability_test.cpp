@@ -1,0 +1,591 @@
+// The stability study (docs/stability.md): where each integration method fails, shown on the
+// netlists of circuits/stability/. Every test asserts a number that would be false if the method
+// did not fail that way, and runs a contrast method that does not fail. The measured numbers are
+// printed ("stability<TAB>case<TAB>quantity<TAB>value") and quoted in docs/stability.md.
+//
+// Adding a case: a netlist in circuits/stability/ whose title line says what it shows, a test
+// here (suite name starting with "Stability"), and one row in the summary table of
+// docs/stability.md naming both. StabilityStudy.EveryCaseHasANetlistARowAndATest checks the three
+// stay in step.
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <cstdio>
+#include <fstream>
+#include <set>
+
+#include <gtest/gtest.h>
+
+#include "netlist/netlist.h"
+#include "ngspice/deck_translation.h"
+#include "ngspice/ngspice_session.h"
+#include "solver/integrators/transient.h"
+#include "solver/lcp/lcp.h"
+#include "solver/model/initial_state.h"
+#include "tests/cli_support.h"
+
+namespace lcs {
+namespace {
+
+using cli_testing::read_file;
+using cli_testing::source_path;
+
+// ---------------------------------------------------------------------------------------------
+// Running a case in-process
+
+Netlist stability_netlist(const std::string& name) {
+  return parse_netlist_file(source_path("circuits/stability/" + name + ".cir").string());
+}
+
+struct Simulation {
+  MemorySink sink;
+  TransientSummary summary;
+  std::vector<double> column(const std::string& probe) const {
+    const int c = sink.column(probe);
+    EXPECT_GE(c, 0) << "no probe " << probe;
+    std::vector<double> y;
+    for (const Eigen::VectorXd& row : sink.rows) y.push_back(c >= 0 ? row(c) : NAN);
+    return y;
+  }
+};
+
+struct RunOptions {
+  double theta = 0.5;  // for "theta"
+  double tstop = 0;    // 0: the netlist's .tran TSTOP
+  double rtol = 0, atol = 0;
+};
+
+// The netlist's .print probes, its .tran TSTOP and UIC; `h` is the fixed step (or, for adaptive
+// methods, the output spacing).
+Simulation simulate(const Netlist& netlist, const std::string& method, double h, const RunOptions& ro = {}) {
+  ModelOptions mo;
+  mo.t1 = ro.tstop > 0 ? ro.tstop : netlist.tran->tstop;
+  CircuitModel model = CircuitModel::build(netlist, mo);
+  TransientOptions o;
+  o.method = method;
+  o.method_options.theta = ro.theta;
+  o.method_options.rtol = ro.rtol;
+  o.method_options.atol = ro.atol;
+  o.step = h;
+  o.tstop = mo.t1;
+  o.uic = netlist.tran->uic;
+  Simulation r;
+  r.summary = run_transient(model, model.output_map(netlist.probes), o, r.sink);
+  return r;
+}
+
+void report(const char* study_case, const char* quantity, double value) {
+  std::printf("stability\t%s\t%s\t%.6g\n", study_case, quantity, value);
+}
+
+// Linear interpolation of (t, y) at s, clamped at the ends.
+double interpolate(const std::vector<double>& t, const std::vector<double>& y, double s) {
+  if (s <= t.front()) return y.front();
+  if (s >= t.back()) return y.back();
+  const size_t k = std::upper_bound(t.begin(), t.end(), s) - t.begin();
+  const double w = (s - t[k - 1]) / (t[k] - t[k - 1]);
+  return y[k - 1] + w * (y[k] - y[k - 1]);
+}
+
+// Index of the first row where the diode current is positive (the size if none).
+size_t first_conducting(const std::vector<double>& diode_current) {
+  size_t n = 0;
+  while (n < diode_current.size() && !(diode_current[n] > 0)) ++n;
+  return n;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Case 1. The trapezoidal rule (theta = 1/2) on an index-one pair rings after the switch.
+//
+// circuits/stability/capacitor_clamp_ringing.cir: C dv/dt = (Vs - v)/R - z,
+// 0 <= z ⟂ VON - v >= 0 (D = 0, CB = 1/C: index one, Stewart 4.5). Once clamped, v = VON on
+// both ends of a step, so the theta-method's step (8.4.1; θ = 1/2 is the trapezoidal rule of
+// Figure 8.1(b), θ = 1 implicit Euler, the one-stage Radau IIA method of Figure 8.2)
+//   0 = h(1-θ)(I - z_n) + hθ(I - z_{n+1}),   I = (Vs - VON)/R,
+// leaves z_{n+1} - I = -((1-θ)/θ)(z_n - I): the error of the first clamped step is multiplied by
+// -1 every step at θ = 1/2 (the trapezoidal rule is A- but not L-stable: its stability function
+// tends to -1 at infinite stiffness, and an index-one constraint is infinitely stiff), and
+// removed in one step at θ = 1 (implicit Euler, L-stable). The capacitor current
+// i(c1) = I - z, zero in the exact solution, alternates in sign and never decays.
+//
+// The first clamped step starts from the free state v_old < VON; with z_old = 0 it gives
+//   z_on = (Vs - v_old)/R + I - 2C(VON - v_old)/h,
+// so the ringing amplitude |z_on - I| is fixed by where the switch falls within the step.
+
+TEST(StabilityTrapezoidRinging, CapacitorCurrentAlternatesWithoutDecayAfterTheClamp) {
+  const Netlist netlist = stability_netlist("capacitor_clamp_ringing");
+  const double Vs = 10, R = 1e3, C = 1e-6, VON = 5, h = 10e-6, I = (Vs - VON) / R;
+
+  const Simulation trap = simulate(netlist, "theta", h);
+  const std::vector<double> v = trap.column("v(a)"), ic = trap.column("i(c1)"),
+                            id = trap.column("i(d1)");
+  const size_t on = first_conducting(id);
+  ASSERT_GT(on, 0u);
+  ASSERT_LT(on + 100, id.size()) << "the clamp must engage well before TSTOP";
+  const double z_on = (Vs - v[on - 1]) / R + I - 2 * C * (VON - v[on - 1]) / h;
+  const double amplitude = std::abs(z_on - I);
+  EXPECT_NEAR(std::abs(ic[on]), amplitude, 1e-9 * I);
+  EXPECT_GT(amplitude, 0.3 * I);  // measured 0.374 I: not a rounding-level effect
+  long alternations = 0;
+  for (size_t n = on + 1; n < ic.size(); ++n) {
+    EXPECT_NEAR(v[n], VON, 1e-12 * VON) << "step " << n;
+    alternations += ic[n] * ic[n - 1] < 0;
+  }
+  EXPECT_EQ(alternations, static_cast<long>(ic.size() - on - 1));  // every step after the clamp
+  const double non_decay = std::abs(ic.back()) / std::abs(ic[on]);
+  EXPECT_NEAR(non_decay, 1.0, 1e-9);
+  report("trapezoid ringing", "steps after the clamp", static_cast<double>(ic.size() - on - 1));
+  report("trapezoid ringing", "sign alternations", static_cast<double>(alternations));
+  report("trapezoid ringing", "amplitude / I", std::abs(ic[on]) / I);
+  report("trapezoid ringing", "last / first amplitude", non_decay);
+
+  // Contrast: implicit Euler absorbs the overshoot in the first clamped step.
+  const Simulation euler = simulate(netlist, "euler", h);
+  const std::vector<double> ic_e = euler.column("i(c1)"), id_e = euler.column("i(d1)");
+  const size_t on_e = first_conducting(id_e);
+  ASSERT_LT(on_e + 100, id_e.size());
+  double worst = 0;
+  for (size_t n = on_e + 1; n < ic_e.size(); ++n) worst = std::max(worst, std::abs(ic_e[n]));
+  EXPECT_LT(worst, 1e-12 * I);
+  report("trapezoid ringing", "euler max |i(c1)| / I after the clamp", worst / I);
+}
+
+// At h = 100 tau the ringing is the whole diode current, and the diode switches at every step.
+// With a = h/(2 tau), an off step from (VON, z_on) ends at VON - e and the next on step gives
+// z_on = 2I + e(1 - 1/a)/R; the off step after it ends at VON - e (a-1)/(a+1) (the size of the
+// trapezoidal stability function (1 + h lambda/2)/(1 - h lambda/2) at h lambda = -2a). So e -> 0 by (a-1)/(a+1) = 49/51 per two steps while
+// z alternates between 0 and 2I: a period-two solution that satisfies every step's LCP, x = VON
+// throughout, i(c1) = ±I. Implicit Euler is exact from the second step.
+TEST(StabilityTrapezoidRinging, AtHundredTauTheDiodeTogglesEveryStepAndRingsWithTheFullCurrent) {
+  const Netlist netlist = stability_netlist("capacitor_clamp_ringing");
+  const double Vs = 10, R = 1e3, C = 1e-6, VON = 5, I = (Vs - VON) / R, h = 100 * R * C;
+  RunOptions ro;
+  ro.tstop = 1000 * h;
+  const Simulation trap = simulate(netlist, "theta", h, ro);
+  const std::vector<double> v = trap.column("v(a)"), ic = trap.column("i(c1)"), id = trap.column("i(d1)");
+  ASSERT_EQ(v.size(), 1001u);
+  long toggles = 0;
+  for (size_t n = 2; n < id.size(); ++n) toggles += (id[n] > 0) != (id[n - 1] > 0);
+  EXPECT_EQ(toggles, 999);
+  const double a = h / (2 * R * C), per_two_steps = (a - 1) / (a + 1);
+  // Off steps are the even ones; e from step 2 to step 402 (200 pairs): 3.3e-4.
+  ASSERT_EQ(id[2], 0.0);
+  ASSERT_EQ(id[402], 0.0);
+  const double e_ratio = (VON - v[402]) / (VON - v[2]);
+  EXPECT_NEAR(std::log(e_ratio) / std::log(std::pow(per_two_steps, 200)), 1.0, 1e-6);
+  EXPECT_NEAR(std::abs(ic.back()), I, 1e-6 * I);  // measured 1 + 2e-9
+  EXPECT_NEAR(std::abs(ic[ic.size() - 2]), I, 1e-6 * I);
+  report("trapezoid ringing h = 100 tau", "diode toggles in 1000 steps", static_cast<double>(toggles));
+  report("trapezoid ringing h = 100 tau", "|i(c1)| / I at the end", std::abs(ic.back()) / I);
+  report("trapezoid ringing h = 100 tau", "e ratio per two steps", std::pow(e_ratio, 1.0 / 200));
+
+  const Simulation euler = simulate(netlist, "euler", h, ro);
+  const std::vector<double> v_e = euler.column("v(a)"), ic_e = euler.column("i(c1)");
+  for (size_t n = 2; n < v_e.size(); ++n) {
+    EXPECT_NEAR(v_e[n], VON, 1e-12 * VON) << "step " << n;
+    EXPECT_LT(std::abs(ic_e[n]), 1e-12 * I) << "step " << n;
+  }
+}
+
+// The same recursion for 1/2 < θ < 1: the ringing decays by exactly -(1-θ)/θ per step.
+TEST(StabilityTrapezoidRinging, ThetaAboveOneHalfDampsItByMinusOneMinusThetaOverTheta) {
+  const Netlist netlist = stability_netlist("capacitor_clamp_ringing");
+  for (double theta : {0.5, 0.6, 0.75}) {
+    SCOPED_TRACE("theta = " + std::to_string(theta));
+    RunOptions ro;
+    ro.theta = theta;
+    const Simulation r = simulate(netlist, "theta", 10e-6, ro);
+    const std::vector<double> ic = r.column("i(c1)"), id = r.column("i(d1)");
+    const size_t on = first_conducting(id);
+    ASSERT_LT(on + 10, id.size());
+    for (size_t n = on + 1; n <= on + 10; ++n)  // ten steps: (2/3)^10 still far above rounding
+      EXPECT_NEAR(ic[n] / ic[n - 1], -(1 - theta) / theta, 1e-9) << "step " << n;
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Case 1, continued. theta < 1 settles at a wrong value when h >> tau.
+//
+// circuits/stability/diode_charged_rc_large_step.cir: C dv/dt = z, 0 <= z ⟂ R z + v - E >= 0
+// (E = V - VON = 9.3 V, tau = RC = 1 ms, index zero), started empty with z(0+) = E/R. The
+// theta-method's first step carries the initial current over (1-θ)h:
+//   v_1 = (1-θ) h z_0 / C + θ h z_1 / C.
+// With the diode on at the end of the step, v_1 = (h/tau) E / (1 + θ h/tau), which exceeds E
+// (so z_1 = (E - v_1)/R < 0) whenever (1-θ) h/tau > 1. Then z_1 = 0 is the LCP's answer,
+// v_1 = (1-θ)(h/tau) E, and the diode, now reverse-biased, holds the capacitor there for good.
+// Implicit Euler (θ = 1) has no explicit part: v_n = E (1 - (1 + h/tau)^-n), within 1 % of E
+// after one step at h = 100 tau.
+
+TEST(StabilityTrapezoidLargeStep, SettlesAtOneMinusThetaTimesHOverTauTimesTheTarget) {
+  const Netlist netlist = stability_netlist("diode_charged_rc_large_step");
+  const double E = 10 - 0.7, tau = 1e-3, h = 100e-3;
+  for (double theta : {0.5, 0.75}) {
+    SCOPED_TRACE("theta = " + std::to_string(theta));
+    RunOptions ro;
+    ro.theta = theta;
+    const Simulation r = simulate(netlist, "theta", h, ro);
+    const std::vector<double> v = r.column("v(out)"), id = r.column("i(d1)");
+    ASSERT_EQ(v.size(), 11u);
+    // z_0 comes from the start-up LCP (a step of 1e-8 tau): 1e-8 relative.
+    EXPECT_NEAR(v[1] / E, (1 - theta) * h / tau, 1e-6 * h / tau);
+    for (size_t n = 1; n < v.size(); ++n) {
+      EXPECT_EQ(v[n], v[1]) << "step " << n << ": the diode holds the overshoot";
+      EXPECT_EQ(id[n], 0.0) << "step " << n;
+    }
+    report(theta == 0.5 ? "theta 0.5, h = 100 tau" : "theta 0.75, h = 100 tau",
+           "settled v(out) / (V - VON)", v.back() / E);
+  }
+  // Contrast: implicit Euler.
+  const Simulation euler = simulate(netlist, "euler", h);
+  const std::vector<double> v = euler.column("v(out)");
+  for (size_t n = 0; n < v.size(); ++n)
+    EXPECT_NEAR(v[n], E * (1 - std::pow(1 + h / tau, -static_cast<double>(n))), 1e-9 * E) << n;
+  EXPECT_NEAR(v.back(), E, 1e-12 * E);
+  report("euler, h = 100 tau", "settled v(out) / (V - VON)", v.back() / E);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Case 2. Implicit Euler damps an undamped oscillation; the trapezoidal rule does not.
+//
+// circuits/stability/lc_tank_numerical_damping.cir: while the bridge conducts (always, but at
+// the zero crossings) the tank obeys v'' + 2 alpha v' + w0^2 v = 0 with alpha = 1/(2RC) = 0.5/s,
+// w0 = 1e4 rad/s, and every mode of the bridge gives the same linear system, so the time-stepping
+// is exactly the linear method applied to it. Per step each eigenvalue lambda = -alpha ± i wd is
+// multiplied by
+//   implicit Euler   1/(1 - h lambda)                (|.| = (1 + w0^2 h^2)^(-1/2) at alpha = 0),
+//   trapezoidal      (1 + h lambda/2)/(1 - h lambda/2) (|.| = 1 at alpha = 0),
+// and the energy E = C v^2/2 + L i^2/2 by the squared modulus, up to a ripple of order
+// alpha/w0 = 5e-5 within a period. Implicit Euler's extra damping rate is
+// -ln|1/(1 - h lambda)|/h - alpha ≈ w0^2 h / 2: 50/s at h = 1 us, 100 times the load's.
+
+double tank_energy(const Simulation& r, size_t n) {
+  const double C = 1e-6, L = 10e-3;
+  const double v = r.sink.rows[n](r.sink.column("v(a)")), i = r.sink.rows[n](r.sink.column("i(l1)"));
+  return 0.5 * C * v * v + 0.5 * L * i * i;
+}
+
+TEST(StabilityImplicitEulerDamping, TankEnergyShrinksByTheAmplificationFactorSquaredPerStep) {
+  const Netlist netlist = stability_netlist("lc_tank_numerical_damping");
+  const double R = 1e6, L = 10e-3, C = 1e-6;
+  const double alpha = 1 / (2 * R * C), w0 = 1 / std::sqrt(L * C);
+  const std::complex<double> lambda(-alpha, std::sqrt(w0 * w0 - alpha * alpha));
+  for (double h : {1e-6, 4e-6}) {
+    SCOPED_TRACE("h = " + std::to_string(h));
+    const Simulation r = simulate(netlist, "euler", h);
+    const size_t steps = r.sink.times.size() - 1;
+    const double predicted = std::abs(1.0 / (1.0 - h * lambda));  // amplitude factor per step
+    const double measured = std::pow(tank_energy(r, steps) / tank_energy(r, 0), 0.5 / steps);
+    // Compared as damping rates -ln(factor)/h; the ripple moves the measured one by about
+    // alpha/w0 = 5e-5 relative.
+    const double rate_measured = -std::log(measured) / h, rate_predicted = -std::log(predicted) / h;
+    EXPECT_NEAR(rate_measured / rate_predicted, 1.0, 2e-4);  // measured 5e-5 and 1.4e-5
+    // The numerical part alone: w0^2 h / 2 to first order (the exact -ln(1 + w0^2 h^2)/(2h) is
+    // 1e-4 (h = 1 us) and 8e-4 (h = 4 us) below it).
+    EXPECT_NEAR((rate_measured - alpha) / (w0 * w0 * h / 2), 1.0, 2e-3);
+    report(h == 1e-6 ? "euler tank h = 1 us" : "euler tank h = 4 us", "damping rate [1/s]", rate_measured);
+    report(h == 1e-6 ? "euler tank h = 1 us" : "euler tank h = 4 us", "(rate - alpha) / (w0^2 h / 2)",
+           (rate_measured - alpha) / (w0 * w0 * h / 2));
+    report(h == 1e-6 ? "euler tank h = 1 us" : "euler tank h = 4 us", "energy left after 5 ms",
+           tank_energy(r, steps) / tank_energy(r, 0));
+  }
+
+  // Contrast: the trapezoidal rule loses only what the 1 MOhm load dissipates, E0 exp(-2 alpha t),
+  // at every step, within the ripple.
+  const double h = 4e-6;
+  const Simulation trap = simulate(netlist, "theta", h);
+  double worst = 0;
+  for (size_t n = 0; n < trap.sink.times.size(); ++n)
+    worst = std::max(worst, std::abs(tank_energy(trap, n) / (tank_energy(trap, 0) *
+                                                         std::exp(-2 * alpha * trap.sink.times[n])) - 1));
+  EXPECT_LT(worst, 1e-4);
+  report("theta 0.5 tank h = 4 us", "max |E / (E0 exp(-2 alpha t)) - 1|", worst);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Case 3. Explicit time-stepping of a stiff LCS diverges above h = 2/|lambda_max|.
+//
+// lcspice has no explicit method, for this reason; the oracle lives only here. Forward Euler with
+// one LCP per step at the old state, the explicit end of 8.4.1 applied to the LCS of 4.5:
+//   z_n from LCP(C x_n + F u_n, D),   x_{n+1} = x_n + h (A x_n + B z_n + E u_n).
+// It needs D to be a P-matrix (index zero, every diode with RON or a resistor in its own loop):
+// then z_n is a Lipschitz function of x_n, the LCS is an ODE with a piecewise-linear right-hand
+// side, and in each mode forward Euler multiplies the mode's eigen-components by 1 + h lambda.
+// With a real lambda_max that is > 1 in size once h > 2/|lambda_max|, whatever the diode does.
+//
+// circuits/stability/stiff_rc_rectifier.cir: the 10 ohm / 1 uF output filter gives
+// lambda_max ≈ -1/(R2 C2) (1 + C2/C1) = -1.01e5/s in both diode modes (h_crit = 19.8 us); the
+// rectifier's own time constant is 10 ms.
+
+struct ExplicitRun {
+  std::vector<double> t;
+  std::vector<Eigen::VectorXd> x;
+};
+
+ExplicitRun forward_euler_lcp(const CircuitModel& model, const Eigen::VectorXd& x0, double h, double tstop) {
+  const Lcs& s = model.lcs();
+  ExplicitRun r;
+  Eigen::VectorXd x = x0;
+  const long steps = std::lround(tstop / h);
+  for (long n = 0; n <= steps; ++n) {
+    r.t.push_back(n * h);
+    r.x.push_back(x);
+    if (!(x.norm() < 1e100)) break;  // diverged: stop before overflow
+    const Eigen::VectorXd u = model.input_values(n * h);
+    const LcpSolution sol = solve_lemke(s.D, s.C * x + s.F * u);
+    EXPECT_EQ(sol.status, LcpStatus::Solved) << "t = " << n * h;
+    x += h * (s.A * x + s.B * sol.z + s.E * u);
+  }
+  return r;
+}
+
+// Largest |eigenvalue| of the dynamics over every mode of a one-pair LCS with D > 0: off
+// (z = 0): A; on (w = 0): A - B D^-1 C.
+double stiffest_rate(const Lcs& s) {
+  double rate = 0;
+  for (const Eigen::MatrixXd& M : {Eigen::MatrixXd(s.A), Eigen::MatrixXd(s.A - s.B * s.D.inverse() * s.C)}) {
+    const Eigen::VectorXcd ev = Eigen::EigenSolver<Eigen::MatrixXd>(M).eigenvalues();
+    for (int k = 0; k < ev.size(); ++k) {
+      EXPECT_LE(std::abs(ev(k).imag()), 1e-9 * M.norm()) << "an RC circuit has real eigenvalues";
+      rate = std::max(rate, std::abs(ev(k)));
+    }
+  }
+  return rate;
+}
+
+TEST(StabilityExplicitStepping, ForwardEulerDivergesAboveTwoOverLambdaMaxImplicitEulerDoesNot) {
+  const Netlist netlist = stability_netlist("stiff_rc_rectifier");
+  ModelOptions mo;
+  mo.t1 = netlist.tran->tstop;
+  const CircuitModel model = CircuitModel::build(netlist, mo);
+  const Lcs& s = model.lcs();
+  ASSERT_EQ(s.pairs(), 1);
+  ASSERT_GT(s.D(0, 0), 0.0) << "the oracle needs index zero";
+  ASSERT_TRUE(s.Gamma.isZero()) << "the oracle integrates x, which must then be the physical state";
+  ASSERT_EQ(model.states().size(), 2u);
+  ASSERT_EQ(model.states()[0].label, "v(c1)");  // v(a)
+  ASSERT_EQ(model.states()[1].label, "v(c2)");  // v(b)
+  const double lambda_max = stiffest_rate(s), h_crit = 2 / lambda_max;
+  EXPECT_NEAR(lambda_max, 1.01e5, 0.01e5);
+  report("stiff rectifier", "lambda_max [1/s]", lambda_max);
+  const Eigen::VectorXd x0 = initial_state(model, netlist.tran->uic, 0.0).x;
+  const double tstop = netlist.tran->tstop;
+
+  // Reference: implicit Euler at 1 us (its own error, about 1/25 of the 25 us run's, is ~5e-5 of
+  // the range). Compared on v(b), the output node, where the fast mode lives.
+  const Simulation ref = simulate(netlist, "euler", 1e-6);
+  const std::vector<double> ref_b = ref.column("v(b)");
+  double range = 0;
+  for (double y : ref_b) range = std::max(range, std::abs(y));
+  auto error_vs_reference = [&](const std::vector<double>& t, auto value_b) {
+    double e = 0;
+    for (size_t n = 0; n < t.size(); ++n)
+      e = std::max(e, std::abs(value_b(n) - interpolate(ref.sink.times, ref_b, t[n])));
+    return e / range;
+  };
+
+  // Above: h = 25 us = 1.26 h_crit. The error grows by |1 - h lambda_max| = 1.525 per step.
+  const double h_above = 25e-6;
+  ASSERT_GT(h_above, 1.2 * h_crit);
+  const ExplicitRun above = forward_euler_lcp(model, x0, h_above, tstop);
+  ASSERT_GT(above.x.size(), 400u);
+  const double growth = std::pow(above.x[400].norm() / above.x[200].norm(), 1.0 / 200);
+  EXPECT_NEAR(growth, std::abs(1 - h_above * lambda_max), 1e-4);  // measured 1.2e-5 off
+  const double at_5ms = above.x[200].norm();
+  EXPECT_GT(at_5ms, 1e25);  // volts, from a 10 V source; measured 2.4e30
+  report("forward euler h = 25 us", "h / h_crit", h_above / h_crit);
+  report("forward euler h = 25 us", "growth per step", growth);
+  report("forward euler h = 25 us", "|x| at 5 ms [V]", at_5ms);
+  report("forward euler h = 25 us", "steps to |x| > 1e100", static_cast<double>(above.x.size() - 1));
+
+  // Below: h = 16 us = 0.81 h_crit converges to the reference.
+  const double h_below = 16e-6;
+  ASSERT_LT(h_below, 0.85 * h_crit);
+  const ExplicitRun below = forward_euler_lcp(model, x0, h_below, tstop);
+  ASSERT_EQ(below.x.size(), 2501u);
+  const double e_below = error_vs_reference(below.t, [&](size_t n) { return below.x[n](1); });
+  EXPECT_LT(e_below, 3e-3);  // measured 8.5e-4
+  report("forward euler h = 16 us", "h / h_crit", h_below / h_crit);
+  report("forward euler h = 16 us", "max |v(b) - ref| / max|v(b)|", e_below);
+
+  // Contrast: implicit Euler at the unstable step and at 10 h_crit stays bounded and accurate.
+  for (double h : {h_above, 200e-6}) {
+    SCOPED_TRACE("implicit Euler, h = " + std::to_string(h));
+    const Simulation r = simulate(netlist, "euler", h);
+    const std::vector<double> b = r.column("v(b)");
+    const double e = error_vs_reference(r.sink.times, [&](size_t n) { return b[n]; });
+    EXPECT_LT(e, h == h_above ? 3e-3 : 2e-2);  // measured 1.2e-3 and 9.8e-3
+    report(h == h_above ? "implicit euler h = 25 us" : "implicit euler h = 200 us",
+           "max |v(b) - ref| / max|v(b)|", e);
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Case 4. ngspice is silently wrong with a sharp diode and a coarse maximum step.
+//
+// circuits/stability/half_wave_coarse_max_step.cir through the in-process bridge, with the
+// ideal diode translated to a VON source plus a Shockley diode of emission coefficient N = 0.01
+// (docs/model_convergence.md), and TMAX = 125 TSTEP. ngspice reports success, and its
+// waveform, read at its own time points (no interpolation error), is several times the range
+// off lcspice's and off its own run with TMAX = TSTEP. Why is not analysed here (with
+// method=gear it is still 1.2 ranges off, so it is not only case 1's trapezoidal ringing).
+
+TEST(StabilityNgspiceCoarseMaxStep, FinishesWithoutAnErrorAndSeveralRangesOff) {
+  const Netlist netlist = stability_netlist("half_wave_coarse_max_step");
+  ModelOptions mo;
+  mo.t1 = netlist.tran->tstop;
+  const CircuitModel model = CircuitModel::build(netlist, mo);
+  const std::vector<Probe>& probes = netlist.probes;
+  const double tstep = netlist.tran->tstep, tstop = netlist.tran->tstop;
+
+  // lcspice: implicit Euler at TSTEP/10, as `lcspice validate` runs it.
+  const Simulation ours = simulate(netlist, "euler", tstep / 10);
+
+  auto run_ngspice = [&](double max_step) {
+    TranslationOptions topt;
+    topt.emission = 0.01;
+    topt.max_step = max_step;
+    const TranslatedDeck deck = translate_to_ngspice(model, probes, topt);
+    NgspiceRun nr;
+    nr.deck = deck.lines;
+    nr.timeout_seconds = 60;
+    NgspiceResult result = run_ngspice_transient(nr);  // throws NgspiceError on any failure
+    return std::make_pair(deck, result);
+  };
+  const auto [coarse_deck, coarse] = run_ngspice(125 * tstep);
+  const auto [fine_deck, fine] = run_ngspice(0);  // TMAX = TSTEP
+
+  // The silence: no NgspiceError above, the whole interval covered, nothing it printed (but the
+  // echo of the title) says error or warning.
+  EXPECT_NEAR(coarse.time.back(), tstop, 1e-9 * tstop);
+  for (const std::string& m : coarse.messages) {
+    if (m.rfind("Circuit:", 0) == 0) continue;
+    std::string lower = m;
+    for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    EXPECT_EQ(lower.find("error"), std::string::npos) << m;
+    EXPECT_EQ(lower.find("warning"), std::string::npos) << m;
+    EXPECT_EQ(lower.find("too small"), std::string::npos) << m;
+  }
+
+  for (size_t p = 0; p < ours.sink.names.size(); ++p) {
+    const std::string& name = ours.sink.names[p];
+    SCOPED_TRACE(name);
+    auto series = [&](const TranslatedDeck& deck, const NgspiceResult& r) {
+      const ProbeSource& src = deck.probes.at(name);
+      std::vector<double> y = r.vectors.at(src.plus);
+      if (!src.minus.empty())
+        for (size_t k = 0; k < y.size(); ++k) y[k] -= r.vectors.at(src.minus)[k];
+      return y;
+    };
+    const std::vector<double> y_coarse = series(coarse_deck, coarse), y_fine = series(fine_deck, fine);
+    const std::vector<double> y_ours = ours.column(name);
+    double lo = INFINITY, hi = -INFINITY;
+    for (double y : y_ours) lo = std::min(lo, y), hi = std::max(hi, y);
+    const double range = hi - lo;
+    double vs_ours = 0, vs_fine = 0, fine_vs_ours = 0;
+    for (size_t k = 0; k < coarse.time.size(); ++k) {
+      vs_ours = std::max(vs_ours, std::abs(y_coarse[k] - interpolate(ours.sink.times, y_ours, coarse.time[k])));
+      vs_fine = std::max(vs_fine, std::abs(y_coarse[k] - interpolate(fine.time, y_fine, coarse.time[k])));
+    }
+    for (size_t k = 0; k < fine.time.size(); ++k)
+      fine_vs_ours = std::max(fine_vs_ours, std::abs(y_fine[k] - interpolate(ours.sink.times, y_ours, fine.time[k])));
+    // Measured: v(out) 2.38 and 2.38, i(l1) 2.85 and 2.84 ranges; TMAX = TSTEP: 0.26 % and
+    // 7.8 % (ngspice's own error at N = 0.01 with default tolerances, docs/model_convergence.md).
+    EXPECT_GT(vs_ours / range, 1.5);
+    EXPECT_GT(vs_fine / range, 1.5);
+    EXPECT_LT(fine_vs_ours / range, 0.12);
+    report(("ngspice TMAX = 125 TSTEP " + name).c_str(), "max error / range vs lcspice", vs_ours / range);
+    report(("ngspice TMAX = 125 TSTEP " + name).c_str(), "max error / range vs ngspice TMAX = TSTEP", vs_fine / range);
+    report(("ngspice TMAX = TSTEP " + name).c_str(), "max error / range vs lcspice", fine_vs_ours / range);
+  }
+  report("ngspice TMAX = 125 TSTEP", "time points", static_cast<double>(coarse.time.size()));
+  report("ngspice TMAX = TSTEP", "time points", static_cast<double>(fine.time.size()));
+}
+
+// ---------------------------------------------------------------------------------------------
+// The study's bookkeeping: every netlist in circuits/stability/ has a row in the summary table of
+// docs/stability.md, and every row names an existing netlist and a test registered here.
+
+struct TableRow {
+  std::string netlist, test;
+};
+
+std::vector<std::string> backticked(const std::string& cell) {
+  std::vector<std::string> out;
+  size_t a = cell.find('`');
+  while (a != std::string::npos) {
+    const size_t b = cell.find('`', a + 1);
+    if (b == std::string::npos) break;
+    out.push_back(cell.substr(a + 1, b - a - 1));
+    a = cell.find('`', b + 1);
+  }
+  return out;
+}
+
+std::vector<TableRow> summary_table() {
+  std::vector<TableRow> rows;
+  std::istringstream in(read_file(source_path("docs/stability.md")));
+  std::string line;
+  bool in_table = false;
+  while (std::getline(in, line)) {
+    if (line.rfind("| case |", 0) == 0) {
+      in_table = true;
+      continue;
+    }
+    if (!in_table) continue;
+    if (line.rfind("|", 0) != 0) break;
+    if (line.rfind("|---", 0) == 0) continue;
+    std::vector<std::string> cells(1);  // split at '|', but not at an escaped "\|"
+    for (size_t k = 1; k < line.size(); ++k) {
+      if (line[k] == '\\' && k + 1 < line.size() && line[k + 1] == '|') {
+        cells.back() += '|';
+        ++k;
+      } else if (line[k] == '|') {
+        cells.emplace_back();
+      } else {
+        cells.back() += line[k];
+      }
+    }
+    if (cells.back().empty()) cells.pop_back();
+    EXPECT_GE(cells.size(), 6u) << line;
+    if (cells.size() < 6) continue;
+    TableRow row;
+    for (const std::string& b : backticked(cells[0]))
+      if (b.rfind("circuits/stability/", 0) == 0) row.netlist = b;
+    const std::vector<std::string> tests = backticked(cells[4]);
+    if (!tests.empty()) row.test = tests.front();
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+TEST(StabilityStudy, EveryCaseHasANetlistARowAndATest) {
+  std::set<std::string> registered;
+  const ::testing::UnitTest& unit = *::testing::UnitTest::GetInstance();
+  for (int i = 0; i < unit.total_test_suite_count(); ++i) {
+    const ::testing::TestSuite& suite = *unit.GetTestSuite(i);
+    for (int j = 0; j < suite.total_test_count(); ++j)
+      registered.insert(std::string(suite.name()) + "." + suite.GetTestInfo(j)->name());
+  }
+  const std::vector<TableRow> rows = summary_table();
+  EXPECT_FALSE(rows.empty()) << "docs/stability.md has no summary table";
+  std::set<std::string> in_table;
+  for (const TableRow& row : rows) {
+    EXPECT_FALSE(row.netlist.empty()) << "a row without a circuits/stability/ netlist";
+    EXPECT_TRUE(cli_testing::fs::exists(source_path(row.netlist))) << row.netlist;
+    EXPECT_TRUE(registered.count(row.test)) << "no test " << row.test << " (row of " << row.netlist << ")";
+    EXPECT_EQ(row.test.rfind("Stability", 0), 0u) << row.test;
+    in_table.insert(row.netlist);
+  }
+  for (const auto& entry : cli_testing::fs::directory_iterator(source_path("circuits/stability"))) {
+    if (entry.path().extension() != ".cir") continue;
+    const std::string rel = "circuits/stability/" + entry.path().filename().string();
+    EXPECT_TRUE(in_table.count(rel)) << rel << " has no row in docs/stability.md";
+    std::string title;
+    std::ifstream file(entry.path());
+    std::getline(file, title);
+    EXPECT_GT(title.size(), 40u) << rel << ": the title line says what the case shows";
+  }
+}
+
+}  // namespace
+}  // namespace lcs
