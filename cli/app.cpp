@@ -80,6 +80,18 @@ int run_cli(int argc, char** argv) {
   validate_cmd->add_option("--ngspice-option", validate.ngspice_options,
                            "an .options word for the ngspice deck (repeatable), e.g. rshunt=1e9");
 
+  BenchArgs bench;
+  CLI::App* bench_cmd = app.add_subcommand(
+      "bench", "work-precision study: every method and ngspice at several steps/tolerances; CSV + PNG per circuit");
+  bench_cmd->add_option("netlists", bench.netlists, "netlists (default: the suite in circuits/bench_suite.tsv)");
+  bench_cmd->add_option("-o", bench.output_dir, "output directory (default bench-results)");
+  bench_cmd->add_flag("--quick", bench.quick, "two settings per method, one ngspice run: seconds, for tests");
+  bench_cmd->add_flag("--no-ngspice", bench.no_ngspice, "leave ngspice out");
+  bench_cmd->add_option("--method", bench.methods, "comma-separated methods (default: all)");
+  bench_cmd->add_option("--probe", bench.probes, "comma-separated probes for the netlists given");
+  bench_cmd->add_option("--ngspice-option", bench.ngspice_options, "extra ngspice .options word (repeatable)");
+  bench_cmd->add_option("--ngspice-timeout", bench.ngspice_timeout, "seconds of wall time per ngspice run (default 300)");
+
   PlotArgs plot;
   CLI::App* plot_cmd = app.add_subcommand("plot", "plot a waveform CSV against time (PNG, gnuplot)");
   plot_cmd->add_option("csv", plot.csv, "waveform CSV")->required();
@@ -103,6 +115,7 @@ int run_cli(int argc, char** argv) {
     if (op_cmd->parsed()) return op_command(op);
     if (analyze_cmd->parsed()) return analyze_command(analyze);
     if (plot_cmd->parsed()) return plot_command(plot);
+    if (bench_cmd->parsed()) return bench_command(bench);
     if (validate_cmd->parsed()) return validate_command(validate);
   } catch (const CliError& e) {
     std::cerr << e.what() << "\n";

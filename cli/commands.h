@@ -37,6 +37,16 @@ struct ValidateArgs {
 };
 int validate_command(const ValidateArgs& args);
 
+struct BenchArgs {
+  std::vector<std::string> netlists;  // empty: the suite in circuits/bench_suite.tsv
+  std::string output_dir = "bench-results";
+  std::string methods, probes;        // comma-separated; empty: every method / the netlist's
+  std::vector<std::string> ngspice_options;
+  double ngspice_timeout = 300;
+  bool quick = false, no_ngspice = false;
+};
+int bench_command(const BenchArgs& args);
+
 struct PlotArgs {
   std::string csv, output;
 };
