@@ -1,0 +1,129 @@
+// `lcspice bench` on a reduced setting (--quick: two settings per method, one ngspice run): the
+// table it writes must hold the accuracy facts the methods are known for, so a wrong reference,
+// a mismatched comparison grid or a broken method shows up here.
+#include <cmath>
+#include <map>
+
+#include <gtest/gtest.h>
+
+#include "tests/cli_support.h"
+
+namespace lcs::cli_testing {
+namespace {
+
+struct BenchRow {
+  std::string method, setting, reference, failure;
+  double error = NAN, error_vs_ideal = NAN, cpu = NAN;
+  long steps = 0, events = 0;
+};
+
+std::vector<BenchRow> read_bench(const fs::path& csv) {
+  const Csv table = parse_csv(read_file(csv));
+  std::vector<BenchRow> rows;
+  auto col = [&](const char* name) {
+    const int c = table.column(name);
+    EXPECT_GE(c, 0) << name;
+    return c;
+  };
+  const int method = col("method"), setting = col("setting"), ref = col("reference"), err = col("max_rel_error"),
+            vs = col("max_rel_error_vs_ideal"), cpu = col("cpu_seconds"), steps = col("steps"),
+            events = col("events"), failure = col("failure");
+  for (const auto& raw : table.raw) {
+    BenchRow r;
+    r.method = raw[method];
+    r.setting = raw[setting];
+    r.reference = raw[ref];
+    r.failure = raw[failure];
+    auto number = [](const std::string& s) { return s.empty() ? NAN : std::stod(s); };
+    r.error = number(raw[err]);
+    r.error_vs_ideal = number(raw[vs]);
+    r.cpu = number(raw[cpu]);
+    r.steps = raw[steps].empty() ? 0 : std::stol(raw[steps]);
+    r.events = raw[events].empty() ? 0 : std::stol(raw[events]);
+    rows.push_back(r);
+  }
+  return rows;
+}
+
+const BenchRow* find(const std::vector<BenchRow>& rows, const std::string& method, const std::string& setting) {
+  for (const BenchRow& r : rows)
+    if (r.method == method && r.setting == setting) return &r;
+  return nullptr;
+}
+
+TEST(Bench, QuickRunOnTheLcTankHoldsTheKnownAccuracies) {
+  const fs::path dir = scratch_dir("bench_tank");
+  const Result r = run_lcspice("bench --quick '" + source_path("circuits/lc_tank_bridge.cir").string() + "' -o '" + (dir / "out").string() + "'", dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::vector<BenchRow> rows = read_bench(dir / "out" / "bench.csv");
+
+  // The reference (event, rtol 1e-13) agrees with its own tightening to rounding.
+  const BenchRow* check = find(rows, "reference-check", "event rtol=1e-13 vs 1e-14 at TSTEP/2");
+  ASSERT_NE(check, nullptr);
+  EXPECT_LT(check->error, 1e-12);
+
+  // Every method ran at both quick settings, none failed.
+  for (const char* m : {"euler", "theta", "radau3", "radau5", "event"}) {
+    int n = 0;
+    for (const BenchRow& row : rows)
+      if (row.method == m) {
+        ++n;
+        EXPECT_TRUE(row.failure.empty()) << m << " " << row.setting << ": " << row.failure;
+        EXPECT_GT(row.cpu, 0) << m;
+      }
+    EXPECT_EQ(n, 2) << m;
+  }
+  // event: exact between switchings, 16 zero crossings in 5 ms.
+  for (const char* s : {"rtol=0.0001", "rtol=1e-12"}) {
+    const BenchRow* e = find(rows, "event", s);
+    ASSERT_NE(e, nullptr) << s;
+    EXPECT_LT(e->error, 1e-9) << s;
+    EXPECT_EQ(e->events, 16) << s;
+  }
+  // Implicit Euler is first order: a step 4x smaller gives an error ~4x smaller (3.7 measured;
+  // the ratio of its damping errors 1 - exp(-w^2 h t/2) at t = 5 ms).
+  const BenchRow* e2 = find(rows, "euler", "h=2e-06");
+  const BenchRow* e05 = find(rows, "euler", "h=5e-07");
+  ASSERT_TRUE(e2 && e05);
+  EXPECT_NEAR(e2->error / e05->error, 3.7, 0.3);
+  EXPECT_GT(e2->error, 1e-2);
+  // theta 0.5 is second order (ratio ~16), radau5 fifth order down to the reference's floor.
+  const BenchRow* t2 = find(rows, "theta", "h=2e-06");
+  const BenchRow* t05 = find(rows, "theta", "h=5e-07");
+  ASSERT_TRUE(t2 && t05);
+  EXPECT_NEAR(t2->error / t05->error, 16, 1.5);
+  const BenchRow* r5 = find(rows, "radau5", "h=2e-06");
+  ASSERT_NE(r5, nullptr);
+  EXPECT_LT(r5->error, 1e-9);
+  EXPECT_GT(e2->error / r5->error, 1e6);
+
+  // ngspice ran once, in-process, and is compared at its own points.
+  const BenchRow* ng = find(rows, "ngspice", "reltol=0.001");
+  ASSERT_NE(ng, nullptr);
+  EXPECT_TRUE(ng->failure.empty()) << ng->failure;
+  EXPECT_GT(ng->steps, 100);
+  // Against the ideal reference it cannot beat the model gap: 2 junctions x 36 mV on 20 V range.
+  EXPECT_GT(ng->error_vs_ideal, 1e-3);
+  EXPECT_LT(ng->error_vs_ideal, 2e-2);
+
+  // The chart is a PNG.
+  const std::string png = read_file(dir / "out" / "lc_tank_bridge.png");
+  ASSERT_GT(png.size(), 8u);
+  EXPECT_EQ(png.substr(1, 3), "PNG");
+  EXPECT_NE(r.out.find("headline: event reaches 1e-6"), std::string::npos) << r.out;
+}
+
+TEST(Bench, BadArgumentsAreUsageErrors) {
+  const fs::path dir = scratch_dir("bench_errors");
+  const std::string tank = "'" + source_path("circuits/lc_tank_bridge.cir").string() + "'";
+  const std::string out = " -o '" + (dir / "out").string() + "'";
+  Result r = run_lcspice("bench --quick --no-ngspice --method rk4 " + tank + out, dir);
+  EXPECT_EQ(r.code, 1);
+  EXPECT_EQ(r.err_line(0), "error: unknown method 'rk4' (known: euler, event, radau3, radau5, theta)");
+  r = run_lcspice("bench --quick --no-ngspice '" + (dir / "missing.cir").string() + "'" + out, dir);
+  EXPECT_EQ(r.code, 1);
+  EXPECT_FALSE(fs::exists(dir / "out" / "bench.csv"));
+}
+
+}  // namespace
+}  // namespace lcs::cli_testing
