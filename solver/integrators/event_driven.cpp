@@ -90,6 +90,7 @@ struct EventDriven::Impl {
   Eigen::VectorXd X;       // [x; σ]
   Eigen::VectorXd ga, da;  // constraint values and slopes at X
   std::vector<char> below_at_start;  // constraints that began the mode just below zero
+  Eigen::VectorXd scale;
   std::array<Eigen::VectorXd, kMaxLevel + 1> Xb, gb, db, sc;
 
   Impl(const CircuitModel& mdl, const EventOptions& o) : model(mdl), options(o) {}
@@ -317,11 +318,12 @@ bool EventDriven::Impl::apply_impulse(Eigen::VectorXd& x, const Eigen::VectorXd&
 }
 
 void EventDriven::Impl::refresh_constraints() {
-  ga = cur->G * X;
-  da = cur->GM * X;
-  const Eigen::VectorXd s = cur->Gabs * X.cwiseAbs() + (kNoise * X.norm()) * cur->Gnorm;
-  below_at_start.assign(m, 0);
-  for (int i = 0; i < m; ++i) below_at_start[i] = ga(i) < -kTol * s(i);
+  ga.noalias() = cur->G * X;
+  da.noalias() = cur->GM * X;
+  scale.noalias() = cur->Gabs * X.cwiseAbs();
+  scale += (kNoise * X.norm()) * cur->Gnorm;
+  below_at_start.resize(m);
+  for (int i = 0; i < m; ++i) below_at_start[i] = ga(i) < -kTol * scale(i);
 }
 
 void EventDriven::Impl::project() {
@@ -442,9 +444,11 @@ void EventDriven::DoRun(const Eigen::VectorXd& x0, const OutputGrid& grid, const
   }
   std::sort(stops.begin(), stops.end(), [](const Stop& a, const Stop& b) { return a.at < b.at; });
 
+  Eigen::VectorXd x_out(n), z_out(r.m), sigma;
   auto emit_now = [&](double t, bool event) {
-    const Eigen::VectorXd z = r.cur->Z * r.X;
-    emit(t, r.X.head(n), z, event);
+    x_out = r.X.head(n);
+    z_out.noalias() = r.cur->Z * r.X;
+    emit(t, x_out, z_out, event);
   };
   // Jumps, then the mode that holds from t on (4.5); X is rebuilt with the sources' form at t.
   auto restart = [&](double t, Eigen::VectorXd x) {
@@ -507,7 +511,6 @@ void EventDriven::DoRun(const Eigen::VectorXd& x0, const OutputGrid& grid, const
     }
     if (r.pos.f == 0 && r.pos.k <= kstop) {
       // Grid time: the sources' state is reset from the waveforms (no drift over long runs).
-      Eigen::VectorXd sigma;
       r.sources->sigma(r.pos.seconds(h0), r.cur->signature, sigma);
       r.X.tail(sigma.size()) = sigma;
       r.project();

@@ -30,7 +30,9 @@ struct TransientSummary {
   std::string method;
   long rows = 0;
   StepperStats stepper;
-  double cpu_setup = 0, cpu_steps = 0, cpu_output = 0;  // seconds of process CPU time
+  // Seconds of process CPU time: initial state and method setup; the stepping loop including
+  // the output rows (timing each row would cost more than writing it to memory).
+  double cpu_setup = 0, cpu_steps = 0;
   std::vector<std::string> warnings;
 
   std::string BriefReport() const;
