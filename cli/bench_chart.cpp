@@ -32,8 +32,8 @@ void write_bench_chart(const CircuitStudy& study, const std::string& png) {
     script += "EOD\n";
   }
   std::string title = study.title.size() > 70 ? study.title.substr(0, 67) + "..." : study.title;
-  const std::string file = study.circuit.substr(study.circuit.find_last_of('/') + 1);
-  script += "set title " + gnuplot_string(file + ": " + title) + "\n";
+  const std::string name = study.circuit.substr(study.circuit.find_last_of('/') + 1);
+  script += "set title " + gnuplot_string(name + ": " + title) + "\n";
   script += "set logscale xy\n";
   script += "set xlabel 'CPU time [s] (in-process; ngspice: its own analysis time)'\n";
   script += "set ylabel 'max |error| / range (vs event reference; smooth, ngspice: vs smooth reference)'\n";
