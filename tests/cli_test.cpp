@@ -272,7 +272,7 @@ TEST(Usage, ErrorsExitOne) {
   EXPECT_EQ(run_lcspice("", dir).code, 1);
   Result m = run_lcspice("run " + net + " --method rk4", dir);
   EXPECT_EQ(m.code, 1);
-  EXPECT_EQ(m.err_line(0), "error: unknown method 'rk4' (known: euler, theta)");
+  EXPECT_EQ(m.err_line(0), "error: unknown method 'rk4' (known: euler, smooth, theta)");
   EXPECT_EQ(run_lcspice("run " + net + " --probe 'v(a' --tstop 1e-6", dir).code, 1);
   EXPECT_EQ(run_lcspice("run " + net + " --probe 'v(zz)' --tstop 1e-6", dir).code, 1);
 }
@@ -283,7 +283,7 @@ TEST(Usage, HelpListsOnlyWhatExists) {
   EXPECT_EQ(r.code, 0);
   for (const char* cmd : {"run", "op", "analyze", "validate", "plot"})
     EXPECT_NE(r.out.find(cmd), std::string::npos) << cmd;
-  for (const char* absent : {"bench", "radau", "event", "smooth"})
+  for (const char* absent : {"bench", "radau", "event"})
     EXPECT_EQ(r.out.find(absent), std::string::npos) << absent;
 }
 

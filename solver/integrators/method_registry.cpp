@@ -1,5 +1,6 @@
 #include "solver/integrators/method_registry.h"
 
+#include "solver/integrators/smooth_method.h"
 #include "solver/integrators/theta_method.h"
 
 namespace lcs {
@@ -11,6 +12,13 @@ const std::vector<MethodEntry>& method_registry() {
          return std::make_unique<ThetaMethod>(m, 1.0);
        },
        {}},
+      {"smooth",
+       "Shockley diodes (Stewart 8.2 smoothing) as a DAE, SUNDIALS IDA (variable-order BDF), "
+       "--rtol/--atol",
+       {},
+       [](const CircuitModel& m, const MethodOptions& o) {
+         return std::make_unique<SmoothMethod>(m, o);
+       }},
       {"theta", "theta-method (--theta, default 0.5: trapezoidal), fixed step, one LCP per step",
        [](const CircuitModel& m, const MethodOptions& o) {
          return std::make_unique<ThetaMethod>(m, o.theta);
