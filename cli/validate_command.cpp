@@ -1,10 +1,14 @@
 // `lcspice validate`: the same circuit in lcspice (ideal diodes) and in ngspice (Shockley diodes,
-// in-process through libngspice), every probe compared on lcspice's time grid.
+// in-process through libngspice), every probe compared on lcspice's time grid. With
+// `--method smooth` lcspice integrates the very Shockley diodes the ngspice deck gets
+// (smooth_netlist with validate's emission and saturation current): the same model on both
+// sides, so what remains is the two integrators' error.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <memory>
+#include <optional>
 #include <iostream>
 #include <sstream>
 
@@ -22,6 +26,7 @@
 #include "solver/model/diode_law.h"
 #include "solver/model/initial_state.h"
 #include "solver/model/numerical_failure.h"
+#include "solver/model/smooth_netlist.h"
 
 namespace lcs {
 
@@ -88,7 +93,8 @@ void write_atomically(const std::string& path, const std::string& text) {
 
 // The report: the table as CSV, both waveforms per probe as CSV, one PNG overlay per probe.
 void write_report(const std::string& path, const std::vector<ProbeComparison>& rows, double tol,
-                  const MemorySink& ours, const std::vector<std::vector<double>>& theirs) {
+                  const MemorySink& ours, const std::vector<std::vector<double>>& theirs,
+                  const std::string& our_model) {
   std::ostringstream table;
   table << "probe,max_abs_error,range,max_error_over_range,time_of_worst,tolerance,within\n";
   char buf[256];
@@ -123,7 +129,7 @@ void write_report(const std::string& path, const std::vector<ProbeComparison>& r
   for (size_t p = 0; p < rows.size(); ++p) {
     pngs.push_back(std::make_unique<AtomicFile>(stem + "_" + sanitized(rows[p].name) + ".png"));
     script += "set output " + gnuplot_string(pngs.back()->temp()) + "\nset title " +
-              gnuplot_string(rows[p].name + ": lcspice (ideal diodes) and ngspice (Shockley)") +
+              gnuplot_string(rows[p].name + ": lcspice (" + our_model + ") and ngspice (Shockley)") +
               "\nplot " + gnuplot_string(waves_path) + " skip 1 using 1:" + std::to_string(2 + 2 * p) +
               " with lines lw 2 title 'lcspice', " + gnuplot_string(waves_path) + " skip 1 using 1:" +
               std::to_string(3 + 2 * p) + " with lines lw 1 dt 2 title 'ngspice'\n";
@@ -161,6 +167,17 @@ int validate_command(const ValidateArgs& args) {
     throw CliError(kExitUsage, "error: --max-step must be a positive number");
 
   CircuitModel model = build_model(netlist, 0.0, run.tstop);
+  // What lcspice integrates: the ideal circuit, or for `smooth` the Shockley circuit of the deck.
+  const bool smooth = run.method == "smooth";
+  TranslationOptions topt;
+  std::optional<CircuitModel> smooth_model;
+  if (smooth) {
+    SmoothingOptions so;
+    so.emission = args.emission;
+    so.saturation_current = topt.saturation_current;
+    smooth_model = build_model(smooth_netlist(netlist, so), 0.0, run.tstop);
+  }
+  const CircuitModel& ours_model = smooth ? *smooth_model : model;
   std::vector<Probe> probes = probes_for(netlist, model, args.probes);
   if (probes.empty()) {
     SourceLocation file_only;
@@ -171,9 +188,8 @@ int validate_command(const ValidateArgs& args) {
   std::vector<Probe> all = probes;
   for (const PairInfo& p : model.pairs())
     all.push_back({Probe::Kind::ElementCurrent, netlist.elements[p.element].name, "", {}});
-  OutputMap outputs = output_map_or_exit(model, all);
+  OutputMap outputs = output_map_or_exit(ours_model, all);
 
-  TranslationOptions topt;
   topt.emission = args.emission;
   if (args.max_step) topt.max_step = *args.max_step;
   topt.options = args.ngspice_options;
@@ -184,14 +200,15 @@ int validate_command(const ValidateArgs& args) {
     // ngspice honours IC= only with UIC; lcspice applies it over the operating point. Start
     // ngspice from lcspice's initial state instead: every capacitor voltage and inductor current.
     try {
-      const InitialState init = initial_state(model, false, 0.0);
-      const Eigen::VectorXd z0 = Eigen::VectorXd::Zero(model.lcs().pairs());
-      const CircuitGraph& g = model.graph();
+      const CircuitModel& m = ours_model;
+      const InitialState init = initial_state(m, false, 0.0);
+      const Eigen::VectorXd z0 = Eigen::VectorXd::Zero(m.lcs().pairs());
+      const CircuitGraph& g = m.graph();
       for (size_t b = 0; b < g.branches.size(); ++b) {
         if (g.branches[b].cls == BranchClass::Capacitor)
-          topt.initial_conditions[g.branches[b].name] = model.evaluate_dc(model.branch_voltage(b), init.x, z0, 0.0);
+          topt.initial_conditions[g.branches[b].name] = m.evaluate_dc(m.branch_voltage(b), init.x, z0, 0.0);
         if (g.branches[b].cls == BranchClass::Inductor)
-          topt.initial_conditions[g.branches[b].name] = model.evaluate_dc(model.branch_current(b), init.x, z0, 0.0);
+          topt.initial_conditions[g.branches[b].name] = m.evaluate_dc(m.branch_current(b), init.x, z0, 0.0);
       }
     } catch (const NumericalFailure& e) {
       throw CliError(kExitNumerical, std::string("lcspice: error: numerical failure ") + e.what());
@@ -205,7 +222,7 @@ int validate_command(const ValidateArgs& args) {
 
   MemorySink ours;
   try {
-    run_transient(model, outputs, run, ours);
+    run_transient(ours_model, outputs, run, ours);
   } catch (const NumericalFailure& e) {
     throw CliError(kExitNumerical, std::string("lcspice: error: numerical failure ") + e.what());
   }
@@ -254,13 +271,21 @@ int validate_command(const ValidateArgs& args) {
   const double gap = peak > 0 ? args.emission * kThermalVoltage * std::log(peak / topt.saturation_current) : 0.0;
 
   std::printf("validate %s\n", netlist.file.c_str());
-  std::printf("  lcspice: ideal diodes, %s, h = %g s, %zu rows\n", run.method.c_str(), run.step, ours.times.size());
+  if (smooth)
+    std::printf("  lcspice: Shockley diodes, smooth (SUNDIALS IDA), output every %g s, %zu rows\n",
+                run.step, ours.times.size());
+  else
+    std::printf("  lcspice: ideal diodes, %s, h = %g s, %zu rows\n", run.method.c_str(), run.step, ours.times.size());
   std::printf("  ngspice: %zu time points, %.3f s CPU\n", theirs.time.size(), theirs.analysis_cpu_seconds);
-  if (!deck.ideal_diodes.empty())
+  if (smooth)
+    std::printf("  both integrate the same Shockley diodes (ideal ones as VON sources + N = %g, IS = %g A):\n"
+                "  expected model gap 0; what differs is the two integrators' error\n",
+                args.emission, topt.saturation_current);
+  else if (!deck.ideal_diodes.empty())
     std::printf("  ideal diodes as VON sources + Shockley diodes (N = %g, IS = %g A); expected model gap:\n"
                 "  about %.3g V per conducting junction (N Vt ln(I/IS) at the peak diode current %.3g A)\n",
                 args.emission, topt.saturation_current, gap, peak);
-  if (deck.ideal_diodes.size() < model.pairs().size())
+  if (!smooth && deck.ideal_diodes.size() < model.pairs().size())
     std::printf("  diodes with their own IS/N/RS: compared as the card gives them (the gap is the "
                 "card's Shockley curve against lcspice's VON/RON)\n");
   std::printf("\n");
@@ -275,7 +300,8 @@ int validate_command(const ValidateArgs& args) {
   std::printf("\n%s: every probe within %g of its range\n", ok ? "PASS" : "FAIL", args.tol);
   if (!ok) std::printf("(a probe outside tolerance: exit code 4)\n");
   std::fflush(stdout);
-  if (!args.report.empty()) write_report(args.report, rows, args.tol, ours, interpolated);
+  if (!args.report.empty()) write_report(args.report, rows, args.tol, ours, interpolated,
+                                        smooth ? "Shockley diodes" : "ideal diodes");
   return ok ? kExitOk : kExitValidate;
 }
 

@@ -224,6 +224,32 @@ double Waveform::value(double t) const {
   return dc;
 }
 
+double Waveform::value_before(double t) const {
+  if (!resolved && kind != Kind::Dc) {
+    Waveform w = *this;
+    w.resolve(0, 0);
+    return w.value_before(t);
+  }
+  t = std::max(t, 0.0);
+  switch (kind) {
+    case Kind::Dc:
+    case Kind::Sin:
+      return value(t);
+    case Kind::Pulse: {
+      PulseShape s = pulse_shape(params);
+      if (t <= s.td) return s.v1;
+      double start, tau;
+      pulse_phase(s, t, start, tau);
+      // At the start of a period (other than the first) the left limit is the previous period's end.
+      if (tau == 0) return s.per > 0 ? pl_left(s.knots, s.per) : s.v1;
+      return pl_left(s.knots, tau);
+    }
+    case Kind::Pwl:
+      return pl_left(pwl_knots(params), t);
+  }
+  return dc;
+}
+
 double Waveform::derivative(double t) const {
   if (!resolved && kind != Kind::Dc) {
     Waveform w = *this;

@@ -28,6 +28,7 @@ struct Waveform {
   void reresolve(double tstep, double tstop);
 
   double value(double t) const;       // ngspice value at time t (t < 0 is treated as t = 0)
+  double value_before(double t) const;  // limit from the left at t (differs from value at jumps)
   double derivative(double t) const;  // d/dt value; right derivative at corners
   // Bounds [min, max] of value(t) over [t0, t1] (exact for DC/PULSE/PWL; SIN bounded by VO +- |VA|).
   std::pair<double, double> range(double t0, double t1) const;

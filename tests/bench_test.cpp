@@ -119,7 +119,7 @@ TEST(Bench, BadArgumentsAreUsageErrors) {
   const std::string out = " -o '" + (dir / "out").string() + "'";
   Result r = run_lcspice("bench --quick --no-ngspice --method rk4 " + tank + out, dir);
   EXPECT_EQ(r.code, 1);
-  EXPECT_EQ(r.err_line(0), "error: unknown method 'rk4' (known: euler, event, radau3, radau5, theta)");
+  EXPECT_EQ(r.err_line(0), "error: unknown method 'rk4' (known: euler, event, radau3, radau5, smooth, theta)");
   r = run_lcspice("bench --quick --no-ngspice '" + (dir / "missing.cir").string() + "'" + out, dir);
   EXPECT_EQ(r.code, 1);
   EXPECT_FALSE(fs::exists(dir / "out" / "bench.csv"));

@@ -272,7 +272,7 @@ TEST(Usage, ErrorsExitOne) {
   EXPECT_EQ(run_lcspice("", dir).code, 1);
   Result m = run_lcspice("run " + net + " --method rk4", dir);
   EXPECT_EQ(m.code, 1);
-  EXPECT_EQ(m.err_line(0), "error: unknown method 'rk4' (known: euler, event, radau3, radau5, theta)");
+  EXPECT_EQ(m.err_line(0), "error: unknown method 'rk4' (known: euler, event, radau3, radau5, smooth, theta)");
   EXPECT_EQ(run_lcspice("run " + net + " --probe 'v(a' --tstop 1e-6", dir).code, 1);
   EXPECT_EQ(run_lcspice("run " + net + " --probe 'v(zz)' --tstop 1e-6", dir).code, 1);
 }
@@ -284,7 +284,7 @@ TEST(Usage, HelpListsOnlyWhatExists) {
   for (const char* cmd : {"run", "op", "analyze", "validate", "bench", "plot"})
     EXPECT_NE(r.out.find(cmd), std::string::npos) << cmd;
   Result run_help = run_lcspice("run --help", dir);
-  for (const char* method : {"euler", "event", "radau3", "radau5", "theta"})
+  for (const char* method : {"euler", "event", "radau3", "radau5", "smooth", "theta"})
     EXPECT_NE(run_help.out.find(method), std::string::npos) << method;
 }
 

@@ -185,6 +185,11 @@ TEST(WaveformPulse, ZeroEdgesAreRightContinuousJumps) {
   EXPECT_EQ(w.value(2), 1);
   EXPECT_EQ(w.value(3), 0);
   EXPECT_EQ(w.derivative(1), 0);
+  EXPECT_EQ(w.value_before(0), 0);  // before TD = 0: V1
+  EXPECT_EQ(w.value_before(1), 1);
+  EXPECT_EQ(w.value_before(2), 0);  // end of the first period
+  EXPECT_EQ(w.value_before(3), 1);
+  EXPECT_EQ(w.value_before(0.5), 1);
   expect_times(w.breakpoints(0, 4), {1, 2, 3});
   auto r = w.range(0.2, 0.8);
   EXPECT_EQ(r.first, 1);
@@ -203,6 +208,7 @@ TEST(WaveformPulse, CornersLandExactlyDespiteRounding) {
   for (double t : w.breakpoints(0, 1)) {
     double phase = std::fmod(t + 1e-9, 0.1);
     EXPECT_EQ(w.value(t), phase < 0.05 ? 1 : 0) << "t = " << t;
+    EXPECT_EQ(w.value_before(t), phase < 0.05 ? 0 : 1) << "t = " << t;
   }
   EXPECT_EQ(w.breakpoints(0, 1).size(), 19u);
 }
@@ -248,6 +254,8 @@ TEST(WaveformPwl, ValuesJumpsAndEnds) {
   EXPECT_EQ(w.value(-1), 0);
   EXPECT_EQ(w.value(0.5), 0.5);
   EXPECT_EQ(w.value(1), 3);
+  EXPECT_EQ(w.value_before(1), 1);
+  EXPECT_EQ(w.value_before(2.5), 1.5);
   EXPECT_EQ(w.value(1.5), 3);
   EXPECT_EQ(w.value(2.5), 1.5);
   EXPECT_EQ(w.value(3), 0);

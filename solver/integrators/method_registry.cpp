@@ -2,6 +2,7 @@
 
 #include "solver/integrators/event_driven.h"
 #include "solver/integrators/radau_iia.h"
+#include "solver/integrators/smooth_method.h"
 #include "solver/integrators/theta_method.h"
 
 namespace lcs {
@@ -32,6 +33,13 @@ const std::vector<MethodEntry>& method_registry() {
          return std::make_unique<RadauIIA>(m, 3);
        },
        {}},
+      {"smooth",
+       "Shockley diodes (Stewart 8.2 smoothing) as a DAE, SUNDIALS IDA (variable-order BDF), "
+       "--rtol/--atol",
+       {},
+       [](const CircuitModel& m, const MethodOptions& o) {
+         return std::make_unique<SmoothMethod>(m, o);
+       }},
       {"theta", "theta-method (--theta, default 0.5: trapezoidal), fixed step, one LCP per step",
        [](const CircuitModel& m, const MethodOptions& o) {
          return std::make_unique<ThetaMethod>(m, o.theta);

@@ -38,15 +38,23 @@ std::string TransientSummary::BriefReport() const {
   char buf[512];
   const double hit_rate =
       stepper.lcp.solves > 0 ? 100.0 * stepper.lcp.warm_hits / stepper.lcp.solves : 0.0;
-  std::snprintf(buf, sizeof buf,
-                "method %s: %ld steps, %ld rows, %ld LCP solves (%.1f%% warm-start hits, %ld Lemke "
-                "calls, %ld pivots), %d factorisations",
-                method.c_str(), stepper.steps, rows, stepper.lcp.solves, hit_rate,
-                stepper.lcp.lemke_calls, stepper.lcp.lemke_pivots, stepper.factorisations);
+  std::snprintf(buf, sizeof buf, "method %s: %ld steps, %ld rows", method.c_str(), stepper.steps, rows);
   std::string out = buf;
+  if (stepper.lcp.solves > 0 || stepper.factorisations > 0) {  // not for the smooth method
+    std::snprintf(buf, sizeof buf,
+                  ", %ld LCP solves (%.1f%% warm-start hits, %ld Lemke calls, %ld pivots), %d "
+                  "factorisations",
+                  stepper.lcp.solves, hit_rate, stepper.lcp.lemke_calls, stepper.lcp.lemke_pivots,
+                  stepper.factorisations);
+    out += buf;
+  }
   if (stepper.events > 0 || stepper.modes > 0) {
-    std::snprintf(buf, sizeof buf, "\nevents %ld, mode switches %ld, distinct modes %d",
-                  stepper.events, stepper.mode_switches, stepper.modes);
+    std::snprintf(buf, sizeof buf, "\nevents %ld", stepper.events);
+    out += buf;
+  }
+  if (stepper.modes > 0) {
+    std::snprintf(buf, sizeof buf, ", mode switches %ld, distinct modes %d", stepper.mode_switches,
+                  stepper.modes);
     out += buf;
   }
   if (stepper.residual_evals > 0) {

@@ -1,0 +1,247 @@
+#include "solver/integrators/shockley_dae.h"
+
+#include <algorithm>
+
+#include "solver/model/diode_law.h"
+
+namespace lcs {
+
+namespace {
+
+// The forward branch solves IS (e^x - 1) + GMIN N Vt x = i for x = -m / N Vt > 0. Beyond this
+// ratio i / IS (e^x would pass 1e300) the GMIN term is below rounding and x = ln(i / IS): no
+// exponential is ever formed that could overflow, whatever s a Newton iterate tries.
+constexpr double kLargestRatio = 1e300;
+
+// The largest margin tolerance, as a fraction of N Vt: 1 % of the current.
+constexpr double kMarginFractionOfNVt = 0.01;
+
+}  // namespace
+
+ShockleyCurve::Point ShockleyCurve::at(double s) const {
+  Point p;
+  if (s >= 0) {
+    const double e = std::exp(-s / nvt);
+    p.current = is * std::expm1(-s / nvt) - kGmin * s;
+    p.margin = s;
+    p.dcurrent = -is / nvt * e - kGmin;
+    p.dmargin = 1.0;
+    return p;
+  }
+  const double g = g0(), a = kGmin * nvt / is;
+  p.current = -g * s;
+  p.dcurrent = -g;
+  const double c = p.current / is;
+  double x;
+  if (!(c < kLargestRatio)) {
+    x = std::log(c);  // also carries inf and NaN on to the caller
+  } else {
+    // f(x) = e^x - 1 + a x - c is convex and increasing, and f(ln(1 + c)) = a ln(1 + c) >= 0:
+    // Newton's method from there decreases monotonically to the root.
+    x = std::log1p(c);
+    for (int it = 0; it < 60; ++it) {
+      const double dx = (std::expm1(x) + a * x - c) / (std::exp(x) + a);
+      x -= dx;
+      if (std::abs(dx) <= 1e-15 * x) break;
+    }
+  }
+  p.margin = -nvt * x;
+  // e^x = 1 + c - a x on the curve.
+  p.dmargin = g / (is / nvt * (1 + c - a * x) + kGmin);
+  return p;
+}
+
+double ShockleyCurve::current(double margin) const {
+  // Beyond an exponent of 80 the exponential is continued by its tangent (C^1, as SPICE codes
+  // do), so a report of an absurd margin gives a large finite current rather than inf.
+  constexpr double kMaxExponent = 80.0;
+  const double x = -margin / nvt;
+  const double e = x <= kMaxExponent ? std::expm1(x)
+                                     : std::exp(kMaxExponent) * (1 + x - kMaxExponent) - 1;
+  return is * e - kGmin * margin;
+}
+
+ShockleyDae::ShockleyDae(const CircuitModel& model) : model_(model) {
+  const Lcs& lcs = model.lcs();
+  n_ = lcs.states();
+  m_ = lcs.pairs();
+  const Netlist& netlist = model.netlist();
+  for (const PairInfo& p : model.pairs()) {
+    const DiodeModel& card = netlist.diode_models.at(netlist.elements[p.element].model);
+    curves_.push_back({card.is, card.n * kThermalVoltage});
+    voltage_type_.push_back(p.voltage_type);
+  }
+  z_.resize(m_);
+  w_.resize(m_);
+  dz_.resize(m_);
+  dw_.resize(m_);
+}
+
+Eigen::VectorXd ShockleyDae::inputs(double t) const {
+  if (t < segment_end_) return model_.input_values(t);
+  Eigen::VectorXd u(model_.inputs().size());
+  for (size_t k = 0; k < model_.inputs().size(); ++k) {
+    const int el = model_.inputs()[k].element;
+    u(k) = el < 0 ? 1.0 : model_.netlist().elements[el].waveform.value_before(segment_end_);
+  }
+  return u;
+}
+
+void ShockleyDae::on_curves(const Eigen::Ref<const Eigen::VectorXd>& s, Eigen::VectorXd& z,
+                            Eigen::VectorXd& w, Eigen::VectorXd* dz, Eigen::VectorXd* dw) const {
+  for (int k = 0; k < m_; ++k) {
+    const ShockleyCurve::Point p = curves_[k].at(s(k));
+    z(k) = voltage_type_[k] ? p.margin : p.current;
+    w(k) = voltage_type_[k] ? p.current : p.margin;
+    if (dz) (*dz)(k) = voltage_type_[k] ? p.dmargin : p.dcurrent;
+    if (dw) (*dw)(k) = voltage_type_[k] ? p.dcurrent : p.dmargin;
+  }
+}
+
+Eigen::VectorXd ShockleyDae::complementarity_variables(const Eigen::VectorXd& s) const {
+  Eigen::VectorXd z(m_), w(m_);
+  on_curves(s, z, w, nullptr, nullptr);
+  return z;
+}
+
+Eigen::VectorXd ShockleyDae::parameters_from_ideal(double t, const Eigen::VectorXd& x,
+                                                   const Eigen::VectorXd& z_ideal) const {
+  const Lcs& lcs = model_.lcs();
+  const Eigen::VectorXd w = lcs.C * x + lcs.D * z_ideal + lcs.F * inputs(t);
+  Eigen::VectorXd s(m_);
+  for (int k = 0; k < m_; ++k) {
+    const double current = voltage_type_[k] ? w(k) : z_ideal(k);
+    const double margin = voltage_type_[k] ? z_ideal(k) : w(k);
+    s(k) = current > 0 ? -current / curves_[k].g0() : std::max(margin, 0.0);
+  }
+  return s;
+}
+
+bool ShockleyDae::residual(double t, const Eigen::Ref<const Eigen::VectorXd>& y,
+                           const Eigen::Ref<const Eigen::VectorXd>& yp,
+                           Eigen::Ref<Eigen::VectorXd> r) const {
+  const Lcs& lcs = model_.lcs();
+  const Eigen::VectorXd u = inputs(t);
+  const auto x = y.head(n_);
+  on_curves(y.tail(m_), z_, w_, nullptr, nullptr);
+  r.head(n_).noalias() = yp.head(n_) - lcs.A * x - lcs.B * z_ - lcs.E * u;
+  r.tail(m_).noalias() = w_ - lcs.C * x - lcs.D * z_ - lcs.F * u;
+  return r.allFinite();
+}
+
+void ShockleyDae::jacobian(double t, const Eigen::Ref<const Eigen::VectorXd>& y, double cj,
+                           Eigen::Ref<Eigen::MatrixXd> J) const {
+  const Lcs& lcs = model_.lcs();
+  on_curves(y.tail(m_), z_, w_, &dz_, &dw_);
+  J.topLeftCorner(n_, n_) = cj * Eigen::MatrixXd::Identity(n_, n_) - lcs.A;
+  J.topRightCorner(n_, m_) = -lcs.B * dz_.asDiagonal();
+  J.bottomLeftCorner(m_, n_) = -lcs.C;
+  J.bottomRightCorner(m_, m_) = Eigen::MatrixXd(dw_.asDiagonal()) - lcs.D * dz_.asDiagonal();
+}
+
+Eigen::VectorXd ShockleyDae::derivative(double t, const Eigen::VectorXd& x,
+                                        const Eigen::VectorXd& s) const {
+  const Lcs& lcs = model_.lcs();
+  on_curves(s, z_, w_, nullptr, nullptr);
+  return lcs.A * x + lcs.B * z_ + lcs.E * inputs(t);
+}
+
+Eigen::VectorXd ShockleyDae::parameter_rates(double t, const Eigen::VectorXd& x,
+                                             const Eigen::VectorXd& s,
+                                             const Eigen::VectorXd& xdot) const {
+  if (m_ == 0) return Eigen::VectorXd(0);
+  const Lcs& lcs = model_.lcs();
+  on_curves(s, z_, w_, &dz_, &dw_);
+  // The source slopes: the right derivative, as the integration goes forward from t.
+  const Eigen::MatrixXd Js = Eigen::MatrixXd(dw_.asDiagonal()) - lcs.D * dz_.asDiagonal();
+  Eigen::VectorXd sdot = Js.partialPivLu().solve(lcs.C * xdot + lcs.F * model_.input_derivatives(t));
+  if (!sdot.allFinite()) sdot.setZero();
+  return sdot;
+}
+
+void ShockleyDae::set_tolerances(double rtol, double volts, double voltage_scale) {
+  constexpr double kSiemens = 1e-12 / 1e-6;  // ngspice ABSTOL / VNTOL
+  rtol_ = rtol;
+  margin_atol_ = volts;
+  voltage_scale_ = voltage_scale;
+  state_atol_.resize(n_);
+  capacitor_.assign(n_, true);
+  const Netlist& netlist = model_.netlist();
+  for (int k = 0; k < n_; ++k) {
+    capacitor_[k] = netlist.elements[model_.states()[k].element].kind != ElementKind::Inductor;
+    state_atol_(k) = capacitor_[k] ? volts : volts * kSiemens;
+  }
+}
+
+bool ShockleyDae::error_weights(const Eigen::Ref<const Eigen::VectorXd>& y,
+                                Eigen::Ref<Eigen::VectorXd> w) const {
+  double scale = voltage_scale_;
+  for (int k = 0; k < n_; ++k) {
+    w(k) = 1.0 / (rtol_ * std::abs(y(k)) + state_atol_(k));
+    if (capacitor_[k]) scale = std::max(scale, std::abs(y(k)));
+  }
+  const double margin_tolerance = rtol_ * scale + margin_atol_;
+  for (int k = 0; k < m_; ++k) {
+    // A margin error of N Vt is a factor e in the current: however large the voltages, a margin
+    // must be known to a small fraction of N Vt (or Newton's method starts decades away).
+    const double tolerance =
+        std::max(margin_atol_, std::min(margin_tolerance, kMarginFractionOfNVt * curves_[k].nvt));
+    w(n_ + k) = curves_[k].at(y(n_ + k)).dmargin / tolerance;
+  }
+  return w.allFinite() && (w.array() > 0).all();
+}
+
+double ShockleyDae::weighted_norm(const Eigen::VectorXd& d, const Eigen::VectorXd& y) const {
+  Eigen::VectorXd w(d.size());
+  if (!error_weights(y, w)) return INFINITY;
+  return std::sqrt((d.cwiseProduct(w)).squaredNorm() / std::max<Eigen::Index>(1, d.size()));
+}
+
+bool ShockleyDae::solve_pairs(double t, const Eigen::VectorXd& x, Eigen::VectorXd& s,
+                              long* iterations) const {
+  if (m_ == 0) return true;
+  const Lcs& lcs = model_.lcs();
+  const Eigen::VectorXd q = lcs.C * x + lcs.F * inputs(t);
+  Eigen::VectorXd z(m_), w(m_), dz(m_), dw(m_), r(m_);
+  auto evaluate = [&](const Eigen::VectorXd& ss, bool derivatives) {
+    on_curves(ss, z, w, derivatives ? &dz : nullptr, derivatives ? &dw : nullptr);
+    r = w - lcs.D * z - q;
+    return r.allFinite();
+  };
+  // The weighted norm of a change of s alone.
+  Eigen::VectorXd y(n_ + m_), dy = Eigen::VectorXd::Zero(n_ + m_);
+  y.head(n_) = x;
+  auto norm = [&](const Eigen::VectorXd& d, const Eigen::VectorXd& at) {
+    y.tail(m_) = at;
+    dy.tail(m_) = d;
+    return weighted_norm(dy, y) * std::sqrt(double(n_ + m_) / m_);
+  };
+  Eigen::VectorXd sk = s, s_try;
+  for (int it = 0; it < 100; ++it) {
+    if (!evaluate(sk, true)) return false;
+    if (iterations) ++*iterations;
+    const Eigen::PartialPivLU<Eigen::MatrixXd> lu(Eigen::MatrixXd(dw.asDiagonal()) -
+                                                  lcs.D * dz.asDiagonal());
+    const Eigen::VectorXd ds = lu.solve(-r);
+    if (!ds.allFinite()) return false;
+    const double ds_norm = norm(ds, sk);
+    // Newton converges quadratically: a step this far inside the integration tolerance is the
+    // remaining error, so take it and stop.
+    if (ds_norm <= 1e-3) {
+      s = sk + ds;
+      return true;
+    }
+    // Damped by the natural monotonicity test (Deuflhard): the next simplified Newton correction
+    // must shrink, measured in the unknowns' own weighted units.
+    bool accepted = false;
+    for (double lambda = 1.0; lambda > 1e-10 && !accepted; lambda *= 0.5) {
+      s_try = sk + lambda * ds;
+      accepted = evaluate(s_try, false) && norm(lu.solve(-r), s_try) <= (1 - lambda / 4) * ds_norm;
+    }
+    if (!accepted) return false;
+    sk = s_try;
+  }
+  return false;
+}
+
+}  // namespace lcs

@@ -1,0 +1,426 @@
+#include "solver/integrators/smooth_method.h"
+
+#include <algorithm>
+#include <cfloat>
+#include <cmath>
+#include <cstdlib>
+#include <string>
+
+#include "solver/integrators/full_newton.h"
+#include "solver/integrators/sundials_handles.h"
+#include "solver/integrators/theta_method.h"
+#include "solver/model/numerical_failure.h"
+
+namespace lcs {
+
+// Output times (0 first, strictly increasing) and the points where the integration stops and
+// restarts: every source breakpoint inside the run, then the end.
+struct SmoothMethod::Schedule {
+  std::vector<double> outputs;
+  std::vector<double> stops;
+  double tstep = 0;
+};
+
+namespace {
+
+// Steps IDA may take between two output times before it reports IDA_TOO_MUCH_WORK.
+constexpr long kMaxStepsPerOutput = 100000;
+
+// IDA callbacks; user_data is the ShockleyDae.
+int residual_fn(realtype t, N_Vector yy, N_Vector yp, N_Vector rr, void* user_data) {
+  const auto& dae = *static_cast<const ShockleyDae*>(user_data);
+  const int n = dae.size();
+  Eigen::Map<Eigen::VectorXd> r(N_VGetArrayPointer(rr), n);
+  const bool finite = dae.residual(t, Eigen::Map<const Eigen::VectorXd>(N_VGetArrayPointer(yy), n),
+                                   Eigen::Map<const Eigen::VectorXd>(N_VGetArrayPointer(yp), n), r);
+  return finite ? 0 : 1;  // 1: recoverable, IDA retries with a smaller step
+}
+
+int jacobian_fn(realtype t, realtype cj, N_Vector yy, N_Vector, N_Vector, SUNMatrix J,
+                void* user_data, N_Vector, N_Vector, N_Vector) {
+  const auto& dae = *static_cast<const ShockleyDae*>(user_data);
+  const int n = dae.size();
+  // SUNDIALS' dense matrix is column-major, like Eigen's default.
+  Eigen::Map<Eigen::MatrixXd> jac(SUNDenseMatrix_Data(J), n, n);
+  dae.jacobian(t, Eigen::Map<const Eigen::VectorXd>(N_VGetArrayPointer(yy), n), cj, jac);
+  return jac.allFinite() ? 0 : 1;
+}
+
+// The root functions are the curve parameters themselves: s_k has the sign of diode k's margin
+// and of its current, so it crosses zero exactly where the current does.
+int crossings_fn(realtype, N_Vector yy, N_Vector, realtype* gout, void* user_data) {
+  const auto& dae = *static_cast<const ShockleyDae*>(user_data);
+  const double* y = N_VGetArrayPointer(yy);
+  std::copy(y + dae.states(), y + dae.size(), gout);
+  return 0;
+}
+
+int weights_fn(N_Vector yy, N_Vector ewt, void* user_data) {
+  const auto& dae = *static_cast<const ShockleyDae*>(user_data);
+  Eigen::Map<Eigen::VectorXd> w(N_VGetArrayPointer(ewt), dae.size());
+  return dae.error_weights(Eigen::Map<const Eigen::VectorXd>(N_VGetArrayPointer(yy), dae.size()), w) ? 0 : -1;
+}
+
+void error_fn(int, const char*, const char* function, char* msg, void* user_data) {
+  *static_cast<std::string*>(user_data) = std::string(function) + ": " + msg;
+}
+
+}  // namespace
+
+// One IDA integrator for the DAE, restarted at breakpoints.
+class SmoothMethod::IdaRun {
+ public:
+  explicit IdaRun(ShockleyDae& dae)
+      : dae_(dae),
+        ctx_(sundials::make_context()),
+        y_(sundials::checked(N_VNew_Serial(dae.size(), ctx_.get()))),
+        yp_(sundials::checked(N_VNew_Serial(dae.size(), ctx_.get()))),
+        id_(sundials::checked(N_VNew_Serial(dae.size(), ctx_.get()))),
+        matrix_(sundials::checked(SUNDenseMatrix(dae.size(), dae.size(), ctx_.get()))),
+        solver_(sundials::checked(SUNLinSol_Dense(y_.get(), matrix_.get(), ctx_.get()))),
+        newton_(sundials::make_full_newton(y_.get(), ctx_.get(), weights_fn, &dae)),
+        mem_(sundials::checked(IDACreate(ctx_.get()))) {
+    Eigen::Map<Eigen::VectorXd> id(N_VGetArrayPointer(id_.get()), dae.size());
+    id.head(dae.states()).setOnes();
+    id.tail(dae.pairs()).setZero();
+    N_VConst(0.0, y_.get());
+    N_VConst(0.0, yp_.get());
+  }
+
+  Eigen::Map<Eigen::VectorXd> y() { return {N_VGetArrayPointer(y_.get()), dae_.size()}; }
+  Eigen::Map<Eigen::VectorXd> yp() { return {N_VGetArrayPointer(yp_.get()), dae_.size()}; }
+
+  // From a consistent y at t: y' from the ODE and the differentiated algebraic rows, then
+  // IDACalcIC to confirm (and polish) s and x'. `t_next` is the first time asked for.
+  void start(double t, double t_next) {
+    const int n = dae_.states(), m = dae_.pairs();
+    const Eigen::VectorXd x = y().head(n), s = y().tail(m);
+    const Eigen::VectorXd xdot = dae_.derivative(t, x, s);
+    yp().head(n) = xdot;
+    yp().tail(m) = dae_.parameter_rates(t, x, s, xdot);
+    void* mem = mem_.get();
+    if (!initialised_) {
+      check(IDAInit(mem, residual_fn, t, y_.get(), yp_.get()), t, "IDAInit");
+      check(IDASetUserData(mem, &dae_), t, "IDASetUserData");
+      check(IDASetErrHandlerFn(mem, error_fn, &last_error_), t, "IDASetErrHandlerFn");
+      check(IDAWFtolerances(mem, weights_fn), t, "IDAWFtolerances");
+      check(IDASetLinearSolver(mem, solver_.get(), matrix_.get()), t, "IDASetLinearSolver");
+      check(IDASetJacFn(mem, jacobian_fn), t, "IDASetJacFn");
+      check(IDASetNonlinearSolver(mem, newton_.get()), t, "IDASetNonlinearSolver");
+      check(IDASetId(mem, id_.get()), t, "IDASetId");
+      check(IDASetMaxNumSteps(mem, kMaxStepsPerOutput), t, "IDASetMaxNumSteps");
+      if (m > 0) check(IDARootInit(mem, m, crossings_fn), t, "IDARootInit");
+      initialised_ = true;
+    } else {
+      check(IDAReInit(mem, t, y_.get(), yp_.get()), t, "IDAReInit");
+    }
+    t0_ = t;
+    check(IDACalcIC(mem, IDA_YA_YDP_INIT, t_next), t, "IDACalcIC");
+    check(IDAGetConsistentIC(mem, y_.get(), yp_.get()), t, "IDAGetConsistentIC");
+  }
+
+  void set_stop(double t) { check(IDASetStopTime(mem_.get(), t), t, "IDASetStopTime"); }
+
+  // Integrates towards tout; true when it stopped earlier at a root (t is then the root's time).
+  bool advance(double tout, double& t) {
+    long steps = 0;
+    IDAGetNumSteps(mem_.get(), &steps);
+    // IDA refuses a first step to a time within rounding of the start.
+    if (steps == 0 && std::abs(tout - t0_) <= 4 * DBL_EPSILON * (std::abs(t0_) + std::abs(tout))) {
+      t = tout;
+      return false;
+    }
+    realtype tret = 0;
+    const int flag = IDASolve(mem_.get(), tout, &tret, y_.get(), yp_.get(), IDA_NORMAL);
+    check(flag, tret, "IDASolve");
+    t = tret;
+    return flag == IDA_ROOT_RETURN;
+  }
+
+  // Adds the counters of the run since the last start (IDAReInit resets them).
+  void add_stats(StepperStats& s) {
+    void* mem = mem_.get();
+    long steps = 0, res = 0, jac = 0, nni = 0, netf = 0, ncfn = 0;
+    IDAGetNumSteps(mem, &steps);
+    IDAGetNumResEvals(mem, &res);
+    IDAGetNumJacEvals(mem, &jac);
+    IDAGetNumNonlinSolvIters(mem, &nni);
+    IDAGetNumErrTestFails(mem, &netf);
+    IDAGetNumNonlinSolvConvFails(mem, &ncfn);
+    s.steps += steps;
+    s.residual_evals += res;
+    s.jacobian_evals += jac;
+    s.newton_iterations += nni;
+    s.rejected_steps += netf + ncfn;
+  }
+
+ private:
+  void check(int flag, double t, const char* what) {
+    if (flag >= 0) return;
+    realtype now = t;
+    if (initialised_) IDAGetCurrentTime(mem_.get(), &now);
+    char* name = IDAGetReturnFlagName(flag);  // malloc'd by SUNDIALS
+    std::string message = std::string("the smooth method failed: ") + what + " returned " +
+                          (name ? name : std::to_string(flag));
+    std::free(name);
+    if (!last_error_.empty()) message += " (" + last_error_ + ")";
+    throw NumericalFailure(now, message);
+  }
+
+  ShockleyDae& dae_;
+  // Declared in order of creation, so destroyed in reverse: IDA first, the context last.
+  sundials::Context ctx_;
+  sundials::Vector y_, yp_, id_;
+  sundials::Matrix matrix_;
+  sundials::LinearSolver solver_;
+  sundials::NonlinearSolver newton_;
+  sundials::Ida mem_;
+  bool initialised_ = false;
+  double t0_ = 0;
+  std::string last_error_;
+};
+
+SmoothMethod::Schedule SmoothMethod::make_schedule(const CircuitModel& model,
+                                                   const OutputGrid& grid) {
+  Schedule s;
+  s.tstep = grid.tstep;
+  // Multiples of TSTEP computed as k * tstep, not accumulated (as the fixed-step loop does).
+  const long full = static_cast<long>(std::floor(grid.tstop / grid.tstep * (1 + 1e-12)));
+  for (long k = 0; k <= full; ++k) s.outputs.push_back(k * grid.tstep);
+  if (grid.tstop - full * grid.tstep > 1e-9 * grid.tstep) s.outputs.push_back(grid.tstop);
+  for (double t : grid.extra)
+    if (t > 0 && t <= grid.tstop) s.outputs.push_back(t);
+  std::sort(s.outputs.begin(), s.outputs.end());
+  s.outputs.erase(std::unique(s.outputs.begin(), s.outputs.end()), s.outputs.end());
+  const double end = s.outputs.back();
+
+  // Breakpoints closer than this are one restart (the later one: every jump is then behind it).
+  const double merge = 1e-13 * end;
+  std::vector<double> bps;
+  for (const InputInfo& in : model.inputs())
+    if (in.element >= 0)
+      for (double b : model.netlist().elements[in.element].waveform.breakpoints(0, end))
+        bps.push_back(b);
+  std::sort(bps.begin(), bps.end());
+  for (size_t k = 0; k < bps.size(); ++k) {
+    if (bps[k] <= merge || bps[k] >= end - merge) continue;
+    if (k + 1 < bps.size() && bps[k + 1] - bps[k] <= merge) continue;
+    s.stops.push_back(bps[k]);
+  }
+  s.stops.push_back(end);
+  return s;
+}
+
+SmoothMethod::SmoothMethod(const CircuitModel& model, const MethodOptions& options)
+    : ContinuousMethod(model),
+      dae_(model),
+      rtol_(options.rtol > 0 ? options.rtol : kDefaultRtol),
+      atol_(options.atol > 0 ? options.atol : kDefaultAtol) {}
+
+SmoothMethod::~SmoothMethod() = default;
+
+void SmoothMethod::consistent_pairs(double t, const Eigen::VectorXd& x, Eigen::VectorXd& s,
+                                    double tstep) {
+  const int m = dae_.pairs();
+  if (m == 0) return;
+  long* its = &stats_.newton_iterations;
+  Eigen::VectorXd trial = s;
+  if (dae_.solve_pairs(t, x, trial, its)) {
+    s = trial;
+    return;
+  }
+  try {
+    if (!ideal_) ideal_ = std::make_unique<ThetaMethod>(model_, 1.0);
+    Eigen::VectorXd z_ideal(m);
+    ideal_->Start(t, tstep, x, z_ideal);
+    trial = dae_.parameters_from_ideal(t, x, z_ideal);
+    if (dae_.solve_pairs(t, x, trial, its)) {
+      s = trial;
+      return;
+    }
+  } catch (const NumericalFailure&) {
+    // no ideal solution to start from; try zero below
+  }
+  trial.setZero();
+  if (dae_.solve_pairs(t, x, trial, its)) {
+    s = trial;
+    return;
+  }
+  throw NumericalFailure(t, "the smooth method found no diode currents consistent with the state "
+                            "(Newton's method did not converge)");
+}
+
+void SmoothMethod::DoRun(const Eigen::VectorXd& x0, const OutputGrid& grid, const Emit& emit,
+                         const Progress& progress) {
+  stats_ = {};
+  const Schedule schedule = make_schedule(model_, grid);
+  const int n = dae_.states(), m = dae_.pairs();
+  const std::vector<double>& outs = schedule.outputs;
+  const std::vector<double>& stops = schedule.stops;
+
+  double voltage_scale = 0;
+  for (const InputInfo& in : model_.inputs()) {
+    if (in.element < 0) continue;
+    const Element& el = model_.netlist().elements[in.element];
+    if (el.kind != ElementKind::VoltageSource) continue;
+    const auto [lo, hi] = el.waveform.range(0, stops.back());
+    voltage_scale = std::max({voltage_scale, std::abs(lo), std::abs(hi)});
+  }
+  dae_.set_tolerances(rtol_, atol_, voltage_scale);
+  dae_.set_segment_end(stops.front());
+  Eigen::VectorXd s = Eigen::VectorXd::Zero(m);
+  if (m > 0) {
+    // The ideal solution is the better first guess: zero currents are far from a conducting diode.
+    try {
+      ideal_ = std::make_unique<ThetaMethod>(model_, 1.0);
+      Eigen::VectorXd z_ideal(m);
+      ideal_->Start(0.0, schedule.tstep, x0, z_ideal);
+      s = dae_.parameters_from_ideal(0.0, x0, z_ideal);
+    } catch (const NumericalFailure&) {
+      s.setZero();
+    }
+    consistent_pairs(0.0, x0, s, schedule.tstep);
+  }
+
+  double last = -1, last_progress = 0;
+  Eigen::VectorXd s_out;
+  auto emit_state = [&](double t, const Eigen::VectorXd& y, bool event) {
+    if (t <= last) return;
+    // Between IDA's steps s is the interpolating polynomial's, controlled only to the margin
+    // tolerance; the rows get the s consistent with the (interpolated) states instead.
+    s_out = y.tail(m);
+    if (n > 0 && m > 0) dae_.solve_pairs(t, y.head(n), s_out, &stats_.newton_iterations);
+    emit(t, y.head(n), dae_.complementarity_variables(s_out), event);
+    last = t;
+    if (progress && t - last_progress >= 0.005 * stops.back()) {
+      progress(t);
+      last_progress = t;
+    }
+  };
+  Eigen::VectorXd y(n + m);
+  y << x0, s;
+  emit_state(0.0, y, false);
+  if (n == 0) {
+    run_algebraic(schedule, s, emit_state);
+    return;
+  }
+
+  IdaRun ida(dae_);
+  ida.y() = y;
+  ida.start(0.0, stops.front());
+  size_t out = 1;
+  for (size_t k = 0; k < stops.size(); ++k) {
+    const double b = stops[k];
+    dae_.set_segment_end(b);
+    ida.set_stop(b);
+    for (;;) {
+      const double target = out < outs.size() && outs[out] < b ? outs[out] : b;
+      double t = 0;
+      if (ida.advance(target, t)) {
+        ++stats_.events;
+        emit_state(t, ida.y(), true);
+        continue;
+      }
+      if (target == b) break;
+      emit_state(target, ida.y(), false);
+      ++out;
+    }
+    if (k + 1 < stops.size()) {
+      // Restart: a source may jump at b; x is continuous, s follows the new source values.
+      ida.add_stats(stats_);
+      dae_.set_segment_end(stops[k + 1]);
+      y = ida.y();
+      Eigen::VectorXd x = y.head(n), sb = y.tail(m);
+      consistent_pairs(b, x, sb, schedule.tstep);
+      y.tail(m) = sb;
+      if (out < outs.size() && outs[out] == b) {
+        emit_state(b, y, false);
+        ++out;
+      }
+      ida.y() = y;
+      ida.start(b, stops[k + 1]);
+    } else if (out < outs.size() && outs[out] == b) {
+      emit_state(b, ida.y(), false);
+      ++out;
+    }
+  }
+  ida.add_stats(stats_);
+}
+
+void SmoothMethod::run_algebraic(const Schedule& schedule, Eigen::VectorXd s,
+                                 const std::function<void(double, const Eigen::VectorXd&, bool)>& emit_state) {
+  const Eigen::VectorXd x(0);
+  const std::vector<double>& outs = schedule.outputs;
+  const std::vector<double>& stops = schedule.stops;
+  auto solve = [&](double t, Eigen::VectorXd& ss) {
+    consistent_pairs(t, x, ss, schedule.tstep);
+    ++stats_.steps;
+  };
+  auto crosses = [](double a, double b) { return (a > 0 && b <= 0) || (a < 0 && b >= 0); };
+  // The first time after pair k's crossing in (ta, tb], by the Illinois variant of regula falsi,
+  // to about the time resolution of IDA's root finder (100 ulps).
+  auto locate = [&](int k, double ta, const Eigen::VectorXd& sa, double tb,
+                    const Eigen::VectorXd& sb, Eigen::VectorXd& s_at) {
+    double lo = ta, hi = tb, glo = sa(k), ghi = sb(k);
+    Eigen::VectorXd slo = sa;
+    s_at = sb;
+    for (int it = 0; it < 200 && hi - lo > 100 * DBL_EPSILON * std::max(std::abs(hi), tb - ta); ++it) {
+      double tm = hi - ghi * (hi - lo) / (ghi - glo);
+      if (!(tm > lo && tm < hi)) tm = 0.5 * (lo + hi);
+      Eigen::VectorXd sm = slo + (s_at - slo) * ((tm - lo) / (hi - lo));
+      solve(tm, sm);
+      if (crosses(glo, sm(k))) {
+        hi = tm;
+        ghi = sm(k);
+        s_at = sm;
+        glo *= 0.5;
+      } else {
+        lo = tm;
+        glo = sm(k);
+        slo = sm;
+        ghi *= 0.5;
+      }
+    }
+    return hi;
+  };
+
+  size_t out = 1;
+  double ta = 0;
+  for (size_t k = 0; k < stops.size(); ++k) {
+    const double b = stops[k];
+    dae_.set_segment_end(b);  // the sample at b is the left limit of the sources there
+    for (;;) {
+      const double tb = out < outs.size() && outs[out] < b ? outs[out] : b;
+      Eigen::VectorXd sb = s;
+      solve(tb, sb);
+      std::vector<std::pair<double, Eigen::VectorXd>> events;
+      for (int p = 0; p < s.size(); ++p)
+        if (crosses(s(p), sb(p))) {
+          Eigen::VectorXd s_at;
+          const double te = locate(p, ta, s, tb, sb, s_at);
+          events.emplace_back(te, s_at);
+        }
+      std::sort(events.begin(), events.end(),
+                [](const auto& e, const auto& f) { return e.first < f.first; });
+      for (const auto& [te, se] : events) {
+        ++stats_.events;
+        emit_state(te, se, true);
+      }
+      ta = tb;
+      s = sb;
+      if (tb == b) break;
+      emit_state(tb, s, false);
+      ++out;
+    }
+    if (k + 1 < stops.size()) {
+      dae_.set_segment_end(stops[k + 1]);
+      solve(b, s);  // after the jump
+    }
+    if (out < outs.size() && outs[out] == b) {
+      emit_state(b, s, false);
+      ++out;
+    }
+  }
+}
+
+}  // namespace lcs

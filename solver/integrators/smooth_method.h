@@ -1,0 +1,53 @@
+// `--method smooth`: the penalty/smoothing method of Stewart 8.2. Every complementarity pair of
+// the circuit's LCS becomes its diode's Shockley law (shockley_dae.h), and the resulting index-1
+// DAE is integrated by SUNDIALS IDA (variable-order BDF, dense Jacobian given analytically).
+//
+// Sources' breakpoints (PULSE and PWL corners, SIN start) are IDA stop times; after each the
+// integration restarts from a consistent state (IDAReInit + IDACalcIC), so a jump in a source is
+// taken exactly. A switching event is a diode current crossing zero, located by IDA's root finder
+// on the curve parameters (shockley_dae.h), which change sign with the currents. Output rows take
+// the diode variables consistent with the interpolated states. A circuit without states has no
+// differential equation: it is a Newton solve per output time, with crossings between output
+// times located by regula falsi.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "solver/integrators/continuous_method.h"
+#include "solver/integrators/method_registry.h"
+#include "solver/integrators/shockley_dae.h"
+
+namespace lcs {
+
+class ThetaMethod;
+
+class SmoothMethod : public ContinuousMethod {
+ public:
+  static constexpr double kDefaultRtol = 1e-6, kDefaultAtol = 1e-9;
+
+  SmoothMethod(const CircuitModel& model, const MethodOptions& options);
+  ~SmoothMethod() override;
+
+ protected:
+  void DoRun(const Eigen::VectorXd& x0, const OutputGrid& grid, const Emit& emit,
+             const Progress& progress) override;
+
+ private:
+  struct Schedule;  // output times and restart points
+  class IdaRun;     // one run through IDA
+
+  static Schedule make_schedule(const CircuitModel& model, const OutputGrid& grid);
+  // Curve parameters s consistent with x at t: Newton from `s`, else from the ideal
+  // (complementarity) solution, else from zero. Throws NumericalFailure when none converges.
+  void consistent_pairs(double t, const Eigen::VectorXd& x, Eigen::VectorXd& s, double tstep);
+  // No states: a Newton solve per output time; emit_state(t, s, event).
+  void run_algebraic(const Schedule& schedule, Eigen::VectorXd s,
+                     const std::function<void(double, const Eigen::VectorXd&, bool)>& emit_state);
+
+  ShockleyDae dae_;
+  double rtol_, atol_;  // atol in volts (ShockleyDae::set_tolerances)
+  std::unique_ptr<ThetaMethod> ideal_;  // for starting guesses, made when first needed
+};
+
+}  // namespace lcs
