@@ -2,6 +2,8 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cmath>
 #include <regex>
 
 #include <gtest/gtest.h>
@@ -326,6 +328,59 @@ TEST(Analyze, HalfWaveRectifierDiodeIsAnInductorDiode) {
             std::string::npos)
       << r.out;
   EXPECT_NE(r.out.find("\"index\": 1, \"state_labels\": [\"v(c1)\", \"i(l1)\"]"), std::string::npos) << r.out;
+}
+
+
+// ---------------------------------------------------------------------------------------------
+// run --method smooth
+
+TEST(Smooth, RowsAtEveryTstepMultiplePlusTheEvents) {
+  const fs::path dir = scratch_dir("smooth_run");
+  const fs::path csv_path = dir / "hw.csv";
+  Result r = run_lcspice("run '" + source_path("circuits/half_wave_rectifier.cir").string() +
+                             "' --method smooth --stats -o '" + csv_path.string() + "'",
+                         dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(r.err_line(0).rfind("method smooth: ", 0), 0u) << r.err;
+  const size_t at = r.err.find("\nevents ");
+  ASSERT_NE(at, std::string::npos) << r.err;
+  const long events = std::stol(r.err.substr(at + 8));
+  EXPECT_GE(events, 6);  // the diode conducts three times in 60 ms
+  Csv csv = parse_csv(read_file(csv_path));
+  ASSERT_EQ(csv.header, (std::vector<std::string>{"time", "v(in)", "v(n1)", "v(out)", "i(l1)", "i(d1)"}));
+  const double h = 20e-6;
+  const long multiples = 3001;  // .tran 20u 60m
+  ASSERT_EQ(static_cast<long>(csv.rows.size()), multiples + events);
+  long k = 0, extra = 0;
+  double peak = 0;
+  for (const auto& row : csv.rows) peak = std::max(peak, std::abs(row[5]));
+  for (size_t j = 0; j < csv.rows.size(); ++j) {
+    const double t = csv.rows[j][0];
+    if (j > 0) {
+      EXPECT_GT(t, csv.rows[j - 1][0]) << "row " << j;
+    }
+    EXPECT_NEAR(csv.rows[j][1], 10 * std::sin(2 * M_PI * 50 * t), 1e-9) << "v(in) at " << t;
+    if (k < multiples && std::abs(t - k * h) <= 1e-12 * h) {
+      ++k;
+    } else {
+      ++extra;  // an event: the diode current crosses zero there
+      EXPECT_LT(std::abs(csv.rows[j][5]), 1e-9 * peak) << "i(d1) at the event at " << t;
+    }
+  }
+  EXPECT_EQ(k, multiples) << "a multiple of TSTEP is missing";
+  EXPECT_EQ(extra, events);
+}
+
+TEST(Smooth, DiodeShockleySelectsTheSmoothMethod) {
+  const fs::path dir = scratch_dir("smooth_diode");
+  const std::string net = "'" + source_path("circuits/peak_detector.cir").string() + "'";
+  Result r = run_lcspice("run " + net + " --diode shockley --stats -o '" + (dir / "p.csv").string() + "'", dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(r.err_line(0).rfind("method smooth: ", 0), 0u) << r.err;
+  Result euler = run_lcspice("run " + net + " --diode shockley --method euler", dir);
+  EXPECT_EQ(euler.code, 1);
+  EXPECT_EQ(euler.err_line(0),
+            "error: --diode shockley needs --method smooth (method euler uses the ideal law)");
 }
 
 }  // namespace

@@ -13,7 +13,7 @@ namespace {
 // exponential is ever formed that could overflow, whatever s a Newton iterate tries.
 constexpr double kLargestRatio = 1e300;
 
-// The largest margin tolerance, as a fraction of N Vt: 1 % of the current.
+// The largest margin tolerance, as a fraction of N Vt (see error_weights).
 constexpr double kMarginFractionOfNVt = 0.01;
 
 }  // namespace
@@ -51,16 +51,6 @@ ShockleyCurve::Point ShockleyCurve::at(double s) const {
   return p;
 }
 
-double ShockleyCurve::current(double margin) const {
-  // Beyond an exponent of 80 the exponential is continued by its tangent (C^1, as SPICE codes
-  // do), so a report of an absurd margin gives a large finite current rather than inf.
-  constexpr double kMaxExponent = 80.0;
-  const double x = -margin / nvt;
-  const double e = x <= kMaxExponent ? std::expm1(x)
-                                     : std::exp(kMaxExponent) * (1 + x - kMaxExponent) - 1;
-  return is * e - kGmin * margin;
-}
-
 ShockleyDae::ShockleyDae(const CircuitModel& model) : model_(model) {
   const Lcs& lcs = model.lcs();
   n_ = lcs.states();
@@ -75,6 +65,7 @@ ShockleyDae::ShockleyDae(const CircuitModel& model) : model_(model) {
   w_.resize(m_);
   dz_.resize(m_);
   dw_.resize(m_);
+  set_tolerances(rtol_, margin_atol_, voltage_scale_);
 }
 
 Eigen::VectorXd ShockleyDae::inputs(double t) const {
@@ -175,26 +166,23 @@ void ShockleyDae::set_tolerances(double rtol, double volts, double voltage_scale
 
 bool ShockleyDae::error_weights(const Eigen::Ref<const Eigen::VectorXd>& y,
                                 Eigen::Ref<Eigen::VectorXd> w) const {
-  double scale = voltage_scale_;
-  for (int k = 0; k < n_; ++k) {
-    w(k) = 1.0 / (rtol_ * std::abs(y(k)) + state_atol_(k));
-    if (capacitor_[k]) scale = std::max(scale, std::abs(y(k)));
-  }
-  const double margin_tolerance = rtol_ * scale + margin_atol_;
-  for (int k = 0; k < m_; ++k) {
-    // A margin error of N Vt is a factor e in the current: however large the voltages, a margin
-    // must be known to a small fraction of N Vt (or Newton's method starts decades away).
-    const double tolerance =
-        std::max(margin_atol_, std::min(margin_tolerance, kMarginFractionOfNVt * curves_[k].nvt));
-    w(n_ + k) = curves_[k].at(y(n_ + k)).dmargin / tolerance;
-  }
+  for (int k = 0; k < n_; ++k) w(k) = 1.0 / (rtol_ * std::abs(y(k)) + state_atol_(k));
+  pair_weights(y.head(n_), y.tail(m_), w.tail(m_));
   return w.allFinite() && (w.array() > 0).all();
 }
 
-double ShockleyDae::weighted_norm(const Eigen::VectorXd& d, const Eigen::VectorXd& y) const {
-  Eigen::VectorXd w(d.size());
-  if (!error_weights(y, w)) return INFINITY;
-  return std::sqrt((d.cwiseProduct(w)).squaredNorm() / std::max<Eigen::Index>(1, d.size()));
+void ShockleyDae::pair_weights(const Eigen::Ref<const Eigen::VectorXd>& x,
+                               const Eigen::Ref<const Eigen::VectorXd>& s,
+                               Eigen::Ref<Eigen::VectorXd> w) const {
+  double scale = voltage_scale_;
+  for (int k = 0; k < n_; ++k)
+    if (capacitor_[k]) scale = std::max(scale, std::abs(x(k)));
+  const double margin_tolerance = rtol_ * scale + margin_atol_;
+  for (int k = 0; k < m_; ++k) {
+    const double tolerance =
+        std::max(margin_atol_, std::min(margin_tolerance, kMarginFractionOfNVt * curves_[k].nvt));
+    w(k) = curves_[k].at(s(k)).dmargin / tolerance;
+  }
 }
 
 bool ShockleyDae::solve_pairs(double t, const Eigen::VectorXd& x, Eigen::VectorXd& s,
@@ -208,13 +196,11 @@ bool ShockleyDae::solve_pairs(double t, const Eigen::VectorXd& x, Eigen::VectorX
     r = w - lcs.D * z - q;
     return r.allFinite();
   };
-  // The weighted norm of a change of s alone.
-  Eigen::VectorXd y(n_ + m_), dy = Eigen::VectorXd::Zero(n_ + m_);
-  y.head(n_) = x;
+  // The weighted RMS norm of a change d of s at s = at, as IDA measures it.
+  Eigen::VectorXd weights(m_);
   auto norm = [&](const Eigen::VectorXd& d, const Eigen::VectorXd& at) {
-    y.tail(m_) = at;
-    dy.tail(m_) = d;
-    return weighted_norm(dy, y) * std::sqrt(double(n_ + m_) / m_);
+    pair_weights(x, at, weights);
+    return std::sqrt(d.cwiseProduct(weights).squaredNorm() / m_);
   };
   Eigen::VectorXd sk = s, s_try;
   for (int it = 0; it < 100; ++it) {

@@ -15,6 +15,9 @@
 //
 // is semi-explicit and index 1, and no row holds an exponential of an unknown: a conducting
 // diode's margin is a logarithm of s, a blocking diode's current a decaying exponential of s.
+// (So no exponential can overflow whatever s a Newton iterate tries: where SPICE codes continue
+// exp linearly beyond an exponent of about 80, the one exponential left here, inside the
+// logarithm's evaluation, is bounded; see kLargestRatio.)
 // Newton's method on the plain law i - phi(m) faces exp(-m / N Vt) with N Vt = 1.3 mV (N = 0.05):
 // a predictor 50 mV into forward bias is off by e^38, which is what SPICE's pnjlim limiting is
 // for; IDA offers no such hook, and this parametrisation makes it unnecessary.
@@ -47,7 +50,6 @@ struct ShockleyCurve {
     double dcurrent, dmargin;  // di/ds, dm/ds
   };
   Point at(double s) const;
-  double current(double margin) const;  // phi(m), for tests and reports
 };
 
 class ShockleyDae {
@@ -57,7 +59,6 @@ class ShockleyDae {
   int states() const { return n_; }
   int pairs() const { return m_; }
   int size() const { return n_ + m_; }
-  const ShockleyCurve& curve(int k) const { return curves_[k]; }
   // Sources at t >= `end` take their left limit at `end`: a step that lands on a breakpoint
   // must not see a jump that happens there (the integrator restarts after it).
   void set_segment_end(double end) { segment_end_ = end; }
@@ -86,14 +87,14 @@ class ShockleyDae {
   // diode carries -IS - GMIN m, and a tolerance of nanoamperes on it would leave m free by a
   // thousand volts. `voltage_scale`: the largest source voltage of the run (see error_weights).
   void set_tolerances(double rtol, double volts, double voltage_scale);
-  // IDA's error weights of y = [x; s]: 1 / (rtol |x_k| + atol_k) for the states. A diode's margin
-  // is a difference of node voltages and cannot be known better than rtol times the voltages it
-  // is made of (the larger of voltage_scale and the capacitor voltages), however small it is
-  // itself; each diode is weighed by its margin, whether it blocks or conducts: an error ds moves
-  // it by dm/ds ds, which for a conducting diode is N Vt times the current's relative error.
+  // IDA's error weights of y = [x; s]: 1 / (rtol |x_k| + atol_k) for the states. Each diode is
+  // weighed by its margin, whether it blocks or conducts: an error ds moves the margin by
+  // dm/ds ds, which for a conducting diode is N Vt times the current's relative error. A margin is
+  // a difference of node voltages and cannot be known better than rtol times the voltages it is
+  // made of (the larger of voltage_scale and the capacitor voltages), however small it is itself;
+  // and it must be known to a small fraction of N Vt (an error of N Vt is a factor e in the
+  // current, and Newton's method would start decades away): to 1 % of N Vt at most.
   bool error_weights(const Eigen::Ref<const Eigen::VectorXd>& y, Eigen::Ref<Eigen::VectorXd> w) const;
-  // The weighted RMS norm IDA uses, of d at y.
-  double weighted_norm(const Eigen::VectorXd& d, const Eigen::VectorXd& y) const;
 
   // s consistent with x at t by Newton's method (damped), from the s given, to well inside the
   // error weights. Returns false (s unchanged) when it does not converge. Counts its iterations
@@ -102,6 +103,9 @@ class ShockleyDae {
 
  private:
   Eigen::VectorXd inputs(double t) const;
+  // The diodes' part of error_weights, at states x and parameters s.
+  void pair_weights(const Eigen::Ref<const Eigen::VectorXd>& x,
+                    const Eigen::Ref<const Eigen::VectorXd>& s, Eigen::Ref<Eigen::VectorXd> w) const;
   // z(s), w(s) from the curves, and their derivatives dz/ds, dw/ds (diagonal).
   void on_curves(const Eigen::Ref<const Eigen::VectorXd>& s, Eigen::VectorXd& z, Eigen::VectorXd& w,
                  Eigen::VectorXd* dz, Eigen::VectorXd* dw) const;

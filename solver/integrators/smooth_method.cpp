@@ -250,6 +250,21 @@ void SmoothMethod::consistent_pairs(double t, const Eigen::VectorXd& x, Eigen::V
                             "(Newton's method did not converge)");
 }
 
+// Whether some diode current changes sign from s to s_next (leaving zero does not count).
+bool SmoothMethod::switched(const Eigen::VectorXd& s, const Eigen::VectorXd& s_next) {
+  for (Eigen::Index k = 0; k < s.size(); ++k)
+    if ((s(k) > 0 && s_next(k) <= 0) || (s(k) < 0 && s_next(k) >= 0)) return true;
+  return false;
+}
+
+// A diode found at zero current when the integration (re)starts, as the ideal operating point
+// leaves a blocking one, is set exactly there: IDA's root finder then takes its departure from
+// zero (into the smooth diode's leakage) for what it is, not for a switching event.
+void SmoothMethod::at_rest(Eigen::VectorXd& s) const {
+  for (Eigen::Index k = 0; k < s.size(); ++k)
+    if (std::abs(s(k)) <= atol_) s(k) = 0.0;
+}
+
 void SmoothMethod::DoRun(const Eigen::VectorXd& x0, const OutputGrid& grid, const Emit& emit,
                          const Progress& progress) {
   stats_ = {};
@@ -280,6 +295,7 @@ void SmoothMethod::DoRun(const Eigen::VectorXd& x0, const OutputGrid& grid, cons
       s.setZero();
     }
     consistent_pairs(0.0, x0, s, schedule.tstep);
+    at_rest(s);
   }
 
   double last = -1, last_progress = 0;
@@ -330,9 +346,15 @@ void SmoothMethod::DoRun(const Eigen::VectorXd& x0, const OutputGrid& grid, cons
       ida.add_stats(stats_);
       dae_.set_segment_end(stops[k + 1]);
       y = ida.y();
-      Eigen::VectorXd x = y.head(n), sb = y.tail(m);
+      const Eigen::VectorXd x = y.head(n), s_before = y.tail(m);
+      Eigen::VectorXd sb = s_before;
       consistent_pairs(b, x, sb, schedule.tstep);
+      at_rest(sb);
       y.tail(m) = sb;
+      if (switched(s_before, sb)) {  // a source jump switched a diode: an event at b itself
+        ++stats_.events;
+        emit_state(b, y, true);
+      }
       if (out < outs.size() && outs[out] == b) {
         emit_state(b, y, false);
         ++out;
@@ -414,7 +436,12 @@ void SmoothMethod::run_algebraic(const Schedule& schedule, Eigen::VectorXd s,
     }
     if (k + 1 < stops.size()) {
       dae_.set_segment_end(stops[k + 1]);
+      const Eigen::VectorXd s_before = s;
       solve(b, s);  // after the jump
+      if (switched(s_before, s)) {
+        ++stats_.events;
+        emit_state(b, s, true);
+      }
     }
     if (out < outs.size() && outs[out] == b) {
       emit_state(b, s, false);

@@ -5,7 +5,8 @@
 // Sources' breakpoints (PULSE and PWL corners, SIN start) are IDA stop times; after each the
 // integration restarts from a consistent state (IDAReInit + IDACalcIC), so a jump in a source is
 // taken exactly. A switching event is a diode current crossing zero, located by IDA's root finder
-// on the curve parameters (shockley_dae.h), which change sign with the currents. Output rows take
+// on the curve parameters (shockley_dae.h), which change sign with the currents; a source jump
+// that switches a diode is an event at the jump. Output rows take
 // the diode variables consistent with the interpolated states. A circuit without states has no
 // differential equation: it is a Newton solve per output time, with crossings between output
 // times located by regula falsi.
@@ -41,6 +42,8 @@ class SmoothMethod : public ContinuousMethod {
   // Curve parameters s consistent with x at t: Newton from `s`, else from the ideal
   // (complementarity) solution, else from zero. Throws NumericalFailure when none converges.
   void consistent_pairs(double t, const Eigen::VectorXd& x, Eigen::VectorXd& s, double tstep);
+  void at_rest(Eigen::VectorXd& s) const;
+  static bool switched(const Eigen::VectorXd& s, const Eigen::VectorXd& s_next);
   // No states: a Newton solve per output time; emit_state(t, s, event).
   void run_algebraic(const Schedule& schedule, Eigen::VectorXd s,
                      const std::function<void(double, const Eigen::VectorXd&, bool)>& emit_state);
