@@ -275,7 +275,12 @@ CircuitStudy study_circuit(const std::string& path, const std::string& probe_lis
         NgspiceRun nr;
         nr.deck = deck.lines;
         nr.timeout_seconds = settings.ngspice_timeout;
+        // Like lcspice's runs, the best of a few (ngspice's own analysis CPU time each).
         NgspiceResult r = run_ngspice_transient(nr);
+        for (int k = 1; k < (q ? 1 : 3); ++k) {
+          NgspiceResult again = run_ngspice_transient(nr);
+          r.analysis_cpu_seconds = std::min(r.analysis_cpu_seconds, again.analysis_cpu_seconds);
+        }
         std::vector<double> times;
         for (double t : r.time)
           if (t > 0 && t <= ideal.tstop && (times.empty() || t > times.back())) times.push_back(t);
