@@ -9,6 +9,7 @@
 #include "cli/load_circuit.h"
 #include "ngspice/deck_translation.h"
 #include "ngspice/ngspice_session.h"
+#include "ngspice/probe_series.h"
 #include "solver/integrators/transient.h"
 #include "solver/model/numerical_failure.h"
 #include "solver/model/smooth_netlist.h"
@@ -114,21 +115,6 @@ std::vector<double> powers(double a, double b, int per_decade_step) {
        e -= per_decade_step)
     out.push_back(std::pow(10.0, e));
   return out;
-}
-
-std::vector<double> ngspice_probe(const NgspiceResult& r, const ProbeSource& src) {
-  auto vec = [&](const std::string& name) -> const std::vector<double>& {
-    auto it = r.vectors.find(name);
-    if (it == r.vectors.end()) throw NgspiceError(NgspiceError::Kind::NoData, "no vector '" + name + "'", {});
-    return it->second;
-  };
-  std::vector<double> y(r.time.size(), 0.0);
-  if (!src.plus.empty()) y = vec(src.plus);
-  if (!src.minus.empty()) {
-    const std::vector<double>& m = vec(src.minus);
-    for (size_t k = 0; k < y.size(); ++k) y[k] -= m[k];
-  }
-  return y;
 }
 
 BenchPoint failed(const std::string& method, const std::string& setting, double parameter,
@@ -287,7 +273,7 @@ CircuitStudy study_circuit(const std::string& path, const std::string& probe_lis
         MemorySink theirs;
         theirs.names = ideal.outputs.names;
         std::vector<std::vector<double>> series;
-        for (const std::string& name : ideal.outputs.names) series.push_back(ngspice_probe(r, deck.probes.at(name)));
+        for (const std::string& name : ideal.outputs.names) series.push_back(probe_series(r, deck.probes.at(name)));
         for (size_t k = 0; k < r.time.size(); ++k) {
           if (k > 0 && r.time[k] <= r.time[k - 1]) continue;
           Eigen::VectorXd row(series.size());

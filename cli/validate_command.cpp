@@ -22,6 +22,7 @@
 #include "cli/load_circuit.h"
 #include "ngspice/deck_translation.h"
 #include "ngspice/ngspice_session.h"
+#include "ngspice/probe_series.h"
 #include "solver/integrators/transient.h"
 #include "solver/model/diode_law.h"
 #include "solver/model/initial_state.h"
@@ -53,20 +54,11 @@ double interpolate(const std::vector<double>& t, const std::vector<double>& y, d
 
 std::vector<double> ngspice_series(const NgspiceResult& r, const ProbeSource& src,
                                    const std::string& probe) {
-  auto vector = [&](const std::string& name) -> const std::vector<double>& {
-    auto it = r.vectors.find(name);
-    if (it == r.vectors.end())
-      throw CliError(kExitNumerical, "lcspice: error: ngspice returned no vector '" + name +
-                                         "' for probe " + probe);
-    return it->second;
-  };
-  std::vector<double> y(r.time.size(), 0.0);
-  if (!src.plus.empty()) y = vector(src.plus);
-  if (!src.minus.empty()) {
-    const std::vector<double>& m = vector(src.minus);
-    for (size_t k = 0; k < y.size(); ++k) y[k] -= m[k];
+  try {
+    return probe_series(r, src);
+  } catch (const NgspiceError& e) {
+    throw CliError(kExitNumerical, std::string("lcspice: error: ") + e.what() + " for probe " + probe);
   }
-  return y;
 }
 
 std::string file_stem(const std::string& path) {
