@@ -73,6 +73,29 @@ std::string TransientSummary::BriefReport() const {
 
 namespace {
 
+// One output row y = G x + H z + J u(t) + K u'(t), without allocating.
+class RowWriter {
+ public:
+  RowWriter(const CircuitModel& model, const OutputMap& outputs, OutputSink& sink)
+      : model_(model), outputs_(outputs), sink_(sink), y_(outputs.names.size()),
+        u_(model.lcs().inputs()), has_k_(outputs.K.size() > 0 && !outputs.K.isZero()) {}
+  void write(double t, const Eigen::VectorXd& x, const Eigen::VectorXd& z) {
+    model_.input_values(t, u_);
+    y_.noalias() = outputs_.G * x;
+    y_.noalias() += outputs_.H * z;
+    y_.noalias() += outputs_.J * u_;
+    if (has_k_) y_.noalias() += outputs_.K * model_.input_derivatives(t);
+    sink_.row(t, y_);
+  }
+
+ private:
+  const CircuitModel& model_;
+  const OutputMap& outputs_;
+  OutputSink& sink_;
+  Eigen::VectorXd y_, u_;
+  bool has_k_;
+};
+
 TransientSummary run_adaptive(const CircuitModel& model, const OutputMap& outputs,
                               const TransientOptions& options, const MethodEntry& entry,
                               OutputSink& sink) {
@@ -95,16 +118,11 @@ TransientSummary run_adaptive(const CircuitModel& model, const OutputMap& output
   grid.tstop = options.tstop;
   grid.extra = options.extra_output_times;
 
-  Eigen::VectorXd y(outputs.names.size()), u(model.lcs().inputs());
+  RowWriter writer(model, outputs, sink);
   double last_t = -1;
   auto emit = [&](double t, const Eigen::VectorXd& x, const Eigen::VectorXd& z, bool) {
     if (t <= last_t || t < options.tstart * (1 - 1e-12)) return;
-    model.input_values(t, u);
-    y.noalias() = outputs.G * x;
-    y.noalias() += outputs.H * z;
-    y.noalias() += outputs.J * u;
-    if (outputs.K.size() > 0 && !outputs.K.isZero()) y.noalias() += outputs.K * model.input_derivatives(t);
-    sink.row(t, y);
+    writer.write(t, x, z);
     last_t = t;
     ++summary.rows;
   };
@@ -150,17 +168,12 @@ TransientSummary run_transient(const CircuitModel& model, const OutputMap& outpu
   }
   summary.cpu_setup = process_cpu_seconds() - cpu0;
 
-  Eigen::VectorXd y(outputs.names.size()), u(model.lcs().inputs());
-  const bool has_k = outputs.K.size() > 0 && !outputs.K.isZero();
+  RowWriter writer(model, outputs, sink);
   auto emit = [&](double t) {
-    model.input_values(t, u);
-    y.noalias() = outputs.G * x;
-    y.noalias() += outputs.H * z;
-    y.noalias() += outputs.J * u;
-    if (has_k) y.noalias() += outputs.K * model.input_derivatives(t);
-    sink.row(t, y);
+    writer.write(t, x, z);
     ++summary.rows;
   };
+
 
   // Step k ends at k*h (no accumulated rounding); a last shorter step lands on tstop.
   const double h = options.step;
