@@ -435,7 +435,10 @@ void EventDriven::DoRun(const Eigen::VectorXd& x0, const OutputGrid& grid, const
     end = DyadicTime::from(grid.tstop, h0);
     stops.push_back({end, grid.tstop, false, true});
   }
-  std::sort(stops.begin(), stops.end(), [](const Stop& a, const Stop& b) { return a.at < b.at; });
+  // At one instant the sources' breakpoint comes first, so an output there sees the jump.
+  std::sort(stops.begin(), stops.end(), [](const Stop& a, const Stop& b) {
+    return a.at < b.at || (a.at == b.at && a.breakpoint && !b.breakpoint);
+  });
 
   auto emit_now = [&](double t, bool event) {
     const Eigen::VectorXd z = r.cur->Z * r.X;
@@ -464,6 +467,8 @@ void EventDriven::DoRun(const Eigen::VectorXd& x0, const OutputGrid& grid, const
   size_t next_stop = 0;
   int events_here = 0;
   DyadicTime last_event{-1, 0};
+  DyadicTime last_breakpoint{-1, 0};
+  double last_breakpoint_t = 0;
   while (r.pos < end) {
     DyadicTime target{r.pos.k + 1, 0};
     if (next_stop < stops.size() && stops[next_stop].at < target) target = stops[next_stop].at;
@@ -487,6 +492,8 @@ void EventDriven::DoRun(const Eigen::VectorXd& x0, const OutputGrid& grid, const
     while (next_stop < stops.size() && stops[next_stop].at <= r.pos) {
       const Stop& st = stops[next_stop++];
       if (st.breakpoint) {
+        last_breakpoint = r.pos;
+        last_breakpoint_t = st.t;
         // The sources change form; the physical state is continuous, the LCS state
         // x = x_phys - Gamma u jumps with u (circuit_model.h).
         const Eigen::VectorXd u_left = r.inputs();
@@ -502,12 +509,19 @@ void EventDriven::DoRun(const Eigen::VectorXd& x0, const OutputGrid& grid, const
     }
     if (r.pos.f == 0 && r.pos.k <= kstop) {
       // Grid time: the sources' state is reset from the waveforms (no drift over long runs).
-      Eigen::VectorXd sigma;
-      r.sources->sigma(r.pos.seconds(h0), r.cur->signature, sigma);
-      r.X.tail(sigma.size()) = sigma;
-      r.project();
-      r.refresh_constraints();
-      emit_now(r.pos.seconds(h0), false);
+      // A breakpoint here has just done so at its own time, which may differ from k h0 in the
+      // last bits (5e-6 and 5 * 1e-6): the waveform read at k h0 could be the value before the
+      // jump, so the row is that of the breakpoint.
+      if (r.pos == last_breakpoint) {
+        emit_now(last_breakpoint_t, false);
+      } else {
+        Eigen::VectorXd sigma;
+        r.sources->sigma(r.pos.seconds(h0), r.cur->signature, sigma);
+        r.X.tail(sigma.size()) = sigma;
+        r.project();
+        r.refresh_constraints();
+        emit_now(r.pos.seconds(h0), false);
+      }
     }
   }
 }

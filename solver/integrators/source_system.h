@@ -20,7 +20,7 @@ namespace lcs {
 
 class SourceSystem {
  public:
-  // Breakpoints (source corners, SIN starts) in (0, tstop) are collected once.
+  // Breakpoints (source corners, SIN starts) in (0, tstop] are collected once.
   SourceSystem(const CircuitModel& model, double tstop);
 
   // Which form each input takes on the segment starting at t (one character per input: 'c',

@@ -171,6 +171,66 @@ TEST(EventDriven, InconsistentInitialStateJumps) {
   }
 }
 
+// A capacitor on an RON = 0 diode (the index-one constraint v(a) = u - VON holds while it
+// conducts) and a PWL source that jumps at a grid time tb = k TSTEP that rounding puts on either
+// side: 161e-6 / 7e-6 is just above 23 while 23 * 7e-6 == 161e-6, and 5 * 1e-6 is just below
+// 5e-6. A grid time read the source on the wrong side of the jump for the mode it was in, and the
+// projection onto that mode's constraint moved the capacitor to the other side's u - VON: after
+// a fall from 5 V to 0 (the capacitor must hold 4.3 V and discharge through R) it went to
+// -0.7 V and stayed there; at a step from 5 V to 6 V (the capacitor jumps to 5.3 V) the row at
+// tb showed the old 4.3 V.
+TEST(EventDriven, SourceJumpAtAGridTimeThatRoundsEitherWayKeepsTheCapacitor) {
+  const double R = 10e3, C = 1e-6, VON = 0.7, tstop = 350e-6;
+  struct Case {
+    double tstep, tb;  // tb as a netlist gives it (one decimal conversion)
+    int k;
+    double before, after;
+  };
+  for (const Case& c : {Case{7e-6, 161e-6, 23, 5, 0}, Case{1e-6, 5e-6, 5, 5, 6}}) {
+    SCOPED_TRACE("jump at " + std::to_string(c.tb) + " to " + std::to_string(c.after));
+    ASSERT_TRUE(c.tb / c.tstep > c.k || c.k * c.tstep < c.tb);  // the rounding this is about
+    NetlistBuilder b;
+    b.tran(c.tstep, tstop, false);
+    Waveform pwl;
+    pwl.kind = Waveform::Kind::Pwl;
+    pwl.params = {0, c.before, c.tb, c.before, c.tb, c.after};
+    b.v("v1", "in", "0", pwl).d("d1", "in", "a", VON, 0).c("c1", "a", "0", C).r("r1", "a", "0", R);
+    EventRun r = run_event(b.build(), {v("in"), v("a"), i("d1")}, c.tstep, tstop, false);
+    expect_grid_rows(r, c.tstep, tstop);
+    for (size_t n = 0; n < r.sink.times.size(); ++n) {
+      const double t = r.sink.times[n];
+      const bool before = t < c.tb && std::abs(t - c.tb) > 1e-9 * c.tstep;
+      const double held = c.before - VON;
+      double va = held;
+      if (!before) va = c.after - VON >= held ? c.after - VON : held * std::exp(-(t - c.tb) / (R * C));
+      const bool on = before || c.after - VON >= held;
+      EXPECT_EQ(r.sink.rows[n](0), before ? c.before : c.after) << "t = " << t;
+      EXPECT_NEAR(r.sink.rows[n](1), va, 1e-12 * 5) << "t = " << t;
+      EXPECT_NEAR(r.sink.rows[n](2), on ? va / R : 0.0, 1e-15) << "t = " << t;
+    }
+  }
+}
+
+// The same circuit with a PULSE whose fall is at TSTOP: the jump belongs to the last row (values
+// are right-continuous), where the diode blocks and the capacitor still holds 4.3 V. The corner
+// at TSTOP was not a breakpoint, so the last grid time read the source after the fall in the
+// conducting mode and printed v(a) = -0.7 V with a diode current of -70 uA.
+TEST(EventDriven, SourceJumpAtTstopIsInTheLastRow) {
+  const double VON = 0.7;
+  NetlistBuilder b;
+  b.tran(1e-5, 6e-3, true);
+  b.v("v1", "in", "0", NetlistBuilder::pulse({0, 5, 1e-3, 0, 0, 1e-3, 2e-3}));
+  b.d("d1", "in", "a", VON, 0).c("c1", "a", "0", 1e-6, 0.0).r("r1", "a", "0", 10e3);
+  EventRun r = run_event(b.build(), {v("a"), i("d1")}, 1e-5, 6e-3, true);
+  expect_grid_rows(r, 1e-5, 6e-3);
+  for (size_t k = 0; k < r.sink.times.size(); ++k) {
+    EXPECT_GE(r.sink.rows[k](0), 0.0) << "t = " << r.sink.times[k];
+    EXPECT_GE(r.sink.rows[k](1), -1e-15) << "t = " << r.sink.times[k];
+  }
+  EXPECT_NEAR(r.sink.rows.back()(0), 5 - VON, 1e-12 * 5);
+  EXPECT_NEAR(r.sink.rows.back()(1), 0.0, 1e-15);
+}
+
 // Exponentials are cached per mode and dyadic step: a periodic circuit computes no new ones
 // once every mode has been visited (bridge rectifier: the third and sixth period cost nothing).
 TEST(EventDriven, PeriodicCircuitPaysSetupOncePerMode) {
