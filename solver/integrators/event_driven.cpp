@@ -515,12 +515,15 @@ void EventDriven::DoRun(const Eigen::VectorXd& x0, const OutputGrid& grid, const
       if (r.pos == last_breakpoint) {
         emit_now(last_breakpoint_t, false);
       } else {
+        // The last row is at TSTOP itself: kstop * h0 may differ from it in the last bits
+        // (650 * 1e-5 > 6.5e-3).
+        const double tg = r.pos == end ? grid.tstop : r.pos.seconds(h0);
         Eigen::VectorXd sigma;
-        r.sources->sigma(r.pos.seconds(h0), r.cur->signature, sigma);
+        r.sources->sigma(tg, r.cur->signature, sigma);
         r.X.tail(sigma.size()) = sigma;
         r.project();
         r.refresh_constraints();
-        emit_now(r.pos.seconds(h0), false);
+        emit_now(tg, false);
       }
     }
   }

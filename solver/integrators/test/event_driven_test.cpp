@@ -231,6 +231,21 @@ TEST(EventDriven, SourceJumpAtTstopIsInTheLastRow) {
   EXPECT_NEAR(r.sink.rows.back()(1), 0.0, 1e-15);
 }
 
+// The last row is at TSTOP exactly (SPEC §3: TSTOP included), also when TSTOP / TSTEP is a
+// whole number that k * TSTEP misses in the last bits: 650 * 1e-5 > 6.5e-3.
+TEST(EventDriven, LastRowIsAtTstopExactly) {
+  for (double tstop : {6.5e-3, 6e-3, 5.5e-3, 2.9e-3}) {
+    SCOPED_TRACE("TSTOP " + std::to_string(tstop));
+    const double tstep = 1e-5;
+    NetlistBuilder b;
+    b.tran(tstep, tstop, true);
+    b.v("v1", "in", "0", NetlistBuilder::dc(10)).d("d1", "in", "a", 0.7, 10);
+    b.r("r1", "a", "out", 1e3).c("c1", "out", "0", 1e-6, 0.0);
+    EventRun r = run_event(b.build(), {v("out")}, tstep, tstop, true);
+    expect_grid_rows(r, tstep, tstop);
+  }
+}
+
 // Exponentials are cached per mode and dyadic step: a periodic circuit computes no new ones
 // once every mode has been visited (bridge rectifier: the third and sixth period cost nothing).
 TEST(EventDriven, PeriodicCircuitPaysSetupOncePerMode) {
