@@ -311,12 +311,18 @@ bool EventDriven::Impl::apply_impulse(Eigen::VectorXd& x, const Eigen::VectorXd&
   return sol.z.maxCoeff() > 0;
 }
 
+// A constraint found below zero here (after a restart, or after a grid time reset the sources)
+// is excused only while it rises: the mode check let it in for that reason. A falling one is a
+// switch the reset uncovered and must end the next step as an event. (Excusing it too left it
+// unwatched for good: 20 s of a VON = 0 rectifier whose source crosses zero at grid times, the
+// waveform and the propagated sine differing by rounding there, lost a turn-off at 8.05 s and
+// then printed a negative diode current for half a period, again and again.)
 void EventDriven::Impl::refresh_constraints() {
   ga = cur->G * X;
   da = cur->GM * X;
   const Eigen::VectorXd s = cur->Gabs * X.cwiseAbs() + (kNoise * X.norm()) * cur->Gnorm;
   below_at_start.assign(m, 0);
-  for (int i = 0; i < m; ++i) below_at_start[i] = ga(i) < -kTol * s(i);
+  for (int i = 0; i < m; ++i) below_at_start[i] = ga(i) < -kTol * s(i) && da(i) > 0;
 }
 
 void EventDriven::Impl::project() {

@@ -246,6 +246,33 @@ TEST(EventDriven, LastRowIsAtTstopExactly) {
   }
 }
 
+// A long run whose switches all fall on grid times: VON = 0 and a 50 Hz sine crossing zero every
+// 10 ms with TSTEP = 1 ms, for 20 s (1000 periods). At the grid time the sources are read from
+// the waveform again, which differs from the propagated sine by rounding; a diode current found
+// slightly negative there was excused as "starting just below zero" although it was falling, so
+// the turn-off was never seen: from 8.05 s on, the diode conducted with a negative current for
+// whole half periods (at 8.051 s, i(d1) = -31 mA).
+TEST(EventDriven, LongRunWithSwitchesOnGridTimesMissesNone) {
+  const double R = 100, tstep = 1e-3, tstop = 20;
+  NetlistBuilder b;
+  b.tran(tstep, tstop, false);
+  b.v("v1", "in", "0", NetlistBuilder::sin(0, 10, 50)).d("d1", "in", "out", 0, 0).r("r1", "out", "0", R);
+  EventRun r = run_event(b.build(), {v("in"), i("d1")}, tstep, tstop, false);
+  EXPECT_EQ(r.sink.times.back(), tstop);  // (the events sit within rounding of grid times)
+  long bad = 0;
+  for (size_t k = 0; k < r.sink.times.size(); ++k) {
+    const double u = r.sink.rows[k](0), id = r.sink.rows[k](1);
+    if (std::abs(id - std::max(0.0, u) / R) > 1e-12) {
+      if (bad++ < 5) ADD_FAILURE() << "t = " << r.sink.times[k] << ": u = " << u << ", i(d1) = " << id;
+    }
+  }
+  EXPECT_EQ(bad, 0);
+  // A switch at every zero crossing, t = 10 ms ... 20 s (the last one at TSTOP may or may not
+  // count, by rounding).
+  EXPECT_GE(r.summary.stepper.mode_switches, 1999);
+  EXPECT_LE(r.summary.stepper.events, 2000);
+}
+
 // Exponentials are cached per mode and dyadic step: a periodic circuit computes no new ones
 // once every mode has been visited (bridge rectifier: the third and sixth period cost nothing).
 TEST(EventDriven, PeriodicCircuitPaysSetupOncePerMode) {
