@@ -25,6 +25,8 @@ constexpr double kTol = 1e-12;
 constexpr double kZeroTol = 1e-9;
 constexpr int kSuspicionLevels = 10;
 constexpr double kNoise = 1e-4;  // kNoise * kTol = 1e-16: rounding of a row times |X|
+// |X| in that floor is |W X|: a ramp's slope u' enters as the change it makes before the next
+// reset (SourceSystem::rounding_weights), not in V/s.
 
 // Smallest value of the cubic Hermite interpolant with values a, b and slopes da, db (per unit
 // interval) on [0, 1]: a dip between two feasible end points means a possible double crossing.
@@ -87,6 +89,7 @@ struct EventDriven::Impl {
   Mode* cur = nullptr;
   DyadicTime pos;
   Eigen::VectorXd X;       // [x; σ]
+  Eigen::VectorXd W;       // rounding weights of [x; σ] for the current source form
   Eigen::VectorXd ga, da;  // constraint values and slopes at X
   std::vector<char> below_at_start;  // constraints that began the mode just below zero
   std::array<Eigen::VectorXd, kMaxLevel + 1> Xb, gb, db, sc;
@@ -224,7 +227,7 @@ bool EventDriven::Impl::consistent(Mode& md, const Eigen::VectorXd& Xs,
   const Eigen::VectorXd g = md.G * Xs, d = md.GM * Xs, dd = md.GMM * Xs;
   // Scales: the size of the terms in each row, plus a floor for the rounding noise that the
   // mode's matrices carry (entries that should be 0 but are ~1e-16 of their row).
-  const double xn = Xs.norm();
+  const double xn = W.cwiseProduct(Xs).norm();
   const Eigen::VectorXd sg = md.Gabs * Xa + kNoise * xn * md.Gnorm;
   const Eigen::VectorXd sd = md.GMabs * Xa + kNoise * xn * md.GMnorm;
   const Eigen::VectorXd sdd = md.GMMabs * Xa + kNoise * xn * md.GMMnorm;
@@ -253,6 +256,12 @@ Mode& EventDriven::Impl::select(double t, const Eigen::VectorXd& x, const std::s
   sources->sigma(t, signature, sigma);
   Eigen::VectorXd Xs(n + sigma.size());
   Xs << x, sigma;
+  // A ramp moves u by at most its slope times the time to the next reset (grid time or corner).
+  const std::vector<double>& bp = sources->breakpoints();
+  const auto next = std::upper_bound(bp.begin(), bp.end(), t);
+  const double segment = next == bp.end() ? h0 : std::min(h0, *next - t);
+  W.resize(Xs.size());
+  W << Eigen::VectorXd::Ones(n), sources->rounding_weights(signature, segment);
   std::vector<bool> active(m, false);
   if (m > 0) {
     const Eigen::VectorXd q = Csel * x + Fsel * model.input_values(t + eta);
@@ -270,7 +279,8 @@ Mode& EventDriven::Impl::select(double t, const Eigen::VectorXd& x, const std::s
   if (previous && previous->dyn.well_posed && previous->signature == signature) {
     const Eigen::VectorXd Xa = Xs.cwiseAbs();
     const Eigen::VectorXd g = previous->G * Xs;
-    const Eigen::VectorXd sg = previous->Gabs * Xa + kNoise * Xs.norm() * previous->Gnorm;
+    const Eigen::VectorXd sg =
+        previous->Gabs * Xa + kNoise * W.cwiseProduct(Xs).norm() * previous->Gnorm;
     for (int i = 0; i < m; ++i)
       if (std::abs(g(i)) <= kZeroTol * sg(i) &&
           std::find(near_zero.begin(), near_zero.end(), i) == near_zero.end())
@@ -320,7 +330,8 @@ bool EventDriven::Impl::apply_impulse(Eigen::VectorXd& x, const Eigen::VectorXd&
 void EventDriven::Impl::refresh_constraints() {
   ga = cur->G * X;
   da = cur->GM * X;
-  const Eigen::VectorXd s = cur->Gabs * X.cwiseAbs() + (kNoise * X.norm()) * cur->Gnorm;
+  const Eigen::VectorXd s =
+      cur->Gabs * X.cwiseAbs() + (kNoise * W.cwiseProduct(X).norm()) * cur->Gnorm;
   below_at_start.assign(m, 0);
   for (int i = 0; i < m; ++i) below_at_start[i] = ga(i) < -kTol * s(i) && da(i) > 0;
 }
@@ -333,7 +344,7 @@ void EventDriven::Impl::project() {
 bool EventDriven::Impl::violated(const Eigen::VectorXd& Xv, Eigen::VectorXd& g, Eigen::VectorXd& scale) const {
   g.noalias() = cur->G * Xv;
   scale.noalias() = cur->Gabs * Xv.cwiseAbs();
-  scale += (kNoise * Xv.norm()) * cur->Gnorm;
+  scale += (kNoise * W.cwiseProduct(Xv).norm()) * cur->Gnorm;
   for (int i = 0; i < m; ++i)
     if (g(i) < -(kTol * scale(i) + 1e-300) && !below_at_start[i]) return true;
   return false;

@@ -92,6 +92,16 @@ Eigen::MatrixXd SourceSystem::P(const std::string& sig) const {
   return P;
 }
 
+Eigen::VectorXd SourceSystem::rounding_weights(const std::string& sig, double segment) const {
+  Eigen::VectorXd w = Eigen::VectorXd::Ones(dimension(sig));
+  int o = 0;
+  for (size_t k = 0; k < sig.size(); ++k) {
+    if (sig[k] == 'r') w(o + 1) = segment;
+    o += kind_dimension(sig[k]);
+  }
+  return w;
+}
+
 void SourceSystem::sigma(double t, const std::string& sig, Eigen::VectorXd& out) const {
   out.resize(dimension(sig));
   int o = 0;

@@ -273,6 +273,39 @@ TEST(EventDriven, LongRunWithSwitchesOnGridTimesMissesNone) {
   EXPECT_LE(r.summary.stepper.events, 2000);
 }
 
+// Steep source edges: a PULSE with 1 ps edges (u' = 5e12 V/s) charges a capacitor through an
+// RON = 0 diode. At the start of the rise (1 ms) the diode still blocks (u = 0 < VON + v(a))
+// for another 0.14 ps. The rounding floor of the consistency check was 1e-13 |[x; σ]| with the
+// slope u' in it, so it accepted the conducting mode off by 0.7 V and projected the capacitor to
+// u - VON = -0.7 V: the row at 1 ms read v(a) = -0.7 V, i(d1) = 5e6 A.
+TEST(EventDriven, SteepEdgeDoesNotSwampTheConsistencyCheck) {
+  const double VON = 0.7, R = 10e3, C = 1e-6;
+  NetlistBuilder b;
+  b.tran(1e-5, 6.5e-3, false);
+  b.v("v1", "in", "0", NetlistBuilder::pulse({0, 5, 1e-3, 1e-12, 1e-12, 1e-3, 2e-3}));
+  b.d("d1", "in", "a", VON, 0).c("c1", "a", "0", C).r("r1", "a", "0", R);
+  EventRun r = run_event(b.build(), {v("a"), i("d1")}, 1e-5, 6.5e-3, false);
+  expect_grid_rows(r, 1e-5, 6.5e-3);
+  const double held = 5 - VON, fall = 2e-3 + 1e-12;  // the fall starts 1 ms + TR later
+  for (size_t n = 0; n < r.sink.times.size(); ++n) {
+    const double t = r.sink.times[n];
+    const double tau = std::fmod(t - 1e-3, 2e-3);  // phase in the period
+    if (t <= 1e-3) {  // before the first rise, and its first instant
+      EXPECT_EQ(r.sink.rows[n](0), 0.0) << "t = " << t;
+      EXPECT_EQ(r.sink.rows[n](1), 0.0) << "t = " << t;
+    } else if (tau > 2e-12 && tau < 1e-3 - 1e-9) {  // on the plateau: held at 5 V - VON
+      EXPECT_NEAR(r.sink.rows[n](0), held, 1e-12 * 5) << "t = " << t;
+      EXPECT_NEAR(r.sink.rows[n](1), held / R, 1e-15) << "t = " << t;
+    } else if (tau > 1e-3 + 2e-12) {  // low: the diode blocks, the capacitor discharges
+      const double after = std::fmod(t - fall, 2e-3);
+      EXPECT_NEAR(r.sink.rows[n](0), held * std::exp(-after / (R * C)), 1e-12 * 5) << "t = " << t;
+      EXPECT_EQ(r.sink.rows[n](1), 0.0) << "t = " << t;
+    }
+    EXPECT_GE(r.sink.rows[n](0), 0.0) << "t = " << t;
+    EXPECT_GE(r.sink.rows[n](1), 0.0) << "t = " << t;
+  }
+}
+
 // Exponentials are cached per mode and dyadic step: a periodic circuit computes no new ones
 // once every mode has been visited (bridge rectifier: the third and sixth period cost nothing).
 TEST(EventDriven, PeriodicCircuitPaysSetupOncePerMode) {
