@@ -263,6 +263,7 @@ Mode& EventDriven::Impl::select(double t, const Eigen::VectorXd& x, const std::s
   W.resize(Xs.size());
   W << Eigen::VectorXd::Ones(n), sources->rounding_weights(signature, segment);
   std::vector<bool> active(m, false);
+  std::vector<int> degenerate;  // pairs the switching LCP leaves at z = w = 0
   if (m > 0) {
     const Eigen::VectorXd q = Csel * x + Fsel * model.input_values(t + eta);
     const LcpSolution& sol = selector->solve(q);
@@ -270,11 +271,19 @@ Mode& EventDriven::Impl::select(double t, const Eigen::VectorXd& x, const std::s
       throw NumericalFailure(t, std::string("no next mode: the switching LCP has no solution (Lemke: ") +
                                     lcp_status_name(sol.status) + ")");
     for (int i = 0; i < m; ++i) active[i] = sol.z(i) > 0;
+    const double qs = q.cwiseAbs().maxCoeff(), zs = sol.z.cwiseAbs().maxCoeff() + qs;
+    for (int i = 0; i < m; ++i)
+      if (std::abs(sol.z(i)) <= kZeroTol * zs && std::abs(sol.w(i)) <= kZeroTol * qs)
+        degenerate.push_back(i);
   }
   std::vector<int> near_zero;
   Mode& first = mode(active, signature);
   if (consistent(first, Xs, &near_zero)) return first;
-  // The pairs at zero in the mode that ran into the event (the ones that switched, and
+  // The LCP's own ambiguous pairs (the mode it names may not even be well posed: a node left
+  // floating when every diode at it is off), then ...
+  for (int i : degenerate)
+    if (std::find(near_zero.begin(), near_zero.end(), i) == near_zero.end()) near_zero.push_back(i);
+  // ... the pairs at zero in the mode that ran into the event (the ones that switched, and
   // degenerate ones such as a diode holding a floating node's potential at zero current).
   if (previous && previous->dyn.well_posed && previous->signature == signature) {
     const Eigen::VectorXd Xa = Xs.cwiseAbs();
