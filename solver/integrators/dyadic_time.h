@@ -4,7 +4,9 @@
 #pragma once
 
 #include <cmath>
+#include <algorithm>
 #include <cstdint>
+#include <limits>
 
 namespace lcs {
 
@@ -12,8 +14,14 @@ struct DyadicTime {
   std::int64_t k = 0;   // whole steps of h0
   std::uint64_t f = 0;  // fraction of a step, in units of 2^-64
 
+  // A time within rounding of a grid time k h0 is that grid time: t / h0 may round to just above
+  // k (161e-6 / 7e-6 = 23.000000000000004 while 23 * 7e-6 == 161e-6), and a source corner
+  // there must not be placed after the grid time, whose row would then see it early.
   static DyadicTime from(double t, double h0) {
     const double r = t / h0;
+    const double k = std::round(r);
+    if (std::abs(r - k) <= 8 * std::numeric_limits<double>::epsilon() * std::max(1.0, std::abs(r)))
+      return DyadicTime{static_cast<std::int64_t>(k), 0};
     DyadicTime d;
     d.k = static_cast<std::int64_t>(std::floor(r));
     const double frac = r - static_cast<double>(d.k);

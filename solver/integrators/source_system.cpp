@@ -1,6 +1,7 @@
 #include "solver/integrators/source_system.h"
 
 #include <algorithm>
+#include <cfloat>
 #include <cmath>
 
 namespace lcs {
@@ -23,7 +24,10 @@ SourceSystem::SourceSystem(const CircuitModel& model, double tstop) {
         in.theta = w.params.at(4);
         max_omega_ = std::max(max_omega_, std::abs(in.omega));
       }
-      for (double b : w.breakpoints(0.0, tstop)) breakpoints_.push_back(b);
+      // Corners at TSTOP count (a jump there changes the last row), also when the corner's
+      // time is computed a few ulps past it (TD + k PER + ...): those are moved onto TSTOP.
+      for (double b : w.breakpoints(0.0, tstop + 64 * DBL_EPSILON * tstop))
+        breakpoints_.push_back(std::min(b, tstop));
     }
     inputs_.push_back(in);
   }
@@ -86,6 +90,16 @@ Eigen::MatrixXd SourceSystem::P(const std::string& sig) const {
     o += kind_dimension(sig[k]);
   }
   return P;
+}
+
+Eigen::VectorXd SourceSystem::rounding_weights(const std::string& sig, double segment) const {
+  Eigen::VectorXd w = Eigen::VectorXd::Ones(dimension(sig));
+  int o = 0;
+  for (size_t k = 0; k < sig.size(); ++k) {
+    if (sig[k] == 'r') w(o + 1) = segment;
+    o += kind_dimension(sig[k]);
+  }
+  return w;
 }
 
 void SourceSystem::sigma(double t, const std::string& sig, Eigen::VectorXd& out) const {

@@ -20,7 +20,7 @@ namespace lcs {
 
 class SourceSystem {
  public:
-  // Breakpoints (source corners, SIN starts) in (0, tstop) are collected once.
+  // Breakpoints (source corners, SIN starts) in (0, tstop] are collected once.
   SourceSystem(const CircuitModel& model, double tstop);
 
   // Which form each input takes on the segment starting at t (one character per input: 'c',
@@ -31,6 +31,14 @@ class SourceSystem {
   Eigen::MatrixXd P(const std::string& signature) const;  // u = P σ
   // σ at t on the segment starting at or before t (right values at a corner).
   void sigma(double t, const std::string& signature, Eigen::VectorXd& out) const;
+
+  // Weights that turn σ into the sizes its rounding is relative to: a ramp's slope u' counts
+  // times `segment` (the most it can move u before the next reset: a 1 ps PULSE edge has
+  // u' = 5e12 V/s while u moves by 5 V); every other slot counts as itself. (A SIN's p' = ω A
+  // stays: the propagated oscillator drifts from the waveform by ~1e-13 of it, measured on
+  // 50 Hz at t = 0.01 s, which a floor of 1e-16 |p| would turn into an event at every zero
+  // crossing.)
+  Eigen::VectorXd rounding_weights(const std::string& signature, double segment) const;
 
   const std::vector<double>& breakpoints() const { return breakpoints_; }
   // Largest angular frequency of the SIN sources (for the step bound), 0 without any.

@@ -171,6 +171,175 @@ TEST(EventDriven, InconsistentInitialStateJumps) {
   }
 }
 
+// A capacitor on an RON = 0 diode (the index-one constraint v(a) = u - VON holds while it
+// conducts) and a PWL source that jumps at a grid time tb = k TSTEP that rounding puts on either
+// side: 161e-6 / 7e-6 is just above 23 while 23 * 7e-6 == 161e-6, and 5 * 1e-6 is just below
+// 5e-6. A grid time read the source on the wrong side of the jump for the mode it was in, and the
+// projection onto that mode's constraint moved the capacitor to the other side's u - VON: after
+// a fall from 5 V to 0 (the capacitor must hold 4.3 V and discharge through R) it went to
+// -0.7 V and stayed there; at a step from 5 V to 6 V (the capacitor jumps to 5.3 V) the row at
+// tb showed the old 4.3 V.
+TEST(EventDriven, SourceJumpAtAGridTimeThatRoundsEitherWayKeepsTheCapacitor) {
+  const double R = 10e3, C = 1e-6, VON = 0.7, tstop = 350e-6;
+  struct Case {
+    double tstep, tb;  // tb as a netlist gives it (one decimal conversion)
+    int k;
+    double before, after;
+  };
+  for (const Case& c : {Case{7e-6, 161e-6, 23, 5, 0}, Case{1e-6, 5e-6, 5, 5, 6}}) {
+    SCOPED_TRACE("jump at " + std::to_string(c.tb) + " to " + std::to_string(c.after));
+    ASSERT_TRUE(c.tb / c.tstep > c.k || c.k * c.tstep < c.tb);  // the rounding this is about
+    NetlistBuilder b;
+    b.tran(c.tstep, tstop, false);
+    Waveform pwl;
+    pwl.kind = Waveform::Kind::Pwl;
+    pwl.params = {0, c.before, c.tb, c.before, c.tb, c.after};
+    b.v("v1", "in", "0", pwl).d("d1", "in", "a", VON, 0).c("c1", "a", "0", C).r("r1", "a", "0", R);
+    EventRun r = run_event(b.build(), {v("in"), v("a"), i("d1")}, c.tstep, tstop, false);
+    expect_grid_rows(r, c.tstep, tstop);
+    for (size_t n = 0; n < r.sink.times.size(); ++n) {
+      const double t = r.sink.times[n];
+      const bool before = t < c.tb && std::abs(t - c.tb) > 1e-9 * c.tstep;
+      const double held = c.before - VON;
+      double va = held;
+      if (!before) va = c.after - VON >= held ? c.after - VON : held * std::exp(-(t - c.tb) / (R * C));
+      const bool on = before || c.after - VON >= held;
+      EXPECT_EQ(r.sink.rows[n](0), before ? c.before : c.after) << "t = " << t;
+      EXPECT_NEAR(r.sink.rows[n](1), va, 1e-12 * 5) << "t = " << t;
+      EXPECT_NEAR(r.sink.rows[n](2), on ? va / R : 0.0, 1e-15) << "t = " << t;
+    }
+  }
+}
+
+// The same circuit with a PULSE whose fall is at TSTOP: the jump belongs to the last row (values
+// are right-continuous), where the diode blocks and the capacitor still holds 4.3 V. The corner
+// at TSTOP was not a breakpoint, so the last grid time read the source after the fall in the
+// conducting mode and printed v(a) = -0.7 V with a diode current of -70 uA.
+TEST(EventDriven, SourceJumpAtTstopIsInTheLastRow) {
+  const double VON = 0.7;
+  NetlistBuilder b;
+  b.tran(1e-5, 6e-3, true);
+  b.v("v1", "in", "0", NetlistBuilder::pulse({0, 5, 1e-3, 0, 0, 1e-3, 2e-3}));
+  b.d("d1", "in", "a", VON, 0).c("c1", "a", "0", 1e-6, 0.0).r("r1", "a", "0", 10e3);
+  EventRun r = run_event(b.build(), {v("a"), i("d1")}, 1e-5, 6e-3, true);
+  expect_grid_rows(r, 1e-5, 6e-3);
+  for (size_t k = 0; k < r.sink.times.size(); ++k) {
+    EXPECT_GE(r.sink.rows[k](0), 0.0) << "t = " << r.sink.times[k];
+    EXPECT_GE(r.sink.rows[k](1), -1e-15) << "t = " << r.sink.times[k];
+  }
+  EXPECT_NEAR(r.sink.rows.back()(0), 5 - VON, 1e-12 * 5);
+  EXPECT_NEAR(r.sink.rows.back()(1), 0.0, 1e-15);
+}
+
+// The last row is at TSTOP exactly (SPEC §3: TSTOP included), also when TSTOP / TSTEP is a
+// whole number that k * TSTEP misses in the last bits: 650 * 1e-5 > 6.5e-3.
+TEST(EventDriven, LastRowIsAtTstopExactly) {
+  for (double tstop : {6.5e-3, 6e-3, 5.5e-3, 2.9e-3}) {
+    SCOPED_TRACE("TSTOP " + std::to_string(tstop));
+    const double tstep = 1e-5;
+    NetlistBuilder b;
+    b.tran(tstep, tstop, true);
+    b.v("v1", "in", "0", NetlistBuilder::dc(10)).d("d1", "in", "a", 0.7, 10);
+    b.r("r1", "a", "out", 1e3).c("c1", "out", "0", 1e-6, 0.0);
+    EventRun r = run_event(b.build(), {v("out")}, tstep, tstop, true);
+    expect_grid_rows(r, tstep, tstop);
+  }
+}
+
+// A long run whose switches all fall on grid times: VON = 0 and a 50 Hz sine crossing zero every
+// 10 ms with TSTEP = 1 ms, for 20 s (1000 periods). At the grid time the sources are read from
+// the waveform again, which differs from the propagated sine by rounding; a diode current found
+// slightly negative there was excused as "starting just below zero" although it was falling, so
+// the turn-off was never seen: from 8.05 s on, the diode conducted with a negative current for
+// whole half periods (at 8.051 s, i(d1) = -31 mA).
+TEST(EventDriven, LongRunWithSwitchesOnGridTimesMissesNone) {
+  const double R = 100, tstep = 1e-3, tstop = 20;
+  NetlistBuilder b;
+  b.tran(tstep, tstop, false);
+  b.v("v1", "in", "0", NetlistBuilder::sin(0, 10, 50)).d("d1", "in", "out", 0, 0).r("r1", "out", "0", R);
+  EventRun r = run_event(b.build(), {v("in"), i("d1")}, tstep, tstop, false);
+  EXPECT_EQ(r.sink.times.back(), tstop);  // (the events sit within rounding of grid times)
+  long bad = 0;
+  for (size_t k = 0; k < r.sink.times.size(); ++k) {
+    const double u = r.sink.rows[k](0), id = r.sink.rows[k](1);
+    if (std::abs(id - std::max(0.0, u) / R) > 1e-12) {
+      if (bad++ < 5) ADD_FAILURE() << "t = " << r.sink.times[k] << ": u = " << u << ", i(d1) = " << id;
+    }
+  }
+  EXPECT_EQ(bad, 0);
+  // A switch at every zero crossing, t = 10 ms ... 20 s (the last one at TSTOP may or may not
+  // count, by rounding).
+  EXPECT_GE(r.summary.stepper.mode_switches, 1999);
+  EXPECT_LE(r.summary.stepper.events, 2000);
+}
+
+// Steep source edges: a PULSE with 1 ps edges (u' = 5e12 V/s) charges a capacitor through an
+// RON = 0 diode. At the start of the rise (1 ms) the diode still blocks (u = 0 < VON + v(a))
+// for another 0.14 ps. The rounding floor of the consistency check was 1e-13 |[x; σ]| with the
+// slope u' in it, so it accepted the conducting mode off by 0.7 V and projected the capacitor to
+// u - VON = -0.7 V: the row at 1 ms read v(a) = -0.7 V, i(d1) = 5e6 A.
+TEST(EventDriven, SteepEdgeDoesNotSwampTheConsistencyCheck) {
+  const double VON = 0.7, R = 10e3, C = 1e-6;
+  NetlistBuilder b;
+  b.tran(1e-5, 6.5e-3, false);
+  b.v("v1", "in", "0", NetlistBuilder::pulse({0, 5, 1e-3, 1e-12, 1e-12, 1e-3, 2e-3}));
+  b.d("d1", "in", "a", VON, 0).c("c1", "a", "0", C).r("r1", "a", "0", R);
+  EventRun r = run_event(b.build(), {v("a"), i("d1")}, 1e-5, 6.5e-3, false);
+  expect_grid_rows(r, 1e-5, 6.5e-3);
+  const double held = 5 - VON, fall = 2e-3 + 1e-12;  // the fall starts 1 ms + TR later
+  for (size_t n = 0; n < r.sink.times.size(); ++n) {
+    const double t = r.sink.times[n];
+    const double tau = std::fmod(t - 1e-3, 2e-3);  // phase in the period
+    if (t <= 1e-3) {  // before the first rise, and its first instant
+      EXPECT_EQ(r.sink.rows[n](0), 0.0) << "t = " << t;
+      EXPECT_EQ(r.sink.rows[n](1), 0.0) << "t = " << t;
+    } else if (tau > 2e-12 && tau < 1e-3 - 1e-9) {  // on the plateau: held at 5 V - VON
+      EXPECT_NEAR(r.sink.rows[n](0), held, 1e-12 * 5) << "t = " << t;
+      EXPECT_NEAR(r.sink.rows[n](1), held / R, 1e-15) << "t = " << t;
+    } else if (tau > 1e-3 + 2e-12) {  // low: the diode blocks, the capacitor discharges
+      const double after = std::fmod(t - fall, 2e-3);
+      EXPECT_NEAR(r.sink.rows[n](0), held * std::exp(-after / (R * C)), 1e-12 * 5) << "t = " << t;
+      EXPECT_EQ(r.sink.rows[n](1), 0.0) << "t = " << t;
+    }
+    EXPECT_GE(r.sink.rows[n](0), 0.0) << "t = " << t;
+    EXPECT_GE(r.sink.rows[n](1), 0.0) << "t = " << t;
+  }
+}
+
+// A node reached only through diodes that never conduct (n2: anode of three diodes, nothing
+// feeds it), next to a high-pass C-R driven by PULSE jumps. At the jumps the switching LCP
+// names a mode with the RON = 0 diode d0 blocking and the others off, which leaves n2 floating
+// (not well posed), and its other solution is degenerate (d4 at z = w = 0). The fallback only
+// tried pairs at zero in the previous mode, so the run stopped at the second rise (0.3 ms) with
+// "no consistent mode after a switching event (pairs at zero: d0)".
+TEST(EventDriven, FloatingNodeBehindDiodesSurvivesSourceJumps) {
+  const double R = 10e3, C = 10e-6, lo = -1.5, hi = 4.8;
+  NetlistBuilder b;
+  b.tran(1e-5, 1e-3, false);
+  b.v("v1", "n1", "0", NetlistBuilder::pulse({lo, hi, 0, 0, 0, 100e-6, 300e-6}));
+  b.c("c1", "n1", "n4", C).r("r2", "n4", "0", R);
+  b.d("d0", "n2", "n4", 0.7, 0).d("d4", "n2", "0", 0.5, 1).d("d5", "n2", "n1", 0.5, 1);
+  EventRun r = run_event(b.build(), {v("n1"), v("n4"), v("n2"), i("d0"), i("d4"), i("d5")}, 1e-5,
+                         1e-3, false);
+  expect_grid_rows(r, 1e-5, 1e-3);
+  // The diodes never conduct; v(n4) is the high-pass response to the jumps (the operating point
+  // has the capacitor charged to u(0) = hi).
+  const std::vector<std::pair<double, double>> jumps = {
+      {100e-6, lo - hi}, {300e-6, hi - lo}, {400e-6, lo - hi}, {600e-6, hi - lo},
+      {700e-6, lo - hi}, {900e-6, hi - lo}, {1000e-6, lo - hi}};
+  for (size_t n = 0; n < r.sink.times.size(); ++n) {
+    const double t = r.sink.times[n];
+    double v4 = 0;
+    for (auto [tk, du] : jumps)
+      if (t >= tk - 1e-9 * 1e-5) v4 += du * std::exp(-(t - tk) / (R * C));
+    EXPECT_NEAR(r.sink.rows[n](1), v4, 1e-12 * hi) << "t = " << t;
+    for (int k = 3; k < 6; ++k) EXPECT_EQ(r.sink.rows[n](k), 0.0) << "t = " << t;
+    // n2 below every diode's threshold
+    const double u = r.sink.rows[n](0), v2 = r.sink.rows[n](2);
+    EXPECT_LE(v2, std::min({v4 + 0.7, 0.5, u + 0.5}) + 1e-12) << "t = " << t;
+  }
+}
+
 // Exponentials are cached per mode and dyadic step: a periodic circuit computes no new ones
 // once every mode has been visited (bridge rectifier: the third and sixth period cost nothing).
 TEST(EventDriven, PeriodicCircuitPaysSetupOncePerMode) {
