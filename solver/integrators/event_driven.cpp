@@ -528,12 +528,11 @@ void EventDriven::DoRun(const Eigen::VectorXd& x0, const OutputGrid& grid, const
       if (st.breakpoint) {
         last_breakpoint = r.pos;
         last_breakpoint_t = st.t;
-        // The sources change form; the physical state is continuous, the LCS state
-        // x = x_phys - Gamma u jumps with u (circuit_model.h).
-        const Eigen::VectorXd u_left = r.inputs();
-        const Eigen::VectorXd u_right = r.model.input_values(st.t);
-        Eigen::VectorXd x = r.state() - r.model.lcs().Gamma * (u_right - u_left);
-        if (restart(st.t, x)) {
+        // The sources change form. The LCS state x = x_phys - Gamma u is continuous across a
+        // jump of u (its derivative has no u' term: it is the charge of a capacitor/source
+        // loop, the flux of an inductor/source cutset), and x_phys jumps by Gamma du
+        // (circuit_model.h), as in the time-stepping methods.
+        if (restart(st.t, r.state())) {
           ++r.stats.mode_switches;
           ++r.stats.events;
           emit_now(st.t, true);
