@@ -1,6 +1,7 @@
 // `lcspice bench` on a reduced setting (--quick: two settings per method, one ngspice run): the
 // table it writes must hold the accuracy facts the methods are known for, so a wrong reference,
 // a mismatched comparison grid or a broken method shows up here.
+#include <algorithm>
 #include <cmath>
 #include <map>
 
@@ -111,6 +112,21 @@ TEST(Bench, QuickRunOnTheLcTankHoldsTheKnownAccuracies) {
   ASSERT_GT(png.size(), 8u);
   EXPECT_EQ(png.substr(1, 3), "PNG");
   EXPECT_NE(r.out.find("headline: event reaches 1e-6"), std::string::npos) << r.out;
+  // Progress goes to a terminal only: with standard error in a file there is none.
+  EXPECT_EQ(r.err, "") << r.err;
+}
+
+TEST(Bench, LongRunsAreQuietWhenStandardErrorIsNotATerminal) {
+  const fs::path dir = scratch_dir("quiet_run");
+  const Result r = run_lcspice("run '" + source_path("circuits/lc_tank_bridge.cir").string() +
+                                   "' --method event --tstop 0.2 -o '" + (dir / "tank.csv").string() + "'",
+                               dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  // One line, the summary; no progress line (it would hold '\r' and a percentage).
+  EXPECT_EQ(r.err.rfind("lcspice: wrote ", 0), 0u) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_EQ(r.err.find('\r'), std::string::npos);
+  EXPECT_EQ(r.err.find('%'), std::string::npos);
 }
 
 TEST(Bench, BadArgumentsAreUsageErrors) {
