@@ -72,8 +72,9 @@ Eigen::MatrixXd SourceSystem::S(const std::string& sig) const {
     if (sig[k] == 'r') S(o, o + 1) = 1;
     if (sig[k] == 's') {
       const Input& in = inputs_[k];
-      S(o + 1, o + 2) = 1;
-      S(o + 2, o + 1) = -(in.omega * in.omega + in.theta * in.theta);
+      const double rate = std::sqrt(in.omega * in.omega + in.theta * in.theta);
+      S(o + 1, o + 2) = rate;
+      S(o + 2, o + 1) = -rate;
       S(o + 2, o + 2) = -2 * in.theta;
     }
     o += kind_dimension(sig[k]);
@@ -97,6 +98,10 @@ Eigen::VectorXd SourceSystem::rounding_weights(const std::string& sig, double se
   int o = 0;
   for (size_t k = 0; k < sig.size(); ++k) {
     if (sig[k] == 'r') w(o + 1) = segment;
+    if (sig[k] == 's') {
+      const Input& in = inputs_[k];
+      w(o + 2) = std::sqrt(in.omega * in.omega + in.theta * in.theta);
+    }
     o += kind_dimension(sig[k]);
   }
   return w;
@@ -119,7 +124,7 @@ void SourceSystem::sigma(double t, const std::string& sig, Eigen::VectorXd& out)
       case 's':
         out(o) = in.vo;
         out(o + 1) = u - in.vo;
-        out(o + 2) = in.waveform->derivative(t);
+        out(o + 2) = in.waveform->derivative(t) / std::sqrt(in.omega * in.omega + in.theta * in.theta);
         break;
     }
     o += kind_dimension(sig[k]);

@@ -273,6 +273,30 @@ TEST(EventDriven, LongRunWithSwitchesOnGridTimesMissesNone) {
   EXPECT_LE(r.summary.stepper.events, 2000);
 }
 
+// A 10 kHz sine into an ideal diode and 1 ohm: i(d1) = max(0, u) at every row, events included,
+// and each event a switch. The sine's companion matrix was [0 1; -ω² 0]: its exponentials over
+// a step carried errors of 1e-16 ω² h relative to their small entries, so between grid times the
+// propagated source was off by 4e-9 of its amplitude (i(d1) 4.2e-8 A off at an event row with
+// TSTEP = 1 us), and every switch cost an extra event: the first located where the propagated
+// source crossed zero, the restart (reading the waveform) finding nothing there.
+TEST(EventDriven, FastSineIsPropagatedToRoundingBetweenGridTimes) {
+  const double A = 9;
+  for (double tstep : {10e-6, 1e-6}) {
+    SCOPED_TRACE("TSTEP " + std::to_string(tstep));
+    NetlistBuilder b;
+    b.tran(tstep, 1e-3, false);
+    b.v("v1", "in", "0", NetlistBuilder::sin(0, A, 10e3)).d("d1", "in", "out", 0, 0);
+    b.r("r1", "out", "0", 1);
+    EventRun r = run_event(b.build(), {v("in"), i("d1")}, tstep, 1e-3, false);
+    for (size_t n = 0; n < r.sink.times.size(); ++n)
+      EXPECT_NEAR(r.sink.rows[n](1), std::max(0.0, r.sink.rows[n](0)), 1e-12 * A)
+          << "t = " << r.sink.times[n];
+    EXPECT_EQ(r.summary.stepper.events, r.summary.stepper.mode_switches);
+    EXPECT_GE(r.summary.stepper.mode_switches, 19);  // a zero crossing every 50 us
+    EXPECT_LE(r.summary.stepper.mode_switches, 20);
+  }
+}
+
 // Steep source edges: a PULSE with 1 ps edges (u' = 5e12 V/s) charges a capacitor through an
 // RON = 0 diode. At the start of the rise (1 ms) the diode still blocks (u = 0 < VON + v(a))
 // for another 0.14 ps. The rounding floor of the consistency check was 1e-13 |[x; σ]| with the
