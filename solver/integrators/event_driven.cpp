@@ -331,18 +331,24 @@ bool EventDriven::Impl::apply_impulse(Eigen::VectorXd& x, const Eigen::VectorXd&
 }
 
 // A constraint found below zero here (after a restart, or after a grid time reset the sources)
-// is excused only while it rises: the mode check let it in for that reason. A falling one is a
-// switch the reset uncovered and must end the next step as an event. (Excusing it too left it
-// unwatched for good: 20 s of a VON = 0 rectifier whose source crosses zero at grid times, the
-// waveform and the propagated sine differing by rounding there, lost a turn-off at 8.05 s and
-// then printed a negative diode current for half a period, again and again.)
+// is excused unless it is plainly falling: its slope below zero beyond the mode check's
+// tolerance. The mode check admits a constraint at zero whose slope is zero within that
+// tolerance and whose second derivative is positive (a clamp releasing at a peak of its
+// source); a reset at a grid time checks nothing, and a falling one there is a switch it
+// uncovered, which must end the next step as an event. (Excusing it too left it unwatched for
+// good: 20 s of a VON = 0 rectifier whose source crosses zero at grid times, the waveform and
+// the propagated sine differing by rounding there, lost a turn-off at 8.05 s and then printed
+// a negative diode current for half a period, again and again.)
 void EventDriven::Impl::refresh_constraints() {
   ga = cur->G * X;
   da = cur->GM * X;
-  const Eigen::VectorXd s =
-      cur->Gabs * X.cwiseAbs() + (kNoise * W.cwiseProduct(X).norm()) * cur->Gnorm;
+  const Eigen::VectorXd Xa = X.cwiseAbs();
+  const double xn = kNoise * W.cwiseProduct(X).norm();
+  const Eigen::VectorXd s = cur->Gabs * Xa + xn * cur->Gnorm;
+  const Eigen::VectorXd sd = cur->GMabs * Xa + xn * cur->GMnorm;
   below_at_start.assign(m, 0);
-  for (int i = 0; i < m; ++i) below_at_start[i] = ga(i) < -kTol * s(i) && da(i) > 0;
+  for (int i = 0; i < m; ++i)
+    below_at_start[i] = ga(i) < -kTol * s(i) && da(i) >= -kZeroTol * sd(i);
 }
 
 void EventDriven::Impl::project() {
