@@ -75,6 +75,7 @@ struct EventDriven::Impl {
   std::unique_ptr<SourceSystem> sources;
   double h0 = 0;
   int stop_level = 43;
+  double bracket = 0;  // 2 h0 / 2^stop_level: twice the length events are located to
   int n = 0, m = 0;
 
   // Mode selection: implicit Euler with the tiny step eta, LCP(Csel x + Fsel u(t + eta), Msel).
@@ -183,6 +184,7 @@ void EventDriven::Impl::prepare(double tstep, double tstop) {
   sources = std::make_unique<SourceSystem>(model, tstop);
   stop_level = 1;
   while (stop_level < 62 && std::ldexp(1.0, -stop_level) > options.rtol) ++stop_level;
+  bracket = std::ldexp(h0, 1 - stop_level);
 
   // The selection step: tiny against the output step and the circuit's fastest rate (as for
   // the start of time-stepping), so its solution is the rational complementarity problem's.
@@ -233,7 +235,10 @@ bool EventDriven::Impl::consistent(Mode& md, const Eigen::VectorXd& Xs,
   const Eigen::VectorXd sdd = md.GMMabs * Xa + kNoise * xn * md.GMMnorm;
   bool ok = true;
   for (int i = 0; i < m; ++i) {
-    const double t0 = kZeroTol * sg(i), t1 = kZeroTol * sd(i), t2 = kZeroTol * sdd(i);
+    // A value within one bisection bracket of its slope counts as zero: an event leaves the
+    // constraint that caused it up to |g'| * bracket past zero.
+    const double t0 = kZeroTol * sg(i) + std::abs(d(i)) * bracket;
+    const double t1 = kZeroTol * sd(i), t2 = kZeroTol * sdd(i);
     if (g(i) > t0) continue;
     if (near_zero && g(i) >= -t0) near_zero->push_back(i);
     if (g(i) < -t0) {
@@ -287,11 +292,11 @@ Mode& EventDriven::Impl::select(double t, const Eigen::VectorXd& x, const std::s
   // degenerate ones such as a diode holding a floating node's potential at zero current).
   if (previous && previous->dyn.well_posed && previous->signature == signature) {
     const Eigen::VectorXd Xa = Xs.cwiseAbs();
-    const Eigen::VectorXd g = previous->G * Xs;
+    const Eigen::VectorXd g = previous->G * Xs, d = previous->GM * Xs;
     const Eigen::VectorXd sg =
         previous->Gabs * Xa + kNoise * W.cwiseProduct(Xs).norm() * previous->Gnorm;
     for (int i = 0; i < m; ++i)
-      if (std::abs(g(i)) <= kZeroTol * sg(i) &&
+      if (std::abs(g(i)) <= kZeroTol * sg(i) + std::abs(d(i)) * bracket &&
           std::find(near_zero.begin(), near_zero.end(), i) == near_zero.end())
         near_zero.push_back(i);
   }
