@@ -297,6 +297,27 @@ TEST(EventDriven, FastSineIsPropagatedToRoundingBetweenGridTimes) {
   }
 }
 
+// A DC restorer with an ideal clamp (RON = 0, VON = 0): the clamp charges C1 while the 10 kHz
+// source rises and releases at its peak, where its current reaches zero with the voltage w
+// across it at zero and w' = 0 too (w'' > 0 decides, 8.3.3). The state the release leaves
+// has w a rounding below zero and falling within the mode check's slope tolerance; refusing to
+// excuse it (as for a plainly falling constraint) made every step an event at the same
+// instant: "event chattering" at 25 us.
+TEST(EventDriven, ClampReleasingAtTheSourcePeakDoesNotChatter) {
+  NetlistBuilder b;
+  b.tran(1e-5, 1e-3, true);
+  b.v("v1", "n1", "0", NetlistBuilder::sin(0, 9, 10e3)).c("c1", "n1", "n3", 1e-6);
+  b.c("c2", "n3", "n2", 0.01e-6).r("r4", "n2", "0", 10).d("d6", "n3", "0", 0, 0);
+  EventRun r = run_event(b.build(), {v("n3"), i("d6")}, 1e-5, 1e-3, true);
+  expect_grid_rows(r, 1e-5, 1e-3);
+  for (size_t n = 0; n < r.sink.times.size(); ++n) {
+    EXPECT_LE(r.sink.rows[n](0), 1e-12 * 9) << "t = " << r.sink.times[n];
+    EXPECT_GE(r.sink.rows[n](1), -1e-12) << "t = " << r.sink.times[n];
+  }
+  // The release at 25 us, and later re-engagements near the peaks as C2 and R4 bleed C1.
+  EXPECT_LE(r.summary.stepper.events, 2 * 10);
+}
+
 // Steep source edges: a PULSE with 1 ps edges (u' = 5e12 V/s) charges a capacitor through an
 // RON = 0 diode. At the start of the rise (1 ms) the diode still blocks (u = 0 < VON + v(a))
 // for another 0.14 ps. The rounding floor of the consistency check was 1e-13 |[x; σ]| with the
@@ -386,6 +407,57 @@ TEST(EventDriven, CapacitiveDividerConservesChargeAtSourceJumps) {
         v2 += (k % 2 == 0 ? 1 : -1) * C1 / (C1 + C2) * std::exp(-(t - td - 50e-6 * k) / tau);
       EXPECT_NEAR(r.sink.rows[n](0), v2, 1e-12) << "t = " << t;
     }
+  }
+}
+
+// A 1 us PULSE edge (2.6e6 V/s) crossing zero into an RON = 0 diode (found by a random-circuit
+// comparison with implicit Euler; d2 hangs off a node with nothing else). The event is located
+// to a bracket of 2^-43 TSTEP, in which the edge moves u by 3e-12 V, so the restart sees the
+// diode's w at -1.4e-12 V: beyond the mode check's rounding tolerance (1e-13 V) once a ramp's
+// slope no longer inflated it, and not among the pairs "at zero" that the mode search flips:
+// "no consistent mode after a switching event (pairs at zero: d2)" at 0.79 us. The tolerance
+// now includes |g'| times the bracket.
+TEST(EventDriven, SteepRampCrossingIsAtZeroWithinTheEventBracket) {
+  NetlistBuilder b;
+  b.tran(1e-5, 1e-3, true);
+  b.v("v1", "n1", "0", NetlistBuilder::pulse({-2.09639, 0.542138, 0, 1e-6, 1e-6, 100e-6, 300e-6}));
+  b.d("d0", "n1", "n4", 0, 0).d("d1", "n2", "n1", 0.7, 0).d("d2", "n3", "n4", 0.5, 1);
+  b.c("c3", "n1", "n2", 1e-6).r("rgn2", "n2", "0", 1000).r("rgn4", "n4", "0", 100);
+  EventRun r = run_event(b.build(), {v("n1"), v("n4"), i("d0"), i("d1")}, 1e-5, 1e-3, true);
+  expect_grid_rows(r, 1e-5, 1e-3);
+  for (size_t n = 0; n < r.sink.times.size(); ++n) {
+    // d0 into 100 ohm: v(n4) = max(0, u) (d2 carries nothing: n3 is a dead end).
+    EXPECT_NEAR(r.sink.rows[n](1), std::max(0.0, r.sink.rows[n](0)), 1e-12 * 3) << "t = " << r.sink.times[n];
+    EXPECT_GE(r.sink.rows[n](2), -1e-15) << "t = " << r.sink.times[n];
+    EXPECT_GE(r.sink.rows[n](3), -1e-15) << "t = " << r.sink.times[n];
+  }
+}
+
+// An inductor current reversing through two antiparallel RON = 0 diodes (found by a
+// random-circuit comparison with implicit Euler). d0 (VON 0.7) carries the initial -4 mA; when
+// the current reaches zero, d0 opens and its voltage jumps (an L diode), so d3 (VON 0) must close
+// at the same instant. The switching LCP's deciding entry is O(eta) and sat at its tolerance, so
+// it named a mode with neither changed, and d3 was not "at zero" in it: "no consistent mode after
+// a switching event (pairs at zero: d0)" at 0.53 us. The mode search now falls back to every pair
+// (circuits with at most 10 diodes).
+TEST(EventDriven, InductorCurrentReversesThroughAntiparallelIdealDiodes) {
+  const double V = 5, L = 1e-3, R = 1e3, i0 = -4e-3, VON = 0.7, tau = L / R;
+  NetlistBuilder b;
+  b.tran(1e-5, 1e-4, true);
+  b.v("v1", "n1", "0", NetlistBuilder::dc(V)).l("l1", "n1", "n3", L, i0);
+  b.d("d0", "n2", "n3", VON, 0).d("d3", "n3", "n2", 0, 0).r("rg", "n2", "0", R);
+  EventRun r = run_event(b.build(), {i("l1"), i("d0"), i("d3")}, 1e-5, 1e-4, true);
+  // d0 conducts: L i' = V + VON - R i; then d3: L i' = V - R i.
+  const double t1 = tau * std::log((i0 - (V + VON) / R) / -((V + VON) / R));
+  ASSERT_EQ(r.event_times.size(), 1u);
+  EXPECT_NEAR(r.event_times[0], t1, 1e-15);
+  for (size_t n = 0; n < r.sink.times.size(); ++n) {
+    const double t = r.sink.times[n];
+    const double il = t < t1 ? (V + VON) / R + (i0 - (V + VON) / R) * std::exp(-t / tau)
+                             : V / R * (1 - std::exp(-(t - t1) / tau));
+    EXPECT_NEAR(r.sink.rows[n](0), il, 1e-14) << "t = " << t;
+    EXPECT_NEAR(r.sink.rows[n](1), t < t1 ? -il : 0.0, 1e-14) << "t = " << t;
+    EXPECT_NEAR(r.sink.rows[n](2), t < t1 ? 0.0 : il, 1e-14) << "t = " << t;
   }
 }
 
