@@ -93,7 +93,7 @@ struct EventDriven::Impl {
   Eigen::VectorXd W;       // rounding weights of [x; σ] for the current source form
   Eigen::VectorXd ga, da;  // constraint values and slopes at X
   std::vector<char> below_at_start;  // constraints that began the mode just below zero
-  Eigen::VectorXd scale;
+  Eigen::VectorXd scale, slope_scale;
   std::array<Eigen::VectorXd, kMaxLevel + 1> Xb, gb, db, sc;
 
   Impl(const CircuitModel& mdl, const EventOptions& o) : model(mdl), options(o) {}
@@ -359,15 +359,16 @@ bool EventDriven::Impl::apply_impulse(Eigen::VectorXd& x, const Eigen::VectorXd&
 // the propagated sine differing by rounding there, lost a turn-off at 8.05 s and then printed
 // a negative diode current for half a period, again and again.)
 void EventDriven::Impl::refresh_constraints() {
-  ga = cur->G * X;
-  da = cur->GM * X;
-  const Eigen::VectorXd Xa = X.cwiseAbs();
+  ga.noalias() = cur->G * X;
+  da.noalias() = cur->GM * X;
   const double xn = kNoise * W.cwiseProduct(X).norm();
-  const Eigen::VectorXd s = cur->Gabs * Xa + xn * cur->Gnorm;
-  const Eigen::VectorXd sd = cur->GMabs * Xa + xn * cur->GMnorm;
-  below_at_start.assign(m, 0);
+  scale.noalias() = cur->Gabs * X.cwiseAbs();
+  scale += xn * cur->Gnorm;
+  slope_scale.noalias() = cur->GMabs * X.cwiseAbs();
+  slope_scale += xn * cur->GMnorm;
+  below_at_start.resize(m);
   for (int i = 0; i < m; ++i)
-    below_at_start[i] = ga(i) < -kTol * s(i) && da(i) >= -kZeroTol * sd(i);
+    below_at_start[i] = ga(i) < -kTol * scale(i) && da(i) >= -kZeroTol * slope_scale(i);
 }
 
 void EventDriven::Impl::project() {
