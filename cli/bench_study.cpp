@@ -22,21 +22,19 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // A circuit ready to run: its model, probes and run parameters.
 struct Prepared {
-  Netlist netlist;
   std::unique_ptr<CircuitModel> model;
   OutputMap outputs;
   double tstep = 0, tstop = 0;
   bool uic = false;
 };
 
-Prepared prepare(const Netlist& netlist, const std::vector<Probe>& probes) {
+// The outputs are mapped by the caller: both circuits of a study share the ideal one's probes.
+Prepared prepare(const Netlist& netlist) {
   Prepared p;
-  p.netlist = netlist;
   p.tstep = netlist.tran->tmax > 0 ? std::min(netlist.tran->tstep, netlist.tran->tmax) : netlist.tran->tstep;
   p.tstop = netlist.tran->tstop;
   p.uic = netlist.tran->uic;
   p.model = std::make_unique<CircuitModel>(build_model(netlist, 0.0, p.tstop));
-  p.outputs = output_map_or_exit(*p.model, probes);
   return p;
 }
 
@@ -146,9 +144,9 @@ CircuitStudy study_circuit(const std::string& path, const std::string& probe_lis
   study.title = netlist.title;
   if (!netlist.tran)
     throw CliError(kExitNetlist, path + ": error: no .tran card: nothing to benchmark");
-  const std::vector<Probe> probes =
-      probes_for(netlist, build_model(netlist, 0.0, netlist.tran->tstop), probe_list);
-  Prepared ideal = prepare(netlist, probes);
+  Prepared ideal = prepare(netlist);
+  const std::vector<Probe> probes = probes_for(netlist, *ideal.model, probe_list);
+  ideal.outputs = output_map_or_exit(*ideal.model, probes);
   const double h = ideal.tstep;
   const double min_s = settings.min_timing_seconds;
   auto report = [&](const std::string& what, double f) {
@@ -177,7 +175,8 @@ CircuitStudy study_circuit(const std::string& path, const std::string& probe_lis
   study.smooth_reference_check = kNaN;
   if (have_smooth) {
     report("reference (smooth)", 0.05);
-    smooth = prepare(smooth_netlist(netlist, smoothing), probes);
+    smooth = prepare(smooth_netlist(netlist, smoothing));
+    smooth.outputs = output_map_or_exit(*smooth.model, probes);
     try {
       sref = run(smooth, "smooth", h, 1e-10, 1e-13, {}, 0);
       Timed check = run(smooth, "smooth", h, 1e-11, 1e-14, {}, 0);

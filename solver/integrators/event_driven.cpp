@@ -49,6 +49,15 @@ double hermite_min(double a, double b, double da, double db) {
   return lo;
 }
 
+// The tolerance scale of each row of a product M X: the size of the terms it adds up, plus the
+// rounding noise the mode's matrices carry (entries that should be 0 but are ~1e-16 of their
+// row), taken as the row's norm times `x_size`, the weighted size of X.
+void row_scales(const Eigen::MatrixXd& Mabs, const Eigen::VectorXd& Mnorm, const Eigen::VectorXd& X,
+                double x_size, Eigen::VectorXd& out) {
+  out.noalias() = Mabs * X.cwiseAbs();
+  out += (kNoise * x_size) * Mnorm;
+}
+
 }  // namespace
 
 // One mode (active set) with one form of the sources: the augmented linear system
@@ -226,14 +235,12 @@ void EventDriven::Impl::prepare(double tstep, double tstop) {
 bool EventDriven::Impl::consistent(Mode& md, const Eigen::VectorXd& Xs,
                                    std::vector<int>* near_zero) const {
   if (!md.dyn.well_posed) return false;
-  const Eigen::VectorXd Xa = Xs.cwiseAbs();
   const Eigen::VectorXd g = md.G * Xs, d = md.GM * Xs, dd = md.GMM * Xs;
-  // Scales: the size of the terms in each row, plus a floor for the rounding noise that the
-  // mode's matrices carry (entries that should be 0 but are ~1e-16 of their row).
   const double xn = W.cwiseProduct(Xs).norm();
-  const Eigen::VectorXd sg = md.Gabs * Xa + kNoise * xn * md.Gnorm;
-  const Eigen::VectorXd sd = md.GMabs * Xa + kNoise * xn * md.GMnorm;
-  const Eigen::VectorXd sdd = md.GMMabs * Xa + kNoise * xn * md.GMMnorm;
+  Eigen::VectorXd sg, sd, sdd;
+  row_scales(md.Gabs, md.Gnorm, Xs, xn, sg);
+  row_scales(md.GMabs, md.GMnorm, Xs, xn, sd);
+  row_scales(md.GMMabs, md.GMMnorm, Xs, xn, sdd);
   bool ok = true;
   for (int i = 0; i < m; ++i) {
     // A value within one bisection bracket of its slope counts as zero: an event leaves the
@@ -249,7 +256,9 @@ bool EventDriven::Impl::consistent(Mode& md, const Eigen::VectorXd& Xs,
     }
   }
   if (md.Pc.rows() > 0) {
-    const Eigen::VectorXd r = md.Pc * Xs, sr = md.Pc.cwiseAbs() * Xa + kNoise * xn * md.Pcnorm;
+    const Eigen::VectorXd r = md.Pc * Xs;
+    Eigen::VectorXd sr;
+    row_scales(md.Pc.cwiseAbs(), md.Pcnorm, Xs, xn, sr);
     for (int i = 0; i < r.size(); ++i)
       if (std::abs(r(i)) > kZeroTol * sr(i) + 1e-300) ok = false;
   }
@@ -292,10 +301,9 @@ Mode& EventDriven::Impl::select(double t, const Eigen::VectorXd& x, const std::s
   // ... the pairs at zero in the mode that ran into the event (the ones that switched, and
   // degenerate ones such as a diode holding a floating node's potential at zero current).
   if (previous && previous->dyn.well_posed && previous->signature == signature) {
-    const Eigen::VectorXd Xa = Xs.cwiseAbs();
     const Eigen::VectorXd g = previous->G * Xs, d = previous->GM * Xs;
-    const Eigen::VectorXd sg =
-        previous->Gabs * Xa + kNoise * W.cwiseProduct(Xs).norm() * previous->Gnorm;
+    Eigen::VectorXd sg;
+    row_scales(previous->Gabs, previous->Gnorm, Xs, W.cwiseProduct(Xs).norm(), sg);
     for (int i = 0; i < m; ++i)
       if (std::abs(g(i)) <= kZeroTol * sg(i) + std::abs(d(i)) * bracket &&
           std::find(near_zero.begin(), near_zero.end(), i) == near_zero.end())
@@ -361,11 +369,9 @@ bool EventDriven::Impl::apply_impulse(Eigen::VectorXd& x, const Eigen::VectorXd&
 void EventDriven::Impl::refresh_constraints() {
   ga.noalias() = cur->G * X;
   da.noalias() = cur->GM * X;
-  const double xn = kNoise * W.cwiseProduct(X).norm();
-  scale.noalias() = cur->Gabs * X.cwiseAbs();
-  scale += xn * cur->Gnorm;
-  slope_scale.noalias() = cur->GMabs * X.cwiseAbs();
-  slope_scale += xn * cur->GMnorm;
+  const double xn = W.cwiseProduct(X).norm();
+  row_scales(cur->Gabs, cur->Gnorm, X, xn, scale);
+  row_scales(cur->GMabs, cur->GMnorm, X, xn, slope_scale);
   below_at_start.resize(m);
   for (int i = 0; i < m; ++i)
     below_at_start[i] = ga(i) < -kTol * scale(i) && da(i) >= -kZeroTol * slope_scale(i);
@@ -378,8 +384,7 @@ void EventDriven::Impl::project() {
 
 bool EventDriven::Impl::violated(const Eigen::VectorXd& Xv, Eigen::VectorXd& g, Eigen::VectorXd& scale) const {
   g.noalias() = cur->G * Xv;
-  scale.noalias() = cur->Gabs * Xv.cwiseAbs();
-  scale += (kNoise * W.cwiseProduct(Xv).norm()) * cur->Gnorm;
+  row_scales(cur->Gabs, cur->Gnorm, Xv, W.cwiseProduct(Xv).norm(), scale);
   for (int i = 0; i < m; ++i)
     if (g(i) < -(kTol * scale(i) + 1e-300) && !below_at_start[i]) return true;
   return false;
@@ -453,7 +458,7 @@ bool EventDriven::Impl::advance_to(const DyadicTime& target, const Progress& pro
 }
 
 EventDriven::EventDriven(const CircuitModel& model, const EventOptions& options)
-    : ContinuousMethod(model), options_(options), impl_(std::make_unique<Impl>(model, options)) {}
+    : ContinuousMethod(model), impl_(std::make_unique<Impl>(model, options)) {}
 
 EventDriven::~EventDriven() = default;
 
@@ -534,9 +539,9 @@ void EventDriven::DoRun(const Eigen::VectorXd& x0, const OutputGrid& grid, const
                         ? events_here + 1
                         : 0;
       last_event = r.pos;
-      if (events_here > options_.max_events_at_one_time)
+      if (events_here > r.options.max_events_at_one_time)
         throw NumericalFailure(t, "event chattering: more than " +
-                                      std::to_string(options_.max_events_at_one_time) +
+                                      std::to_string(r.options.max_events_at_one_time) +
                                       " switching events at one instant (grazing contact or a "
                                       "Zeno point)");
       if (restart(t, r.state())) ++r.stats.mode_switches;

@@ -37,7 +37,6 @@ class EventDriven : public ContinuousMethod {
 
  private:
   struct Impl;
-  EventOptions options_;
   std::unique_ptr<Impl> impl_;
 };
 

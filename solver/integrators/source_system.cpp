@@ -22,7 +22,6 @@ SourceSystem::SourceSystem(const CircuitModel& model, double tstop) {
         in.omega = kTwoPi * w.params.at(2);
         in.td = w.params.at(3);
         in.theta = w.params.at(4);
-        max_omega_ = std::max(max_omega_, std::abs(in.omega));
       }
       // Corners at TSTOP count (a jump there changes the last row), also when the corner's
       // time is computed a few ulps past it (TD + k PER + ...): those are moved onto TSTOP.

@@ -44,8 +44,6 @@ class SourceSystem {
   Eigen::VectorXd rounding_weights(const std::string& signature, double segment) const;
 
   const std::vector<double>& breakpoints() const { return breakpoints_; }
-  // Largest angular frequency of the SIN sources (for the step bound), 0 without any.
-  double max_angular_frequency() const { return max_omega_; }
 
  private:
   struct Input {
@@ -55,7 +53,6 @@ class SourceSystem {
   char kind(const Input& in, double t) const;
   std::vector<Input> inputs_;
   std::vector<double> breakpoints_;
-  double max_omega_ = 0;
 };
 
 }  // namespace lcs

@@ -96,28 +96,16 @@ class RowWriter {
   bool has_k_;
 };
 
-TransientSummary run_adaptive(const CircuitModel& model, const OutputMap& outputs,
-                              const TransientOptions& options, const MethodEntry& entry,
-                              OutputSink& sink) {
-  TransientSummary summary;
-  summary.method = options.method;
-  const double cpu0 = process_cpu_seconds();
+// Adaptive methods: they step and emit on their own; rows at the same or an earlier time than
+// the last (an event on a grid time) and before TSTART are dropped.
+void run_adaptive(const CircuitModel& model, const OutputMap& outputs, const TransientOptions& options,
+                  const MethodEntry& entry, const Eigen::VectorXd& x0, OutputSink& sink,
+                  TransientSummary& summary, double cpu0) {
   std::unique_ptr<ContinuousMethod> method = entry.make_continuous(model, options.method_options);
-  sink.begin(outputs.names);
-  Eigen::VectorXd x0;
-  try {
-    InitialState init = initial_state(model, options.uic, 0.0);
-    summary.warnings = init.warnings;
-    x0 = init.x;
-  } catch (const NumericalFailure&) {
-    sink.finish();
-    throw;
-  }
   OutputGrid grid;
   grid.tstep = options.step;
   grid.tstop = options.tstop;
   grid.extra = options.extra_output_times;
-
   RowWriter writer(model, outputs, sink);
   double last_t = -1;
   auto emit = [&](double t, const Eigen::VectorXd& x, const Eigen::VectorXd& z, bool) {
@@ -130,16 +118,43 @@ TransientSummary run_adaptive(const CircuitModel& model, const OutputMap& output
   if (options.progress) progress = [&](double t) { options.progress(t / options.tstop); };
   const double loop0 = process_cpu_seconds();
   summary.cpu_setup = loop0 - cpu0;
-  try {
-    method->Run(x0, grid, emit, progress);
-  } catch (const NumericalFailure&) {
-    sink.finish();
-    throw;
-  }
+  method->Run(x0, grid, emit, progress);
   summary.cpu_steps = process_cpu_seconds() - loop0;
   summary.stepper = method->stats();
-  sink.finish();
-  return summary;
+}
+
+// Fixed-step methods: step k ends at k*h (no accumulated rounding); a last shorter step lands
+// on tstop.
+void run_fixed_step(const CircuitModel& model, const OutputMap& outputs, const TransientOptions& options,
+                    const MethodEntry& entry, Eigen::VectorXd x, OutputSink& sink,
+                    TransientSummary& summary, double cpu0) {
+  std::unique_ptr<TimeStepper> stepper = entry.make_stepper(model, options.method_options);
+  Eigen::VectorXd z(model.lcs().pairs());
+  stepper->Start(0.0, options.step, x, z);
+  summary.cpu_setup = process_cpu_seconds() - cpu0;
+  RowWriter writer(model, outputs, sink);
+  auto emit = [&](double t) {
+    writer.write(t, x, z);
+    ++summary.rows;
+  };
+  const double h = options.step;
+  const long full_steps = static_cast<long>(std::floor(options.tstop / h * (1 + 1e-12)));
+  const bool partial = options.tstop - full_steps * h > 1e-9 * h;
+  const long total = full_steps + (partial ? 1 : 0);
+  const double loop0 = process_cpu_seconds();
+  if (options.tstart <= 0) emit(0.0);
+  double t = 0.0;
+  for (long k = 1; k <= total; ++k) {
+    // Full steps use h itself: k*h - (k-1)*h differs from h in the last bits, and every
+    // distinct step size costs a factorisation and a cold warm start.
+    const double t_next = k <= full_steps ? k * h : options.tstop;
+    stepper->Step(t, k <= full_steps ? h : t_next - t, x, z);
+    t = t_next;
+    if (t >= options.tstart * (1 - 1e-12)) emit(t);
+    if (options.progress && (k & 4095) == 0) options.progress(t / options.tstop);
+  }
+  summary.cpu_steps = process_cpu_seconds() - loop0;
+  summary.stepper = stepper->stats();
 }
 
 }  // namespace
@@ -151,54 +166,19 @@ TransientSummary run_transient(const CircuitModel& model, const OutputMap& outpu
   TransientSummary summary;
   summary.method = options.method;
   const double cpu0 = process_cpu_seconds();
-
   const MethodEntry& entry = *find_method(options.method);
-  if (entry.adaptive()) return run_adaptive(model, outputs, options, entry, sink);
-  std::unique_ptr<TimeStepper> stepper = entry.make_stepper(model, options.method_options);
   sink.begin(outputs.names);  // a failure from here on still leaves a (header-only) file
-  Eigen::VectorXd x, z(model.lcs().pairs());
   try {
     InitialState init = initial_state(model, options.uic, 0.0);
     summary.warnings = init.warnings;
-    x = init.x;
-    stepper->Start(0.0, options.step, x, z);
+    if (entry.adaptive())
+      run_adaptive(model, outputs, options, entry, init.x, sink, summary, cpu0);
+    else
+      run_fixed_step(model, outputs, options, entry, init.x, sink, summary, cpu0);
   } catch (const NumericalFailure&) {
-    sink.finish();
+    sink.finish();  // the rows computed so far are kept (SPEC §4)
     throw;
   }
-  summary.cpu_setup = process_cpu_seconds() - cpu0;
-
-  RowWriter writer(model, outputs, sink);
-  auto emit = [&](double t) {
-    writer.write(t, x, z);
-    ++summary.rows;
-  };
-
-
-  // Step k ends at k*h (no accumulated rounding); a last shorter step lands on tstop.
-  const double h = options.step;
-  const long full_steps = static_cast<long>(std::floor(options.tstop / h * (1 + 1e-12)));
-  const bool partial = options.tstop - full_steps * h > 1e-9 * h;
-  const long total = full_steps + (partial ? 1 : 0);
-  const double loop0 = process_cpu_seconds();
-  try {
-    if (options.tstart <= 0) emit(0.0);
-    double t = 0.0;
-    for (long k = 1; k <= total; ++k) {
-      // Full steps use h itself: k*h - (k-1)*h differs from h in the last bits, and every
-      // distinct step size costs a factorisation and a cold warm start.
-      const double t_next = k <= full_steps ? k * h : options.tstop;
-      stepper->Step(t, k <= full_steps ? h : t_next - t, x, z);
-      t = t_next;
-      if (t >= options.tstart * (1 - 1e-12)) emit(t);
-      if (options.progress && (k & 4095) == 0) options.progress(t / options.tstop);
-    }
-  } catch (const NumericalFailure&) {
-    sink.finish();
-    throw;
-  }
-  summary.cpu_steps = process_cpu_seconds() - loop0;
-  summary.stepper = stepper->stats();
   sink.finish();
   return summary;
 }
