@@ -8,6 +8,7 @@
 #include "cli/load_circuit.h"
 #include "graph/components.h"
 #include "graph/diode_classes.h"
+#include "solver/devices/device.h"
 #include "solver/model/lcs_index.h"
 
 namespace lcs {
@@ -112,7 +113,7 @@ void print_text(const Report& r) {
   std::printf("  states n = %d:", s.states());
   for (const StateInfo& st : m.states()) std::printf(" %s", st.label.c_str());
   std::printf("\n  pairs m = %d, inputs = %d (u0 = 1 carries VON)", s.pairs(), s.inputs());
-  for (size_t k = 1; k < m.inputs().size(); ++k) std::printf(", %s", m.inputs()[k].label.c_str());
+  for (int k = 1; k < m.inputs().size(); ++k) std::printf(", %s", m.inputs()[k].label.c_str());
   std::printf("\n");
   if (s.Gamma.size() > 0 && s.Gamma.cwiseAbs().maxCoeff() > 0)
     std::printf("  state shift: x = x_phys - Gamma u (capacitor/source loops or inductor/source cutsets)\n");
@@ -172,10 +173,8 @@ int analyze_command(const AnalyzeArgs& args) {
   CircuitModel model = build_model(netlist, 0.0, t1);
   Report r{model, h_components(model.graph()), classify_diodes(model.graph()), lcs_index(model.lcs()), {}};
   for (const std::string& w : floating_potential_warnings(model)) r.warnings.push_back(w);
-  for (const Element& el : netlist.elements)
-    if (el.kind == ElementKind::Diode)
-      for (const std::string& p : netlist.diode_models.at(el.model).ignored)
-        r.warnings.push_back("diode " + el.name + ": model parameter " + p + " is ignored by the ideal model");
+  for (const std::shared_ptr<Device>& d : model.devices())
+    for (const std::string& note : d->notes()) r.warnings.push_back(note);
   if (args.json) print_json(r);
   else print_text(r);
   return kExitOk;

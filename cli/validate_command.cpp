@@ -24,7 +24,7 @@
 #include "ngspice/ngspice_session.h"
 #include "ngspice/probe_series.h"
 #include "solver/integrators/transient.h"
-#include "solver/model/diode_law.h"
+#include "solver/devices/diode.h"
 #include "solver/model/initial_state.h"
 #include "solver/model/numerical_failure.h"
 #include "solver/model/smooth_netlist.h"

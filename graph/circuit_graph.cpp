@@ -14,43 +14,31 @@ const char* branch_class_name(BranchClass c) {
   return "?";
 }
 
-static BranchClass class_of(ElementKind kind) {
-  switch (kind) {
-    case ElementKind::VoltageSource: return BranchClass::VoltageSource;
-    case ElementKind::Capacitor: return BranchClass::Capacitor;
-    case ElementKind::Resistor: return BranchClass::Resistor;
-    case ElementKind::Diode: return BranchClass::Diode;
-    case ElementKind::Inductor: return BranchClass::Inductor;
-    case ElementKind::CurrentSource: return BranchClass::CurrentSource;
-    case ElementKind::Coupling: break;
-  }
-  return BranchClass::Resistor;  // unreachable: couplings are not branches
+CircuitGraph::CircuitGraph() {
+  nodes.push_back("0");
+  node_index_.emplace("0", 0);
 }
 
-CircuitGraph CircuitGraph::from_netlist(const Netlist& netlist) {
-  CircuitGraph g;
-  auto intern = [&g](const std::string& name) {
-    auto it = g.node_index_.find(name);
-    if (it != g.node_index_.end()) return it->second;
-    int index = static_cast<int>(g.nodes.size());
-    g.nodes.push_back(name);
-    g.node_index_.emplace(name, index);
+int CircuitGraph::add_branch(int element, const std::string& name, BranchClass cls,
+                             const std::string& from, const std::string& to) {
+  auto intern = [this](const std::string& node) {
+    auto it = node_index_.find(node);
+    if (it != node_index_.end()) return it->second;
+    const int index = static_cast<int>(nodes.size());
+    nodes.push_back(node);
+    node_index_.emplace(node, index);
     return index;
   };
-  intern("0");
-  for (int e = 0; e < static_cast<int>(netlist.elements.size()); ++e) {
-    const Element& el = netlist.elements[e];
-    if (el.kind == ElementKind::Coupling) continue;
-    Branch b;
-    b.element = e;
-    b.name = el.name;
-    b.cls = class_of(el.kind);
-    b.from = intern(el.nodes.at(0));
-    b.to = intern(el.nodes.at(1));
-    g.branch_of_element_[e] = static_cast<int>(g.branches.size());
-    g.branches.push_back(b);
-  }
-  return g;
+  Branch b;
+  b.element = element;
+  b.name = name;
+  b.cls = cls;
+  b.from = intern(from);
+  b.to = intern(to);
+  const int index = static_cast<int>(branches.size());
+  branch_of_element_.emplace(element, index);  // keeps the first
+  branches.push_back(b);
+  return index;
 }
 
 int CircuitGraph::node_index(const std::string& name) const {

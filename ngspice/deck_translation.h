@@ -1,5 +1,6 @@
 // An lcspice netlist as an ngspice deck with smooth (Shockley) diodes: the witness that
-// `lcspice validate` compares against. The whole translation is defined here:
+// `lcspice validate` compares against. Each device writes its own cards (Device::ngspice); the
+// translation as a whole is:
 //
 //  - Ideal diode (VON, RON) -> a voltage source VON in series with a Shockley diode of emission
 //    coefficient N (default 0.05), IS (default 1e-14) and RS = RON:
@@ -32,6 +33,7 @@
 #include <string>
 #include <vector>
 
+#include "solver/devices/device.h"
 #include "solver/model/circuit_model.h"
 
 namespace lcs {
@@ -46,12 +48,6 @@ struct TranslationOptions {
   // When set, ngspice starts from these capacitor voltages / inductor currents (by element name)
   // with UIC: lcspice's own initial state, for netlists whose IC= ngspice would ignore without UIC.
   std::map<std::string, double> initial_conditions;
-};
-
-// Where an lcspice probe's value comes from among ngspice's vectors: value = plus - minus
-// (minus empty: 0).
-struct ProbeSource {
-  std::string plus, minus;
 };
 
 struct TranslatedDeck {

@@ -23,7 +23,7 @@
 #include "solver/lcp/lcp.h"
 #include "solver/model/initial_state.h"
 #include "solver/model/smooth_netlist.h"
-#include "solver/model/diode_law.h"
+#include "solver/devices/diode.h"
 #include "tests/cli_support.h"
 
 namespace lcs {

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "graph/diode_classes.h"
+#include "solver/devices/device_registry.h"
 #include "tests/support/netlist_builder.h"
 
 namespace lcs {
@@ -12,7 +13,11 @@ namespace {
 
 using testing::NetlistBuilder;
 
+// The graph of a netlist's devices (the graph stays two-terminal; devices say their branches).
+CircuitGraph graph_of(const Netlist& netlist) { return graph_of_devices(make_devices(netlist, {})); }
+
 // Random connected circuits of every branch class (a spanning chain first, then extra branches).
+
 Netlist random_circuit(std::mt19937& rng, int nodes, int extra) {
   NetlistBuilder b;
   std::uniform_int_distribution<int> kind(0, 5), node(0, nodes - 1);
@@ -46,7 +51,7 @@ TEST(SpanningTree, LoopsSatisfyKvlAndNodePathsGivePotentials) {
   std::uniform_real_distribution<double> potential(-5, 5);
   for (int trial = 0; trial < 300; ++trial) {
     Netlist net = random_circuit(rng, 2 + trial % 9, trial % 13);
-    CircuitGraph g = CircuitGraph::from_netlist(net);
+    CircuitGraph g = graph_of(net);
     SpanningTree t = build_normal_tree(g);
     ASSERT_EQ(t.tree.size(), g.nodes.size() - 1);
     ASSERT_EQ(t.tree.size() + t.links.size(), g.branches.size());
@@ -82,7 +87,7 @@ TEST(SpanningTree, NormalTreePrefersSourcesThenCapacitors) {
   NetlistBuilder b;
   b.v("v1", "a", "0", NetlistBuilder::dc(1)).r("r1", "a", "0", 1).c("c1", "a", "0", 1e-6);
   b.l("l1", "a", "b", 1e-3).d("d1", "b", "0");
-  CircuitGraph g = CircuitGraph::from_netlist(b.build());
+  CircuitGraph g = graph_of(b.build());
   SpanningTree t = build_normal_tree(g);
   std::vector<std::string> tree;
   for (int br : t.tree) tree.push_back(g.branches[br].name);
@@ -96,7 +101,7 @@ TEST(DiodeClasses, CapacitorResistorAndInductorDiodes) {
   b.r("r1", "a", "y", 1).d("dr", "y", "a");        // resistor path
   b.l("l1", "a", "z", 1e-3).d("dl", "z", "a");     // only through the inductor
   b.d("dq", "a", "q").r("rq", "q", "w", 1).c("cq", "w", "q", 1e-6);  // q, w: only via dq
-  std::vector<DiodeClass> classes = classify_diodes(CircuitGraph::from_netlist(b.build()));
+  std::vector<DiodeClass> classes = classify_diodes(graph_of(b.build()));
   ASSERT_EQ(classes.size(), 4u);
   EXPECT_EQ(classes[0].cls, 'C');
   EXPECT_EQ(classes[1].cls, 'R');

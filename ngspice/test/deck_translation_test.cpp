@@ -4,7 +4,7 @@
 
 #include <gtest/gtest.h>
 
-#include "solver/model/diode_law.h"
+#include "solver/devices/diode.h"
 #include "tests/support/netlist_builder.h"
 
 namespace lcs {

@@ -8,7 +8,7 @@
 #include <Eigen/Dense>
 
 #include "solver/integrators/time_stepper.h"
-#include "solver/model/circuit_model.h"
+#include "solver/model/lcs_problem.h"
 
 namespace lcs {
 
@@ -28,7 +28,7 @@ class ContinuousMethod {
   // Called now and then with the time reached, for progress reports.
   using Progress = std::function<void(double t)>;
 
-  explicit ContinuousMethod(const CircuitModel& model) : model_(model) {}
+  explicit ContinuousMethod(const LcsProblem& model) : model_(model) {}
   virtual ~ContinuousMethod() = default;
 
   // From x0 at t = 0 (before any jump an inconsistent x0 causes) to grid.tstop. Emits t = 0 first
@@ -42,7 +42,7 @@ class ContinuousMethod {
  protected:
   virtual void DoRun(const Eigen::VectorXd& x0, const OutputGrid& grid, const Emit& emit,
                      const Progress& progress) = 0;
-  const CircuitModel& model_;
+  const LcsProblem& model_;
   StepperStats stats_;
 };
 

@@ -77,7 +77,7 @@ struct Mode {
 };
 
 struct EventDriven::Impl {
-  const CircuitModel& model;
+  const LcsProblem& model;
   EventOptions options;
   StepperStats stats;
   std::map<std::string, std::unique_ptr<Mode>> modes;
@@ -105,7 +105,7 @@ struct EventDriven::Impl {
   Eigen::VectorXd scale, slope_scale;
   std::array<Eigen::VectorXd, kMaxLevel + 1> Xb, gb, db, sc;
 
-  Impl(const CircuitModel& mdl, const EventOptions& o) : model(mdl), options(o) {}
+  Impl(const LcsProblem& mdl, const EventOptions& o) : model(mdl), options(o) {}
 
   Mode& mode(const std::vector<bool>& active, const std::string& signature);
   const Eigen::MatrixXd& exponential(Mode& md, int j);
@@ -340,8 +340,7 @@ Mode& EventDriven::Impl::select(double t, const Eigen::VectorXd& x, const std::s
   }
   std::string pairs;
   for (int i : near_zero)
-    pairs += (pairs.empty() ? "" : ", ") +
-             model.netlist().elements[model.pairs()[i].element].name;
+    pairs += (pairs.empty() ? "" : ", ") + model.pairs()[i].name;
   throw NumericalFailure(t, "no consistent mode after a switching event" +
                                 (pairs.empty() ? std::string() : " (pairs at zero: " + pairs + ")"));
 }
@@ -457,7 +456,7 @@ bool EventDriven::Impl::advance_to(const DyadicTime& target, const Progress& pro
   return true;
 }
 
-EventDriven::EventDriven(const CircuitModel& model, const EventOptions& options)
+EventDriven::EventDriven(const LcsProblem& model, const EventOptions& options)
     : ContinuousMethod(model), impl_(std::make_unique<Impl>(model, options)) {}
 
 EventDriven::~EventDriven() = default;
@@ -523,6 +522,16 @@ void EventDriven::DoRun(const Eigen::VectorXd& x0, const OutputGrid& grid, const
   restart(0.0, x0);
   emit_now(0.0, false);
 
+  // Devices with history (lines) cap the step: targets at most h0 / 2^cap_level apart.
+  int cap_level = 0;
+  while (cap_level < 62 && std::ldexp(h0, -cap_level) > r.model.max_step()) ++cap_level;
+  auto accept_here = [&] {
+    if (!r.model.has_history()) return;
+    x_out = r.X.head(n);
+    z_out.noalias() = r.cur->Z * r.X;
+    r.model.accept(r.pos.seconds(h0), x_out, z_out);
+  };
+
   size_t next_stop = 0;
   int events_here = 0;
   DyadicTime last_event{-1, 0};
@@ -532,7 +541,15 @@ void EventDriven::DoRun(const Eigen::VectorXd& x0, const OutputGrid& grid, const
     DyadicTime target{r.pos.k + 1, 0};
     if (next_stop < stops.size() && stops[next_stop].at < target) target = stops[next_stop].at;
     if (end < target) target = end;
-    if (!r.advance_to(target, progress)) {
+    if (cap_level > 0) {
+      DyadicTime capped = r.pos;
+      capped.f &= ~((std::uint64_t(1) << (64 - cap_level)) - 1);
+      capped = capped.plus(cap_level);
+      if (capped < target) target = capped;
+    }
+    const bool reached = r.advance_to(target, progress);
+    accept_here();
+    if (!reached) {
       const double t = r.pos.seconds(h0);
       ++r.stats.events;
       events_here = (r.pos.k == last_event.k && r.pos.f - last_event.f < (std::uint64_t(1) << 24))

@@ -27,7 +27,7 @@ struct EventOptions {
 
 class EventDriven : public ContinuousMethod {
  public:
-  EventDriven(const CircuitModel& model, const EventOptions& options);
+  EventDriven(const LcsProblem& model, const EventOptions& options);
   ~EventDriven() override;
   StepperStats stats() const override;
 

@@ -10,7 +10,7 @@ namespace lcs {
 const std::vector<MethodEntry>& method_registry() {
   static const std::vector<MethodEntry> table = {
       {"euler", "implicit Euler (theta = 1), fixed step, one LCP per step",
-       [](const CircuitModel& m, const MethodOptions&) {
+       [](const LcsProblem& m, const MethodOptions&) {
          return std::make_unique<ThetaMethod>(m, 1.0);
        },
        {}},
@@ -18,18 +18,18 @@ const std::vector<MethodEntry>& method_registry() {
        "event-driven: exact matrix exponentials inside each mode, events located by bisection "
        "(--rtol on event times, default 1e-13), next mode from a tiny-step LCP",
        {},
-       [](const CircuitModel& m, const MethodOptions& o) {
+       [](const LcsProblem& m, const MethodOptions& o) {
          EventOptions e;
          if (o.rtol > 0) e.rtol = o.rtol;
          return std::make_unique<EventDriven>(m, e);
        }},
       {"radau3", "Radau IIA, 2 stages (order 3), fixed step, one LCP of size 2m per step",
-       [](const CircuitModel& m, const MethodOptions&) {
+       [](const LcsProblem& m, const MethodOptions&) {
          return std::make_unique<RadauIIA>(m, 2);
        },
        {}},
       {"radau5", "Radau IIA, 3 stages (order 5), fixed step, one LCP of size 3m per step",
-       [](const CircuitModel& m, const MethodOptions&) {
+       [](const LcsProblem& m, const MethodOptions&) {
          return std::make_unique<RadauIIA>(m, 3);
        },
        {}},
@@ -37,11 +37,11 @@ const std::vector<MethodEntry>& method_registry() {
        "Shockley diodes (Stewart 8.2 smoothing) as a DAE, SUNDIALS IDA (variable-order BDF), "
        "--rtol/--atol",
        {},
-       [](const CircuitModel& m, const MethodOptions& o) {
+       [](const LcsProblem& m, const MethodOptions& o) {
          return std::make_unique<SmoothMethod>(m, o);
        }},
       {"theta", "theta-method (--theta, default 0.5: trapezoidal), fixed step, one LCP per step",
-       [](const CircuitModel& m, const MethodOptions& o) {
+       [](const LcsProblem& m, const MethodOptions& o) {
          return std::make_unique<ThetaMethod>(m, o.theta);
        },
        {}},

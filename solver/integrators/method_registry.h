@@ -23,9 +23,9 @@ struct MethodOptions {
 struct MethodEntry {
   std::string name;
   std::string description;
-  std::function<std::unique_ptr<TimeStepper>(const CircuitModel&, const MethodOptions&)>
+  std::function<std::unique_ptr<TimeStepper>(const LcsProblem&, const MethodOptions&)>
       make_stepper;
-  std::function<std::unique_ptr<ContinuousMethod>(const CircuitModel&, const MethodOptions&)>
+  std::function<std::unique_ptr<ContinuousMethod>(const LcsProblem&, const MethodOptions&)>
       make_continuous;
   bool adaptive() const { return static_cast<bool>(make_continuous); }
 };

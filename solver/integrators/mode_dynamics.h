@@ -11,7 +11,7 @@
 
 #include <Eigen/Dense>
 
-#include "solver/model/circuit_model.h"
+#include "solver/model/lcs_problem.h"
 
 namespace lcs {
 

@@ -52,7 +52,7 @@ struct RadauIIA::StepFactors {
   std::unique_ptr<LcpWarmSolver> lcp;
 };
 
-RadauIIA::RadauIIA(const CircuitModel& model, int stages)
+RadauIIA::RadauIIA(const LcsProblem& model, int stages)
     : TimeStepper(model), tableau_(radau_iia_tableau(stages)) {
   const Lcs& s = model.lcs();
   U_.resize(stages * s.inputs());

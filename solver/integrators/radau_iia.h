@@ -30,7 +30,7 @@ ButcherTableau radau_iia_tableau(int stages);
 
 class RadauIIA : public TimeStepper {
  public:
-  RadauIIA(const CircuitModel& model, int stages);
+  RadauIIA(const LcsProblem& model, int stages);
   ~RadauIIA() override;
   StepperStats stats() const override;
   int stages() const { return static_cast<int>(tableau_.c.size()); }

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 
-#include "solver/model/diode_law.h"
 
 namespace lcs {
 
@@ -51,14 +50,12 @@ ShockleyCurve::Point ShockleyCurve::at(double s) const {
   return p;
 }
 
-ShockleyDae::ShockleyDae(const CircuitModel& model) : model_(model) {
+ShockleyDae::ShockleyDae(const LcsProblem& model) : model_(model) {
   const Lcs& lcs = model.lcs();
   n_ = lcs.states();
   m_ = lcs.pairs();
-  const Netlist& netlist = model.netlist();
   for (const PairInfo& p : model.pairs()) {
-    const DiodeModel& card = netlist.diode_models.at(netlist.elements[p.element].model);
-    curves_.push_back({card.is, card.n * kThermalVoltage});
+    curves_.push_back({p.smooth.is, p.smooth.n * kThermalVoltage});
     voltage_type_.push_back(p.voltage_type);
   }
   z_.resize(m_);
@@ -70,12 +67,7 @@ ShockleyDae::ShockleyDae(const CircuitModel& model) : model_(model) {
 
 Eigen::VectorXd ShockleyDae::inputs(double t) const {
   if (t < segment_end_) return model_.input_values(t);
-  Eigen::VectorXd u(model_.inputs().size());
-  for (size_t k = 0; k < model_.inputs().size(); ++k) {
-    const int el = model_.inputs()[k].element;
-    u(k) = el < 0 ? 1.0 : model_.netlist().elements[el].waveform.value_before(segment_end_);
-  }
-  return u;
+  return model_.inputs().values_before(segment_end_);
 }
 
 void ShockleyDae::on_curves(const Eigen::Ref<const Eigen::VectorXd>& s, Eigen::VectorXd& z,
@@ -157,9 +149,8 @@ void ShockleyDae::set_tolerances(double rtol, double volts, double voltage_scale
   voltage_scale_ = voltage_scale;
   state_atol_.resize(n_);
   capacitor_.assign(n_, true);
-  const Netlist& netlist = model_.netlist();
   for (int k = 0; k < n_; ++k) {
-    capacitor_[k] = netlist.elements[model_.states()[k].element].kind != ElementKind::Inductor;
+    capacitor_[k] = model_.states()[k].capacitor;
     state_atol_(k) = capacitor_[k] ? volts : volts * kSiemens;
   }
 }

@@ -28,7 +28,7 @@
 
 #include <Eigen/Dense>
 
-#include "solver/model/circuit_model.h"
+#include "solver/model/lcs_problem.h"
 
 namespace lcs {
 
@@ -54,9 +54,10 @@ struct ShockleyCurve {
 
 class ShockleyDae {
  public:
-  explicit ShockleyDae(const CircuitModel& model);
+  explicit ShockleyDae(const LcsProblem& model);
 
   int states() const { return n_; }
+  double max_step() const { return model_.max_step(); }  // devices with history
   int pairs() const { return m_; }
   int size() const { return n_ + m_; }
   // Sources at t >= `end` take their left limit at `end`: a step that lands on a breakpoint
@@ -110,7 +111,7 @@ class ShockleyDae {
   void on_curves(const Eigen::Ref<const Eigen::VectorXd>& s, Eigen::VectorXd& z, Eigen::VectorXd& w,
                  Eigen::VectorXd* dz, Eigen::VectorXd* dw) const;
 
-  const CircuitModel& model_;
+  const LcsProblem& model_;
   double segment_end_ = INFINITY;
   int n_ = 0, m_ = 0;
   std::vector<ShockleyCurve> curves_;

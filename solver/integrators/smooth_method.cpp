@@ -109,6 +109,7 @@ class SmoothMethod::IdaRun {
       check(IDASetNonlinearSolver(mem, newton_.get()), t, "IDASetNonlinearSolver");
       check(IDASetId(mem, id_.get()), t, "IDASetId");
       check(IDASetMaxNumSteps(mem, kMaxStepsPerOutput), t, "IDASetMaxNumSteps");
+      if (std::isfinite(dae_.max_step())) check(IDASetMaxStep(mem, dae_.max_step()), t, "IDASetMaxStep");
       if (m > 0) check(IDARootInit(mem, m, crossings_fn), t, "IDARootInit");
       initialised_ = true;
     } else {
@@ -180,7 +181,7 @@ class SmoothMethod::IdaRun {
   std::string last_error_;
 };
 
-SmoothMethod::Schedule SmoothMethod::make_schedule(const CircuitModel& model,
+SmoothMethod::Schedule SmoothMethod::make_schedule(const LcsProblem& model,
                                                    const OutputGrid& grid) {
   Schedule s;
   s.tstep = grid.tstep;
@@ -196,12 +197,7 @@ SmoothMethod::Schedule SmoothMethod::make_schedule(const CircuitModel& model,
 
   // Breakpoints closer than this are one restart (the later one: every jump is then behind it).
   const double merge = 1e-13 * end;
-  std::vector<double> bps;
-  for (const InputInfo& in : model.inputs())
-    if (in.element >= 0)
-      for (double b : model.netlist().elements[in.element].waveform.breakpoints(0, end))
-        bps.push_back(b);
-  std::sort(bps.begin(), bps.end());
+  const std::vector<double> bps = model.inputs().breakpoints(0, end);
   for (size_t k = 0; k < bps.size(); ++k) {
     if (bps[k] <= merge || bps[k] >= end - merge) continue;
     if (k + 1 < bps.size() && bps[k + 1] - bps[k] <= merge) continue;
@@ -211,7 +207,7 @@ SmoothMethod::Schedule SmoothMethod::make_schedule(const CircuitModel& model,
   return s;
 }
 
-SmoothMethod::SmoothMethod(const CircuitModel& model, const MethodOptions& options)
+SmoothMethod::SmoothMethod(const LcsProblem& model, const MethodOptions& options)
     : ContinuousMethod(model),
       dae_(model),
       rtol_(options.rtol > 0 ? options.rtol : kDefaultRtol),
@@ -274,11 +270,9 @@ void SmoothMethod::DoRun(const Eigen::VectorXd& x0, const OutputGrid& grid, cons
   const std::vector<double>& stops = schedule.stops;
 
   double voltage_scale = 0;
-  for (const InputInfo& in : model_.inputs()) {
-    if (in.element < 0) continue;
-    const Element& el = model_.netlist().elements[in.element];
-    if (el.kind != ElementKind::VoltageSource) continue;
-    const auto [lo, hi] = el.waveform.range(0, stops.back());
+  for (const InputSignal& in : model_.inputs().signals()) {
+    if (in.quantity != InputSignal::Quantity::Voltage) continue;
+    const auto [lo, hi] = in.waveform.range(0, stops.back());
     voltage_scale = std::max({voltage_scale, std::abs(lo), std::abs(hi)});
   }
   dae_.set_tolerances(rtol_, atol_, voltage_scale);
@@ -306,7 +300,9 @@ void SmoothMethod::DoRun(const Eigen::VectorXd& x0, const OutputGrid& grid, cons
     // tolerance; the rows get the s consistent with the (interpolated) states instead.
     s_out = y.tail(m);
     if (n > 0 && m > 0) dae_.solve_pairs(t, y.head(n), s_out, &stats_.newton_iterations);
-    emit(t, y.head(n), dae_.complementarity_variables(s_out), event);
+    const Eigen::VectorXd z_out = dae_.complementarity_variables(s_out);
+    if (model_.has_history()) model_.accept(t, y.head(n), z_out);
+    emit(t, y.head(n), z_out, event);
     last = t;
     if (progress && t - last_progress >= 0.005 * stops.back()) {
       progress(t);

@@ -27,7 +27,7 @@ class SmoothMethod : public ContinuousMethod {
  public:
   static constexpr double kDefaultRtol = 1e-6, kDefaultAtol = 1e-9;
 
-  SmoothMethod(const CircuitModel& model, const MethodOptions& options);
+  SmoothMethod(const LcsProblem& model, const MethodOptions& options);
   ~SmoothMethod() override;
 
  protected:
@@ -38,7 +38,7 @@ class SmoothMethod : public ContinuousMethod {
   struct Schedule;  // output times and restart points
   class IdaRun;     // one run through IDA
 
-  static Schedule make_schedule(const CircuitModel& model, const OutputGrid& grid);
+  static Schedule make_schedule(const LcsProblem& model, const OutputGrid& grid);
   // Curve parameters s consistent with x at t: Newton from `s`, else from the ideal
   // (complementarity) solution, else from zero. Throws NumericalFailure when none converges.
   void consistent_pairs(double t, const Eigen::VectorXd& x, Eigen::VectorXd& s, double tstep);

@@ -11,11 +11,11 @@ constexpr double kTwoPi = 6.283185307179586476925;
 int kind_dimension(char k) { return k == 'c' ? 1 : k == 'r' ? 2 : 3; }
 }  // namespace
 
-SourceSystem::SourceSystem(const CircuitModel& model, double tstop) {
-  for (const InputInfo& info : model.inputs()) {
+SourceSystem::SourceSystem(const LcsProblem& model, double tstop) {
+  for (const InputSignal& signal : model.inputs().signals()) {
     Input in;
-    if (info.element >= 0) {
-      in.waveform = &model.netlist().elements[info.element].waveform;
+    if (signal.quantity != InputSignal::Quantity::One) {
+      in.waveform = &signal.waveform;
       const Waveform& w = *in.waveform;
       if (w.kind == Waveform::Kind::Sin) {
         in.vo = w.params.at(0);

@@ -17,14 +17,14 @@
 
 #include <Eigen/Dense>
 
-#include "solver/model/circuit_model.h"
+#include "solver/model/lcs_problem.h"
 
 namespace lcs {
 
 class SourceSystem {
  public:
   // Breakpoints (source corners, SIN starts) in (0, tstop] are collected once.
-  SourceSystem(const CircuitModel& model, double tstop);
+  SourceSystem(const LcsProblem& model, double tstop);
 
   // Which form each input takes on the segment starting at t (one character per input: 'c',
   // 'r', 's'); segments with the same signature share S and P.

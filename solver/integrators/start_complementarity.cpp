@@ -25,7 +25,7 @@ double start_step(const Lcs& s, double h_run) {
 
 }  // namespace
 
-Eigen::VectorXd consistent_start_z(const CircuitModel& model, double t0, double h_run,
+Eigen::VectorXd consistent_start_z(const LcsProblem& model, double t0, double h_run,
                                    const Eigen::VectorXd& x, StepperStats& stats) {
   // Implicit Euler: x+ = W^-1 (x + h B z + h E u+), W = I - h A, so
   // w+ = C W^-1 x + (C W^-1 h E + F) u+  +  (D + C W^-1 h B) z.

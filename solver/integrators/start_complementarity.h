@@ -4,14 +4,14 @@
 #include <Eigen/Dense>
 
 #include "solver/integrators/time_stepper.h"
-#include "solver/model/circuit_model.h"
+#include "solver/model/lcs_problem.h"
 
 namespace lcs {
 
 // The rational complementarity problem of 4.5 at large s: one implicit Euler LCP from x with a
 // step tiny against both h_run and the circuit's fastest rate. Its LCP counts in `stats` (one
 // factorisation, the solve in stats.lcp). Throws NumericalFailure when the LCP has no solution.
-Eigen::VectorXd consistent_start_z(const CircuitModel& model, double t0, double h_run,
+Eigen::VectorXd consistent_start_z(const LcsProblem& model, double t0, double h_run,
                                    const Eigen::VectorXd& x, StepperStats& stats);
 
 }  // namespace lcs

@@ -12,7 +12,7 @@ struct ThetaMethod::StepFactors {
   std::unique_ptr<LcpWarmSolver> lcp;
 };
 
-ThetaMethod::ThetaMethod(const CircuitModel& model, double theta)
+ThetaMethod::ThetaMethod(const LcsProblem& model, double theta)
     : TimeStepper(model), theta_(theta) {}
 
 ThetaMethod::~ThetaMethod() = default;

@@ -12,7 +12,7 @@ namespace lcs {
 
 class ThetaMethod : public TimeStepper {
  public:
-  ThetaMethod(const CircuitModel& model, double theta);
+  ThetaMethod(const LcsProblem& model, double theta);
   ~ThetaMethod() override;
   StepperStats stats() const override;
 

@@ -7,7 +7,7 @@
 #include <Eigen/Dense>
 
 #include "solver/lcp/lcp.h"
-#include "solver/model/circuit_model.h"
+#include "solver/model/lcs_problem.h"
 
 namespace lcs {
 
@@ -28,7 +28,7 @@ struct StepperStats {
 // Advances (x, z) of a circuit's LCS. Step() is the non-virtual entry point (Drake style).
 class TimeStepper {
  public:
-  explicit TimeStepper(const CircuitModel& model) : model_(model) {}
+  explicit TimeStepper(const LcsProblem& model) : model_(model) {}
   virtual ~TimeStepper() = default;
 
   // z at t0+ consistent with x at t0, for a run with step h (methods that reuse z_n need it).
@@ -45,7 +45,7 @@ class TimeStepper {
  protected:
   virtual void DoStart(double t0, double h, const Eigen::VectorXd& x, Eigen::VectorXd& z) = 0;
   virtual void DoStep(double t, double h, Eigen::VectorXd& x, Eigen::VectorXd& z) = 0;
-  const CircuitModel& model_;
+  const LcsProblem& model_;
   StepperStats stats_;
 };
 

@@ -76,7 +76,7 @@ namespace {
 // One output row y = G x + H z + J u(t) + K u'(t), without allocating.
 class RowWriter {
  public:
-  RowWriter(const CircuitModel& model, const OutputMap& outputs, OutputSink& sink)
+  RowWriter(const LcsProblem& model, const OutputMap& outputs, OutputSink& sink)
       : model_(model), outputs_(outputs), sink_(sink), y_(outputs.names.size()),
         u_(model.lcs().inputs()), has_k_(outputs.K.size() > 0 && !outputs.K.isZero()) {}
   void write(double t, const Eigen::VectorXd& x, const Eigen::VectorXd& z) {
@@ -89,7 +89,7 @@ class RowWriter {
   }
 
  private:
-  const CircuitModel& model_;
+  const LcsProblem& model_;
   const OutputMap& outputs_;
   OutputSink& sink_;
   Eigen::VectorXd y_, u_;
@@ -124,7 +124,8 @@ void run_adaptive(const CircuitModel& model, const OutputMap& outputs, const Tra
 }
 
 // Fixed-step methods: step k ends at k*h (no accumulated rounding); a last shorter step lands
-// on tstop.
+// on tstop. Devices with history are told of every step, and a step longer than they allow is
+// taken as equal substeps (rows stay at the steps).
 void run_fixed_step(const CircuitModel& model, const OutputMap& outputs, const TransientOptions& options,
                     const MethodEntry& entry, Eigen::VectorXd x, OutputSink& sink,
                     TransientSummary& summary, double cpu0) {
@@ -141,6 +142,8 @@ void run_fixed_step(const CircuitModel& model, const OutputMap& outputs, const T
   const long full_steps = static_cast<long>(std::floor(options.tstop / h * (1 + 1e-12)));
   const bool partial = options.tstop - full_steps * h > 1e-9 * h;
   const long total = full_steps + (partial ? 1 : 0);
+  const bool history = model.has_history();
+  const int substeps = h > model.max_step() ? static_cast<int>(std::ceil(h / model.max_step())) : 1;
   const double loop0 = process_cpu_seconds();
   if (options.tstart <= 0) emit(0.0);
   double t = 0.0;
@@ -148,7 +151,17 @@ void run_fixed_step(const CircuitModel& model, const OutputMap& outputs, const T
     // Full steps use h itself: k*h - (k-1)*h differs from h in the last bits, and every
     // distinct step size costs a factorisation and a cold warm start.
     const double t_next = k <= full_steps ? k * h : options.tstop;
-    stepper->Step(t, k <= full_steps ? h : t_next - t, x, z);
+    const double step = k <= full_steps ? h : t_next - t;
+    if (substeps == 1) {
+      stepper->Step(t, step, x, z);
+      if (history) model.accept(t_next, x, z);
+    } else {
+      for (int j = 0; j < substeps; ++j) {
+        const double tj = j + 1 == substeps ? t_next : t + (j + 1) * (step / substeps);
+        stepper->Step(t + j * (step / substeps), step / substeps, x, z);
+        model.accept(tj, x, z);
+      }
+    }
     t = t_next;
     if (t >= options.tstart * (1 - 1e-12)) emit(t);
     if (options.progress && (k & 4095) == 0) options.progress(t / options.tstop);

@@ -4,7 +4,7 @@
 #include <set>
 #include <stdexcept>
 
-#include "solver/model/diode_law.h"
+#include "solver/devices/device_registry.h"
 
 namespace lcs {
 
@@ -27,32 +27,61 @@ double option_value(const Netlist& netlist, const std::string& name, double fall
 CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& options) {
   CircuitModel m;
   m.netlist_ = netlist;
-  m.graph_ = CircuitGraph::from_netlist(netlist);
+  DeviceOptions device_options;
+  device_options.ifit = option_value(netlist, "ifit", options.ifit);
+  m.devices_ = make_devices(m.netlist_, device_options);
+  m.graph_ = graph_of_devices(m.devices_);
   const CircuitGraph& g = m.graph_;
   check_connected(netlist, g);
   m.tree_ = build_normal_tree(g);
   const SpanningTree& t = m.tree_;
   check_source_loops_and_cutsets(netlist, g, t);
 
+  // Collect the stamps: every device sees where its branches landed.
+  Stamps stamps;
+  {
+    StampContext context{g, 0};
+    for (const std::shared_ptr<Device>& d : m.devices_) {
+      d->stamp(context, stamps);
+      context.first_branch += static_cast<int>(d->branches().size());
+    }
+  }
   const int nb = static_cast<int>(g.branches.size());
-  const double ifit = option_value(netlist, "ifit", options.ifit);
+  std::vector<const Stamps::Relation*> relation_of(nb, nullptr);
+  for (const Stamps::Relation& r : stamps.relations) relation_of[r.branch] = &r;
+  m.storage_.assign(nb, std::nullopt);
+  for (const Stamps::Storage& s : stamps.storage) m.storage_[s.branch] = StorageInfo{s.value, s.ic};
 
   // Diode laws (per branch), checked for impedance-free loops (5.40).
   std::vector<IdealDiodeLaw> law(nb);
-  std::vector<bool> fitted(nb, false);
-  for (int b = 0; b < nb; ++b) {
-    const Element& el = netlist.elements[g.branches[b].element];
-    if (el.kind != ElementKind::Diode) continue;
-    ResolvedDiodeLaw r = resolve_diode_law(netlist.diode_models.at(el.model), ifit);
-    law[b] = r.law;
-    fitted[b] = r.fitted;
+  std::vector<int> pair_of(nb, -1);
+  for (const Stamps::Pair& p : stamps.pairs) {
+    law[p.branch] = p.law.law;
+    pair_of[p.branch] = static_cast<int>(m.pairs_.size());
+    PairInfo info;
+    static_cast<PairLaw&>(info) = p.law;
+    info.branch = p.branch;
+    info.voltage_type = t.in_tree[p.branch];
+    m.pairs_.push_back(info);
   }
   check_ideal_diode_loops(netlist, g, law, options.t0, options.t1);
 
-  // Roles, state / pair / input numbering (all in branch order).
+  // A source branch's primary quantity is one input: v_b = u_k (tree) or i_b = u_k (link).
+  std::vector<int> input_of(nb, -1);
+  for (const Stamps::Relation& r : stamps.relations) {
+    if (r.terms.size() != 2 || r.terms[1].of != Term::Of::Input || r.terms[1].coeff != -1.0) continue;
+    const Term& own = r.terms[0];
+    const Term::Of primary = t.in_tree[r.branch] ? Term::Of::Voltage : Term::Of::Current;
+    if (own.of == primary && own.index == r.branch && own.coeff == 1.0) input_of[r.branch] = r.terms[1].index;
+  }
+  m.inputs_ = InputProvider(stamps.inputs);
+  for (const std::shared_ptr<Device>& d : m.devices_)
+    if (d->has_history()) m.history_devices_.push_back(d);
+
+  // Roles and state numbering (in branch order): storage branches are states where the normal
+  // tree lets them be (tree capacitors, link inductors), forced otherwise; the rest are static.
   std::vector<Role> role(nb, Role::Static);
-  std::vector<int> state_of(nb, -1), pair_of(nb, -1), input_of(nb, -1);
-  m.inputs_.push_back({-1, "1"});
+  std::vector<int> state_of(nb, -1);
   for (int b = 0; b < nb; ++b) {
     const Branch& br = g.branches[b];
     const bool tree = t.in_tree[b];
@@ -62,14 +91,10 @@ CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& opt
                (br.cls == BranchClass::Inductor && tree)) {
       role[b] = Role::Forced;
     }
-    if (br.cls == BranchClass::VoltageSource || br.cls == BranchClass::CurrentSource) {
-      input_of[b] = static_cast<int>(m.inputs_.size());
-      m.inputs_.push_back({br.element, br.name});
-    }
-    if (br.cls == BranchClass::Diode) {
-      pair_of[b] = static_cast<int>(m.pairs_.size());
-      m.pairs_.push_back({br.element, b, tree, law[b], fitted[b]});
-    }
+    if (role[b] != Role::Static && !m.storage_[b])
+      throw std::logic_error("circuit model: " + br.name + " is a storage branch without a value");
+    if (role[b] == Role::Static && !relation_of[b] && pair_of[b] < 0)
+      throw std::logic_error("circuit model: " + br.name + " has no constitutive relation");
   }
   // Tree capacitors first, then link inductors.
   for (int pass = 0; pass < 2; ++pass)
@@ -78,7 +103,7 @@ CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& opt
       const bool cap = g.branches[b].cls == BranchClass::Capacitor;
       if (cap != (pass == 0)) continue;
       state_of[b] = static_cast<int>(m.states_.size());
-      m.states_.push_back({g.branches[b].element, b, (cap ? "v(" : "i(") + g.branches[b].name + ")"});
+      m.states_.push_back({g.branches[b].element, b, (cap ? "v(" : "i(") + g.branches[b].name + ")", cap});
     }
 
   const int n = static_cast<int>(m.states_.size());
@@ -90,7 +115,7 @@ CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& opt
   auto Bt = [&](int tree_branch, int link_branch) {
     return t.B(t.position[tree_branch], t.position[link_branch]);
   };
-  auto value = [&](int b) { return netlist.elements[g.branches[b].element].value; };
+  auto value = [&](int b) { return m.storage_[b]->value; };
 
   // Primary unknown p_b: the voltage of a tree branch, the current of a link. Every branch
   // voltage and current is linear in p: KCL i_tree = B i_link, KVL v_link = -B^T v_tree.
@@ -114,28 +139,23 @@ CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& opt
   Eigen::MatrixXd EqP = Eigen::MatrixXd::Zero(ns, nb), EqR = Eigen::MatrixXd::Zero(ns, ncol);
   for (int r = 0; r < ns; ++r) {
     const int b = statics[r];
-    const Branch& br = g.branches[b];
-    switch (br.cls) {
-      case BranchClass::VoltageSource:   // tree: v = u
-      case BranchClass::CurrentSource:   // link: i = u
+    if (pair_of[b] >= 0) {               // the swap of 5.4.4
+      if (t.in_tree[b]) {                // v - RON i + z - VON = 0
+        EqP.row(r) = Vmap.row(b) - law[b].ron * Imap.row(b);
+        EqR(r, col_z(pair_of[b])) = 1;
+        EqR(r, col_u(0)) = -law[b].von;
+      } else {                           // i - z = 0
         EqP(r, b) = 1;
-        EqR(r, col_u(input_of[b])) = -1;
-        break;
-      case BranchClass::Resistor:        // v - R i = 0
-        EqP.row(r) = Vmap.row(b) - value(b) * Imap.row(b);
-        break;
-      case BranchClass::Diode:
-        if (t.in_tree[b]) {              // v - RON i + z - VON = 0
-          EqP.row(r) = Vmap.row(b) - law[b].ron * Imap.row(b);
-          EqR(r, col_z(pair_of[b])) = 1;
-          EqR(r, col_u(0)) = -law[b].von;
-        } else {                         // i - z = 0
-          EqP(r, b) = 1;
-          EqR(r, col_z(pair_of[b])) = -1;
-        }
-        break;
-      default:
-        throw std::logic_error("circuit model: unexpected static branch " + br.name);
+        EqR(r, col_z(pair_of[b])) = -1;
+      }
+      continue;
+    }
+    for (const Term& term : relation_of[b]->terms) {  // the device's relation, sum = 0
+      switch (term.of) {
+        case Term::Of::Voltage: EqP.row(r) += term.coeff * Vmap.row(term.index); break;
+        case Term::Of::Current: EqP.row(r) += term.coeff * Imap.row(term.index); break;
+        case Term::Of::Input: EqR(r, col_u(term.index)) += term.coeff; break;
+      }
     }
   }
   // Split EqP into the static unknowns (solved for) and the states; by the cycle property the
@@ -169,7 +189,7 @@ CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& opt
 
   // Capacitor and inductor voltages/currents in terms of states and sources:
   //   v_cap = Tc x + Tcu u,   i_ind = Tl x + Tlu u.
-  std::vector<int> caps, inds;
+  std::vector<int> caps, inds;  // storage branches by tree class
   std::vector<int> cap_index(nb, -1), ind_index(nb, -1);
   for (int b = 0; b < nb; ++b) {
     if (g.branches[b].cls == BranchClass::Capacitor) { cap_index[b] = caps.size(); caps.push_back(b); }
@@ -210,16 +230,9 @@ CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& opt
       }
     }
   }
-  for (const Element& el : netlist.elements) {  // mutual inductance M = k sqrt(L1 L2)
-    if (el.kind != ElementKind::Coupling) continue;
-    int k1 = -1, k2 = -1;
-    for (int k = 0; k < nl; ++k) {
-      const std::string& name = g.branches[inds[k]].name;
-      if (name == el.coupled.at(0)) k1 = k;
-      if (name == el.coupled.at(1)) k2 = k;
-    }
-    if (k1 < 0 || k2 < 0) throw NetlistError(el.loc, "coupling " + el.name + " needs two inductors");
-    const double mutual = el.value * std::sqrt(Lf(k1, k1) * Lf(k2, k2));
+  for (const Stamps::Coupling& k : stamps.couplings) {  // mutual inductance M = k sqrt(L1 L2)
+    const int k1 = ind_index[k.branch_a], k2 = ind_index[k.branch_b];
+    const double mutual = k.k * std::sqrt(Lf(k1, k1) * Lf(k2, k2));
     Lf(k1, k2) += mutual;
     Lf(k2, k1) += mutual;
   }
@@ -298,33 +311,6 @@ CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& opt
   return m;
 }
 
-Eigen::VectorXd CircuitModel::input_values(double t) const {
-  Eigen::VectorXd u(inputs_.size());
-  input_values(t, u);
-  return u;
-}
-
-void CircuitModel::input_values(double t, Eigen::Ref<Eigen::VectorXd> u) const {
-  for (size_t k = 0; k < inputs_.size(); ++k)
-    u(k) = inputs_[k].element < 0 ? 1.0 : netlist_.elements[inputs_[k].element].waveform.value(t);
-}
-
-Eigen::VectorXd CircuitModel::input_derivatives(double t) const {
-  Eigen::VectorXd du(inputs_.size());
-  for (size_t k = 0; k < inputs_.size(); ++k)
-    du(k) = inputs_[k].element < 0 ? 0.0
-                                   : netlist_.elements[inputs_[k].element].waveform.derivative(t);
-  return du;
-}
-
-Eigen::VectorXd CircuitModel::physical_state(const Eigen::VectorXd& x, double t) const {
-  return x + lcs_.Gamma * input_values(t);
-}
-
-Eigen::VectorXd CircuitModel::lcs_state(const Eigen::VectorXd& physical, double t) const {
-  return physical - lcs_.Gamma * input_values(t);
-}
-
 OutputRow CircuitModel::row_from_physical(const Eigen::RowVectorXd& r) const {
   const int n = lcs_.states(), mp = lcs_.pairs(), nu = lcs_.inputs();
   OutputRow o;
@@ -365,8 +351,7 @@ std::vector<Probe> CircuitModel::default_probes() const {
   for (size_t node = 1; node < graph_.nodes.size(); ++node)
     probes.push_back({Probe::Kind::NodeVoltage, graph_.nodes[node], "", {}});
   for (const Branch& b : graph_.branches)
-    if (b.cls == BranchClass::VoltageSource || b.cls == BranchClass::Inductor ||
-        b.cls == BranchClass::Diode)
+    if (devices_[b.element]->current_probed_by_default())
       probes.push_back({Probe::Kind::ElementCurrent, b.name, "", {}});
   return probes;
 }

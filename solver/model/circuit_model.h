@@ -11,8 +11,12 @@
 // Inputs: u[0] = 1 (carries the thresholds VON), u[k] = value of the k-th independent source.
 // One complementarity pair per diode: a link diode is current-type (z = i, w = VON + RON i - v),
 // a tree diode voltage-type (z = VON + RON i - v, w = i), the swap of 5.4.4.
+// The elements come in as devices (solver/devices): formation collects their stamps (branches,
+// constitutive relations, storage, pairs, inputs) and eliminates; it knows no element kind.
 #pragma once
 
+#include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -22,16 +26,9 @@
 #include "graph/spanning_tree.h"
 #include "graph/topology.h"
 #include "netlist/netlist.h"
+#include "solver/model/lcs_problem.h"
 
 namespace lcs {
-
-struct Lcs {
-  Eigen::MatrixXd A, B, E, C, D, F;
-  Eigen::MatrixXd Gamma;  // physical state = x + Gamma u
-  int states() const { return static_cast<int>(A.rows()); }
-  int pairs() const { return static_cast<int>(D.rows()); }
-  int inputs() const { return static_cast<int>(E.cols()); }
-};
 
 // One affine output: value = g x + h z + j u + k du/dt (x the LCS state).
 struct OutputRow {
@@ -43,23 +40,10 @@ struct OutputMap {
   Eigen::MatrixXd G, H, J, K;
 };
 
-struct StateInfo {
-  int element = -1;
-  int branch = -1;
-  std::string label;  // "v(c1)" or "i(l1)"
-};
-
-struct PairInfo {
-  int element = -1;
-  int branch = -1;
-  bool voltage_type = false;  // tree diode: z is the reverse-voltage margin, w the current
-  IdealDiodeLaw law;
-  bool fitted = false;        // law fitted to the Shockley curve
-};
-
-struct InputInfo {
-  int element = -1;           // -1: the constant input u[0] = 1
-  std::string label;
+// An energy-storing branch as its device stamped it (capacitance or inductance, IC=).
+struct StorageInfo {
+  double value = 0;
+  std::optional<double> ic;
 };
 
 struct ModelOptions {
@@ -67,25 +51,21 @@ struct ModelOptions {
   double t0 = 0, t1 = 0;      // interval over which sources are checked (Figure 5.5 test)
 };
 
-class CircuitModel {
+// The model of one netlist: its devices, graph, normal tree, and the LCS they form, which the
+// integrators see as an LcsProblem.
+class CircuitModel : public LcsProblem {
  public:
-  // Runs the topology checks and forms the LCS. Throws TopologyError or NetlistError.
+  // Makes the devices, runs the topology checks and forms the LCS from the devices' stamps.
+  // Throws TopologyError or NetlistError.
   static CircuitModel build(const Netlist& netlist, const ModelOptions& options);
 
   const Netlist& netlist() const { return netlist_; }
   const CircuitGraph& graph() const { return graph_; }
   const SpanningTree& tree() const { return tree_; }
-  const Lcs& lcs() const { return lcs_; }
-  const std::vector<StateInfo>& states() const { return states_; }
-  const std::vector<PairInfo>& pairs() const { return pairs_; }
-  const std::vector<InputInfo>& inputs() const { return inputs_; }
-
-  Eigen::VectorXd input_values(double t) const;
-  // The same into u (size inputs()), without allocating for DC and SIN sources.
-  void input_values(double t, Eigen::Ref<Eigen::VectorXd> u) const;
-  Eigen::VectorXd input_derivatives(double t) const;
-  Eigen::VectorXd physical_state(const Eigen::VectorXd& x, double t) const;
-  Eigen::VectorXd lcs_state(const Eigen::VectorXd& physical, double t) const;
+  // The devices in card order: devices()[e] is the device of Netlist::elements[e].
+  const std::vector<std::shared_ptr<Device>>& devices() const { return devices_; }
+  // Per branch: its storage (capacitors and inductors), empty for the others.
+  const std::vector<std::optional<StorageInfo>>& storage() const { return storage_; }
 
   OutputRow branch_voltage(int branch) const;
   OutputRow branch_current(int branch) const;
@@ -107,10 +87,8 @@ class CircuitModel {
   Netlist netlist_;
   CircuitGraph graph_;
   SpanningTree tree_;
-  Lcs lcs_;
-  std::vector<StateInfo> states_;
-  std::vector<PairInfo> pairs_;
-  std::vector<InputInfo> inputs_;
+  std::vector<std::shared_ptr<Device>> devices_;
+  std::vector<std::optional<StorageInfo>> storage_;
   // Branch voltages and currents as rows over [x_phys | z | u | du] (physical state).
   Eigen::MatrixXd branch_v_, branch_i_;
 };

@@ -42,19 +42,19 @@ InitialState initial_state(const CircuitModel& model, bool uic, double t0) {
   for (int j = 0; j < n; ++j) state_of_branch[model.states()[j].branch] = j;
   for (int b = 0; b < static_cast<int>(g.branches.size()); ++b) {
     const Branch& br = g.branches[b];
-    const Element& el = netlist.elements[br.element];
-    const bool cap = br.cls == BranchClass::Capacitor, ind = br.cls == BranchClass::Inductor;
-    if (!cap && !ind) continue;
+    if (!model.storage()[b]) continue;
+    const std::optional<double>& ic = model.storage()[b]->ic;
+    const bool cap = br.cls == BranchClass::Capacitor;
     const int j = state_of_branch[b];
     if (j < 0) {
-      if (el.ic)
-        init.warnings.push_back("IC= on " + el.name + " ignored: its " +
+      if (ic)
+        init.warnings.push_back("IC= on " + br.name + " ignored: its " +
                                 (cap ? "voltage is fixed by a loop of capacitors and voltage sources"
                                      : "current is fixed by a cutset of inductors and current sources"));
       continue;
     }
-    if (el.ic) {
-      physical(j) = *el.ic;
+    if (ic) {
+      physical(j) = *ic;
     } else if (cap && (node_ic.count(g.nodes[br.from]) || node_ic.count(g.nodes[br.to]))) {
       physical(j) = node_value(br.from) - node_value(br.to);
       used_node_ics.insert(g.nodes[br.from]);

@@ -2,7 +2,7 @@
 
 #include <cstdlib>
 
-#include "solver/model/diode_law.h"
+#include "solver/devices/diode.h"
 
 namespace lcs {
 

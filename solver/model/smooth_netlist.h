@@ -1,5 +1,5 @@
 // The circuit the smooth method (8.2) integrates: every diode card replaced by the smooth diode
-// that stands in for it (diode_law.h: smooth_equivalent, the same mapping `validate` gives
+// that stands in for it (solver/devices/diode.h: smooth_equivalent, the same mapping `validate` gives
 // ngspice). The card's VON and RON become the series threshold and RS, so the circuit's LCS
 // keeps its shape and w = VON + RS i - v of each pair is the voltage the Shockley junction
 // does not take: i = IS (exp(-w / (N Vt)) - 1). IS and N stay on the card for the method.

@@ -9,7 +9,7 @@
 
 #include "solver/integrators/smooth_method.h"
 #include "solver/integrators/transient.h"
-#include "solver/model/diode_law.h"
+#include "solver/devices/diode.h"
 #include "solver/model/smooth_netlist.h"
 #include "tests/support/netlist_builder.h"
 

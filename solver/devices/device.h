@@ -1,0 +1,144 @@
+// Devices: the unit of extension (DESIGN.md "Devices"). Every element kind is one device, in one
+// file, behind this interface, registered by card letter in device_registry.cpp.
+//
+// Model formation (circuit_model.cpp) is "collect the devices' stamps, then eliminate":
+//  1. branches(): the device's two-terminal branches and their tree class. The graph stays
+//     two-terminal; a multi-terminal device is a composite of branches (as Gnucap's d_bjt.model
+//     is a circuit of primitives).
+//  2. stamp(): its constitutive relations as triplets over branch voltages v_b, branch currents
+//     i_b and inputs u_k (so dense or sparse assembly is the assembler's choice); its
+//     energy-storing branches with their initial values; its complementarity pairs with their
+//     ideal law and smooth curve; its inputs (independent sources now, history sources later).
+//  3. accept() / max_step(): hooks for devices with history (transmission lines); the
+//     integrators call them through LcsProblem.
+//  4. ngspice(): its cards in the deck `validate` runs; notes(): what `analyze` says about it.
+#pragma once
+
+#include <functional>
+#include <limits>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "graph/circuit_graph.h"
+#include "netlist/netlist.h"
+#include "solver/model/input_provider.h"
+#include "solver/model/pair_law.h"
+
+namespace lcs {
+
+// One branch a device adds to the circuit graph (node names as in the netlist).
+struct BranchDecl {
+  std::string name;
+  BranchClass cls = BranchClass::Resistor;
+  std::string from, to;
+};
+
+// One term of a constitutive relation  sum(coeff * quantity) = 0.
+struct Term {
+  enum class Of { Voltage, Current, Input };  // v_b, i_b (b a global branch index), u_k
+  Of of = Of::Voltage;
+  int index = 0;
+  double coeff = 0;
+};
+
+// What devices stamp, collected in device order (so branches, inputs and pairs are numbered in
+// card order). Plain data: the assembler reads it.
+struct Stamps {
+  struct Relation { int branch; std::vector<Term> terms; };  // the static equation of `branch`
+  struct Storage { int branch; double value; std::optional<double> ic; };  // C [F] or L [H]
+  struct Coupling { int branch_a, branch_b; double k; };  // mutual inductance M = k sqrt(La Lb)
+  struct Pair { int branch; PairLaw law; };
+  std::vector<Relation> relations;
+  std::vector<Storage> storage;
+  std::vector<Coupling> couplings;
+  std::vector<Pair> pairs;
+  std::vector<InputSignal> inputs;  // u_1, u_2, ... (u_0 = 1 carries the thresholds VON)
+
+  // Adds an input and returns its index k (u_k).
+  int input(InputSignal signal) {
+    inputs.push_back(std::move(signal));
+    return static_cast<int>(inputs.size());
+  }
+};
+
+// What a device sees while stamping: where its own branches landed in the graph.
+struct StampContext {
+  const CircuitGraph& graph;
+  int first_branch = 0;  // global index of the device's branch 0
+  int branch(int local) const { return first_branch + local; }
+};
+
+// Where an lcspice probe's value comes from among ngspice's vectors: value = plus - minus
+// (minus empty: 0).
+struct ProbeSource {
+  std::string plus, minus;
+};
+
+// What a device needs to write its ngspice cards, and where they go.
+struct NgspiceDeckContext {
+  double tstop = 0;
+  double emission = 0.05;             // N of the Shockley diodes standing in for ideal ones
+  double saturation_current = 1e-14;  // their IS
+  bool current_probed = false;        // i(device) is probed: it needs an ammeter
+  bool reversed = false;              // test hook: a diode written anode/cathode swapped
+  std::optional<double> initial_value;  // UIC start value of a capacitor or inductor
+  // A name unique in the deck (threshold sources, ammeters, their nodes).
+  std::function<std::string(const std::string&)> fresh;
+};
+
+struct NgspiceCards {
+  std::vector<std::string> lines, models;
+  std::map<std::string, ProbeSource> probes;  // by lcspice probe name ("i(d1)")
+  bool ideal_diode = false;  // a diode given a threshold source + sharp Shockley junction
+};
+
+class Device {
+ public:
+  explicit Device(const Element& element) : element_(element) {}
+  virtual ~Device() = default;
+  Device(const Device&) = delete;
+  Device& operator=(const Device&) = delete;
+
+  const Element& element() const { return element_; }
+  int element_index() const { return element_index_; }  // in Netlist::elements
+  void set_element_index(int index) { element_index_ = index; }
+  const std::string& name() const { return element_.name; }
+
+  virtual std::vector<BranchDecl> branches() const = 0;
+  virtual void stamp(const StampContext& context, Stamps& stamps) const = 0;
+
+  // SPEC §3 default probes: is this device's current among them (V, L and D elements)?
+  virtual bool current_probed_by_default() const { return false; }
+
+  // Devices with history: called after every accepted step (t, LCS state x, complementarity
+  // variables z), and the longest step they allow. Nothing today has history.
+  virtual bool has_history() const { return false; }
+  virtual void accept(double t, const Eigen::VectorXd& x, const Eigen::VectorXd& z) {}
+  virtual double max_step() const { return std::numeric_limits<double>::infinity(); }
+
+  // Cards for the ngspice deck of `validate` (deck_translation.h says what the deck is).
+  virtual NgspiceCards ngspice(const NgspiceDeckContext& context) const = 0;
+  // What `analyze` warns about it (parameters the ideal model ignores, fits).
+  virtual std::vector<std::string> notes() const { return {}; }
+
+ protected:
+  // ngspice reads the element type from the first letter of the name: `r1` of instance `x1`
+  // (flattened "x1.r1") is written `r_x1.r1`.
+  static std::string deck_name(char letter, const std::string& name);
+  static std::string number(double x);  // "%.12g"
+
+  Element element_;
+  int element_index_ = -1;
+};
+
+// What model formation passes to every device it creates.
+struct DeviceOptions {
+  double ifit = 10e-3;  // diode fit current (`.options ifit=`)
+};
+
+}  // namespace lcs

@@ -1,0 +1,85 @@
+#include "solver/devices/diode.h"
+
+#include <cmath>
+
+namespace lcs {
+
+double shockley_voltage(const DiodeModel& model, double current) {
+  return model.n * kThermalVoltage * std::log1p(current / model.is) + model.rs * current;
+}
+
+ResolvedDiodeLaw resolve_diode_law(const DiodeModel& model, double ifit) {
+  ResolvedDiodeLaw r;
+  if (model.von || model.ron) {
+    r.law.von = model.von.value_or(0.0);
+    r.law.ron = model.ron.value_or(0.0);
+    return r;
+  }
+  r.fitted = true;
+  r.fit_i1 = ifit / 10;
+  r.fit_i2 = ifit * 10;
+  const double v1 = shockley_voltage(model, r.fit_i1), v2 = shockley_voltage(model, r.fit_i2);
+  r.law.ron = (v2 - v1) / (r.fit_i2 - r.fit_i1);
+  r.law.von = v1 - r.law.ron * r.fit_i1;
+  return r;
+}
+
+SmoothDiodeLaw smooth_equivalent(const DiodeModel& card, const ResolvedDiodeLaw& law,
+                                 double emission, double saturation_current) {
+  if (law.fitted || card.has_is || card.has_n || card.has_rs) return {0.0, card.is, card.n, card.rs};
+  return {law.law.von, saturation_current, emission, law.law.ron};
+}
+
+namespace {
+const DiodeModel& model_of(const Element& element, const Netlist& netlist) {
+  auto it = netlist.diode_models.find(element.model);
+  if (it == netlist.diode_models.end())
+    throw NetlistError(element.loc, "diode " + element.name + ": unknown model '" + element.model + "'");
+  return it->second;
+}
+}  // namespace
+
+Diode::Diode(const Element& element, const Netlist& netlist, const DeviceOptions& options)
+    : Device(element), card_(model_of(element, netlist)), law_(resolve_diode_law(card_, options.ifit)) {}
+
+std::vector<BranchDecl> Diode::branches() const {
+  return {{name(), BranchClass::Diode, element_.nodes.at(0), element_.nodes.at(1)}};
+}
+
+void Diode::stamp(const StampContext& context, Stamps& stamps) const {
+  PairLaw pair;
+  pair.name = name();
+  pair.element = element_index();
+  pair.law = law_.law;
+  pair.fitted = law_.fitted;
+  pair.smooth = {card_.is, card_.n};
+  stamps.pairs.push_back({context.branch(0), pair});
+}
+
+// anode --[+ VON -]-- mid --|>|-- cathode: the threshold source doubles as the diode's ammeter.
+NgspiceCards Diode::ngspice(const NgspiceDeckContext& context) const {
+  NgspiceCards cards;
+  std::string anode = element_.nodes.at(0), cathode = element_.nodes.at(1);
+  if (context.reversed) std::swap(anode, cathode);
+  const std::string mid = context.fresh("lcs_" + name() + "_mid");
+  const std::string meter = context.fresh(deck_name('v', "thr_" + name()));
+  const std::string model = context.fresh("lcs_m_" + name());
+  const SmoothDiodeLaw smooth =
+      smooth_equivalent(card_, law_, context.emission, context.saturation_current);
+  cards.lines.push_back(meter + " " + anode + " " + mid + " DC " + number(smooth.series_von));
+  cards.models.push_back(".model " + model + " D(IS=" + number(smooth.is) + " N=" + number(smooth.n) +
+                         " RS=" + number(smooth.rs) + ")");
+  cards.ideal_diode = !(law_.fitted || card_.has_is || card_.has_n || card_.has_rs);
+  cards.lines.push_back(deck_name('d', name()) + " " + mid + " " + cathode + " " + model);
+  cards.probes["i(" + name() + ")"] = {meter + "#branch", ""};
+  return cards;
+}
+
+std::vector<std::string> Diode::notes() const {
+  std::vector<std::string> out;
+  for (const std::string& p : card_.ignored)
+    out.push_back("diode " + name() + ": model parameter " + p + " is ignored by the ideal model");
+  return out;
+}
+
+}  // namespace lcs

@@ -1,0 +1,55 @@
+// D anode cathode model: one complementarity pair (Stewart 5.4). The card's parameters are
+// resolved here, once, for every use: the ideal law of the LCS, the smooth junction of the
+// smooth method (8.2) and the ngspice deck of `validate`.
+#pragma once
+
+#include "solver/devices/device.h"
+
+namespace lcs {
+
+struct ResolvedDiodeLaw {
+  IdealDiodeLaw law;
+  bool fitted = false;  // VON/RON came from the Shockley fit, not from the card
+  double fit_i1 = 0, fit_i2 = 0;
+};
+
+// A card with VON and/or RON uses them (a missing one is 0). A card with neither gets the chord
+// of its Shockley curve v(i) = N*Vt*ln(1 + i/IS) + RS*i between i1 = ifit/10 and i2 = 10*ifit
+// (ifit from `.options ifit=`, default 10 mA): the simplest model that matches the smooth diode
+// where a power circuit operates.
+ResolvedDiodeLaw resolve_diode_law(const DiodeModel& model, double ifit);
+
+double shockley_voltage(const DiodeModel& model, double current);
+
+// The smooth diode that stands in for an ideal one (ngspice decks in `validate`, and the smooth
+// method): a source VON in series with a Shockley diode of emission coefficient `emission`,
+// saturation current `saturation_current` and RS = RON. As the emission coefficient goes to 0 it
+// tends to the ideal law; at current i it needs about N Vt ln(i/IS) more voltage. A card that
+// gives its own IS, N or RS keeps them (and no series source): the user's smooth diode, against
+// which lcspice's ideal law is compared.
+struct SmoothDiodeLaw {
+  double series_von = 0;  // V, the threshold source in series
+  double is = 1e-14, n = 1, rs = 0;
+};
+SmoothDiodeLaw smooth_equivalent(const DiodeModel& card, const ResolvedDiodeLaw& law,
+                                 double emission, double saturation_current);
+
+class Diode : public Device {
+ public:
+  // Throws NetlistError (at the card) when its model is not defined.
+  Diode(const Element& element, const Netlist& netlist, const DeviceOptions& options);
+  std::vector<BranchDecl> branches() const override;
+  void stamp(const StampContext& context, Stamps& stamps) const override;
+  bool current_probed_by_default() const override { return true; }
+  NgspiceCards ngspice(const NgspiceDeckContext& context) const override;
+  std::vector<std::string> notes() const override;
+
+  const DiodeModel& card() const { return card_; }
+  const ResolvedDiodeLaw& law() const { return law_; }
+
+ private:
+  DiodeModel card_;
+  ResolvedDiodeLaw law_;
+};
+
+}  // namespace lcs

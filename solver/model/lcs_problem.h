@@ -1,0 +1,70 @@
+// What the integrators see (chapter 8): the linear complementarity system, its inputs u(t), what
+// its states and pairs are, and the hooks of devices with history. Never the netlist: the
+// devices (solver/devices) and model formation (circuit_model.h) have turned it into this.
+//
+//   dx/dt = A x + B z + E u(t),   w = C x + D z + F u(t),   0 <= w ⟂ z >= 0
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "solver/model/input_provider.h"
+#include "solver/model/pair_law.h"
+
+namespace lcs {
+
+class Device;
+
+struct Lcs {
+  Eigen::MatrixXd A, B, E, C, D, F;
+  Eigen::MatrixXd Gamma;  // physical state = x + Gamma u
+  int states() const { return static_cast<int>(A.rows()); }
+  int pairs() const { return static_cast<int>(D.rows()); }
+  int inputs() const { return static_cast<int>(E.cols()); }
+};
+
+struct StateInfo {
+  int element = -1;
+  int branch = -1;
+  std::string label;       // "v(c1)" or "i(l1)"
+  bool capacitor = true;   // a capacitor voltage; else an inductor current
+};
+
+struct PairInfo : PairLaw {
+  int branch = -1;
+  bool voltage_type = false;  // tree diode: z is the reverse-voltage margin, w the current
+};
+
+class LcsProblem {
+ public:
+  const Lcs& lcs() const { return lcs_; }
+  const std::vector<StateInfo>& states() const { return states_; }
+  const std::vector<PairInfo>& pairs() const { return pairs_; }
+  const InputProvider& inputs() const { return inputs_; }
+
+  Eigen::VectorXd input_values(double t) const { return inputs_.values(t); }
+  void input_values(double t, Eigen::Ref<Eigen::VectorXd> u) const { inputs_.values(t, u); }
+  Eigen::VectorXd input_derivatives(double t) const { return inputs_.derivatives(t); }
+  Eigen::VectorXd physical_state(const Eigen::VectorXd& x, double t) const;
+  Eigen::VectorXd lcs_state(const Eigen::VectorXd& physical, double t) const;
+
+  // Devices with history (transmission lines): the integrators call accept() after every
+  // accepted step and never step further than max_step(). Without such devices accept() does
+  // nothing and max_step() is infinite.
+  bool has_history() const { return !history_devices_.empty(); }
+  void accept(double t, const Eigen::VectorXd& x, const Eigen::VectorXd& z) const;
+  double max_step() const;
+
+ protected:
+  Lcs lcs_;
+  std::vector<StateInfo> states_;
+  std::vector<PairInfo> pairs_;
+  InputProvider inputs_;
+  // Shared with the model that owns the devices; accept() changes their history, not the LCS.
+  std::vector<std::shared_ptr<Device>> history_devices_;
+};
+
+}  // namespace lcs

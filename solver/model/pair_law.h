@@ -1,0 +1,29 @@
+// The law of one complementarity pair, as its device states it (Stewart 5.4):
+// the ideal law 0 <= i ⟂ VON + RON i - v >= 0, and the smooth junction the smooth method (8.2)
+// integrates in its place, i = IS (exp(m / (N Vt)) - 1) with m the voltage the ideal law calls
+// the margin's complement (shockley_dae.h).
+#pragma once
+
+#include <string>
+
+#include "graph/topology.h"
+
+namespace lcs {
+
+// Thermal voltage kT/q at ngspice's nominal 27 °C.
+constexpr double kThermalVoltage = 0.025864186;
+
+struct SmoothJunction {
+  double is = 1e-14;  // saturation current [A]
+  double n = 1.0;     // emission coefficient
+};
+
+struct PairLaw {
+  std::string name;     // the device's name, for messages ("d1", "x1.d3")
+  int element = -1;     // index into Netlist::elements
+  IdealDiodeLaw law;    // VON [V], RON [ohm]
+  bool fitted = false;  // VON/RON fitted to the card's Shockley curve
+  SmoothJunction smooth;
+};
+
+}  // namespace lcs
