@@ -4,6 +4,7 @@
 #include <cfloat>
 #include <cmath>
 #include <cstdlib>
+#include <functional>
 #include <string>
 
 #include "solver/integrators/full_newton.h"
@@ -123,7 +124,11 @@ class SmoothMethod::IdaRun {
   void set_stop(double t) { check(IDASetStopTime(mem_.get(), t), t, "IDASetStopTime"); }
 
   // Integrates towards tout; true when it stopped earlier at a root (t is then the root's time).
-  bool advance(double tout, double& t) {
+  // With `on_step`, IDA goes one internal step at a time and reports each (and each root) to it,
+  // y() included: devices with history see every step IDA accepts. y() at tout is then IDA's
+  // interpolant there, as IDA_NORMAL would return it.
+  bool advance(double tout, double& t,
+               const std::function<void(double, const Eigen::VectorXd&)>& on_step = {}) {
     long steps = 0;
     IDAGetNumSteps(mem_.get(), &steps);
     // IDA refuses a first step to a time within rounding of the start.
@@ -132,10 +137,28 @@ class SmoothMethod::IdaRun {
       return false;
     }
     realtype tret = 0;
-    const int flag = IDASolve(mem_.get(), tout, &tret, y_.get(), yp_.get(), IDA_NORMAL);
-    check(flag, tret, "IDASolve");
-    t = tret;
-    return flag == IDA_ROOT_RETURN;
+    if (!on_step) {
+      const int flag = IDASolve(mem_.get(), tout, &tret, y_.get(), yp_.get(), IDA_NORMAL);
+      check(flag, tret, "IDASolve");
+      t = tret;
+      return flag == IDA_ROOT_RETURN;
+    }
+    for (;;) {
+      const int flag = IDASolve(mem_.get(), tout, &tret, y_.get(), yp_.get(), IDA_ONE_STEP);
+      check(flag, tret, "IDASolve");
+      on_step(tret, y());
+      if (flag == IDA_ROOT_RETURN) {
+        t = tret;
+        return true;
+      }
+      if (tret >= tout) break;
+    }
+    if (tret > tout) {
+      check(IDAGetDky(mem_.get(), tout, 0, y_.get()), tout, "IDAGetDky");
+      check(IDAGetDky(mem_.get(), tout, 1, yp_.get()), tout, "IDAGetDky");
+    }
+    t = tout;
+    return false;
   }
 
   // Adds the counters of the run since the last start (IDAReInit resets them).
@@ -292,16 +315,26 @@ void SmoothMethod::DoRun(const Eigen::VectorXd& x0, const OutputGrid& grid, cons
     at_rest(s);
   }
 
-  double last = -1, last_progress = 0;
+  double last = -1, last_progress = 0, last_accepted = 0;
   Eigen::VectorXd s_out;
-  auto emit_state = [&](double t, const Eigen::VectorXd& y, bool event) {
-    if (t <= last) return;
-    // Between IDA's steps s is the interpolating polynomial's, controlled only to the margin
-    // tolerance; the rows get the s consistent with the (interpolated) states instead.
+  // Between IDA's steps s is the interpolating polynomial's, controlled only to the margin
+  // tolerance; rows (and devices with history) get the s consistent with the states instead.
+  auto consistent_z = [&](double t, const Eigen::VectorXd& y) {
     s_out = y.tail(m);
     if (n > 0 && m > 0) dae_.solve_pairs(t, y.head(n), s_out, &stats_.newton_iterations);
-    const Eigen::VectorXd z_out = dae_.complementarity_variables(s_out);
-    if (model_.has_history()) model_.accept(t, y.head(n), z_out);
+    return dae_.complementarity_variables(s_out);
+  };
+  auto accept_step = [&](double t, const Eigen::VectorXd& y) {
+    if (t <= last_accepted) return;
+    model_.accept(t, y.head(n), consistent_z(t, y));
+    last_accepted = t;
+  };
+  std::function<void(double, const Eigen::VectorXd&)> on_step;
+  if (model_.has_history()) on_step = accept_step;
+  auto emit_state = [&](double t, const Eigen::VectorXd& y, bool event) {
+    if (t <= last) return;
+    const Eigen::VectorXd z_out = consistent_z(t, y);
+    if (n == 0 && model_.has_history()) accept_step(t, y);  // no IDA: the rows are the steps
     emit(t, y.head(n), z_out, event);
     last = t;
     if (progress && t - last_progress >= 0.005 * stops.back()) {
@@ -328,7 +361,7 @@ void SmoothMethod::DoRun(const Eigen::VectorXd& x0, const OutputGrid& grid, cons
     for (;;) {
       const double target = out < outs.size() && outs[out] < b ? outs[out] : b;
       double t = 0;
-      if (ida.advance(target, t)) {
+      if (ida.advance(target, t, on_step)) {
         ++stats_.events;
         emit_state(t, ida.y(), true);
         continue;
