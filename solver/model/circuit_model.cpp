@@ -5,22 +5,13 @@
 #include <stdexcept>
 
 #include "solver/model/diode_law.h"
+#include "solver/model/netlist_options.h"
 
 namespace lcs {
 
 namespace {
 
 enum class Role { State, Static, Forced };  // how a branch's primary unknown is determined
-
-double option_value(const Netlist& netlist, const std::string& name, double fallback) {
-  auto it = netlist.options.find(name);
-  if (it == netlist.options.end() || it->second.empty()) return fallback;
-  try {
-    return std::stod(it->second);
-  } catch (...) {
-    return fallback;
-  }
-}
 
 }  // namespace
 
@@ -35,7 +26,7 @@ CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& opt
   check_source_loops_and_cutsets(netlist, g, t);
 
   const int nb = static_cast<int>(g.branches.size());
-  const double ifit = option_value(netlist, "ifit", options.ifit);
+  const double ifit = read_netlist_options(netlist).ifit.value_or(options.ifit);  // NetlistError
 
   // Diode laws (per branch), checked for impedance-free loops (5.40).
   std::vector<IdealDiodeLaw> law(nb);
