@@ -101,7 +101,7 @@ void print_study(const CircuitStudy& s) {
     std::printf("  %-8s %-14s %-7s %12.3e %12.3e %12.3e %9ld %9ld\n", p.method.c_str(), p.setting.c_str(),
                 p.reference.c_str(), p.error, p.error_vs_ideal, p.cpu_seconds, p.steps, p.events);
   }
-  const BenchPoint* ev = cheapest(s, "event", 1e-6);
+  const BenchPoint* ev = cheapest(s, exact_reference_method().name, 1e-6);
   const BenchPoint* ng = cheapest(s, "ngspice", 1e-3);
   if (ev && ng)
     std::printf("  headline: event reaches 1e-6 in %.3e s CPU, ngspice needs %.3e s for 1e-3 (%s): %.0fx\n",

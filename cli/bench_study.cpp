@@ -20,6 +20,10 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
+// BenchPoint::reference: which circuit the reference solves (a model, not a method name).
+constexpr const char* kIdealModel = "ideal";
+constexpr const char* kSmoothModel = "smooth";
+
 // A circuit ready to run: its model, probes and run parameters.
 struct Prepared {
   std::unique_ptr<CircuitModel> model;
@@ -154,11 +158,12 @@ CircuitStudy study_circuit(const std::string& path, const std::string& probe_lis
   };
 
   // The ideal reference and its check.
-  report("reference (event)", 0);
+  const std::string exact = exact_reference_method().name;
+  report("reference (" + exact + ")", 0);
   Timed ref, ref_check;
   try {
-    ref = run(ideal, "event", h, 1e-13, 0, {}, 0);
-    ref_check = run(ideal, "event", h / 2, 1e-14, 0, {}, 0);
+    ref = run(ideal, exact, h, 1e-13, 0, {}, 0);
+    ref_check = run(ideal, exact, h / 2, 1e-14, 0, {}, 0);
   } catch (const NumericalFailure& e) {
     throw CliError(kExitNumerical, "lcspice: error: " + path + ": no event-driven reference: " + e.what());
   }
@@ -166,7 +171,9 @@ CircuitStudy study_circuit(const std::string& path, const std::string& probe_lis
   study.ideal_reference_check = compare(ref_check.sink, ref.sink, ref_scale, h);
 
   // The smooth reference: the same circuit with Shockley diodes, as ngspice gets it.
-  const bool have_smooth = find_method("smooth") != nullptr;
+  const MethodEntry* smooth_entry = smooth_reference_method();
+  const bool have_smooth = smooth_entry != nullptr;
+  const std::string smooth_ref = have_smooth ? smooth_entry->name : "";
   SmoothingOptions smoothing;
   study.emission = smoothing.emission;
   Prepared smooth;
@@ -174,12 +181,12 @@ CircuitStudy study_circuit(const std::string& path, const std::string& probe_lis
   std::vector<double> sref_scale;
   study.smooth_reference_check = kNaN;
   if (have_smooth) {
-    report("reference (smooth)", 0.05);
+    report("reference (" + smooth_ref + ")", 0.05);
     smooth = prepare(smooth_netlist(netlist, smoothing));
     smooth.outputs = output_map_or_exit(*smooth.model, probes);
     try {
-      sref = run(smooth, "smooth", h, 1e-10, 1e-13, {}, 0);
-      Timed check = run(smooth, "smooth", h, 1e-11, 1e-14, {}, 0);
+      sref = run(smooth, smooth_ref, h, 1e-10, 1e-13, {}, 0);
+      Timed check = run(smooth, smooth_ref, h, 1e-11, 1e-14, {}, 0);
       sref_scale = scales(sref.sink);
       study.smooth_reference_check = compare(check.sink, sref.sink, sref_scale, h);
     } catch (const NumericalFailure& e) {
@@ -189,6 +196,7 @@ CircuitStudy study_circuit(const std::string& path, const std::string& probe_lis
 
   // Every method over its range of steps or tolerances.
   struct Plan {
+    const MethodEntry* entry;
     std::string method, name;
     std::vector<double> values;
   };
@@ -198,15 +206,15 @@ CircuitStudy study_circuit(const std::string& path, const std::string& probe_lis
     if (!settings.methods.empty() &&
         std::find(settings.methods.begin(), settings.methods.end(), m.name) == settings.methods.end())
       continue;
-    if (m.name == "event") {
+    if (m.bench_sweep == BenchSweep::Tolerance && m.smooth_model) {
+      if (have_smooth) plans.push_back({&m, m.name, "rtol", q ? std::vector<double>{1e-4, 1e-7} : powers(1e-3, 1e-9, 1)});
+    } else if (m.bench_sweep == BenchSweep::Tolerance) {
       // Not 1e-13: that run is the reference itself.
-      plans.push_back({m.name, "rtol", q ? std::vector<double>{1e-4, 1e-12} : powers(1e-3, 1e-11, 2)});
-    } else if (m.name == "smooth") {
-      if (have_smooth) plans.push_back({m.name, "rtol", q ? std::vector<double>{1e-4, 1e-7} : powers(1e-3, 1e-9, 1)});
+      plans.push_back({&m, m.name, "rtol", q ? std::vector<double>{1e-4, 1e-12} : powers(1e-3, 1e-11, 2)});
     } else {
       std::vector<double> steps;
       for (int k = q ? 1 : 2; k >= (q ? -1 : -4); k -= q ? 2 : 1) steps.push_back(h * std::ldexp(1.0, k));
-      plans.push_back({m.name, "h", steps});
+      plans.push_back({&m, m.name, "h", steps});
     }
   }
   size_t total = 0, done = 0;
@@ -217,12 +225,13 @@ CircuitStudy study_circuit(const std::string& path, const std::string& probe_lis
   for (const Plan& p : plans) {
     for (double v : p.values) {
       report(p.method + " " + setting_text(p.name, v), 0.1 + 0.9 * done++ / std::max<size_t>(total, 1));
-      const bool smooth_method = p.method == "smooth";
-      const std::string reference = smooth_method ? "smooth" : "ideal";
+      const bool smooth_method = p.entry->smooth_model;
+      const std::string reference = smooth_method ? kSmoothModel : kIdealModel;
       try {
         const Prepared& c = smooth_method ? smooth : ideal;
-        Timed t = p.name == "h" ? run(c, p.method, v, 0, 0, {}, min_s)
-                                : run(c, p.method, h, v, smooth_method ? v * 1e-3 : 0, {}, min_s);
+        Timed t = p.entry->bench_sweep == BenchSweep::StepSize
+                      ? run(c, p.method, v, 0, 0, {}, min_s)
+                      : run(c, p.method, h, v, smooth_method ? v * 1e-3 : 0, {}, min_s);
         BenchPoint b;
         b.method = p.method;
         b.setting = setting_text(p.name, v);
@@ -254,7 +263,7 @@ CircuitStudy study_circuit(const std::string& path, const std::string& probe_lis
       topt.options = extra_ngspice_options;
       for (const std::string& o : settings.ngspice_options) topt.options.push_back(o);
       topt.options.push_back(setting);
-      const std::string reference = have_smooth ? "smooth" : "ideal";
+      const std::string reference = have_smooth ? kSmoothModel : kIdealModel;
       try {
         TranslatedDeck deck = translate_to_ngspice(*ideal.model, probes, topt);
         NgspiceRun nr;
@@ -280,7 +289,7 @@ CircuitStudy study_circuit(const std::string& path, const std::string& probe_lis
           theirs.times.push_back(r.time[k]);
           theirs.rows.push_back(row);
         }
-        Timed ideal_there = run(ideal, "event", h, 1e-13, 0, times, 0);
+        Timed ideal_there = run(ideal, exact, h, 1e-13, 0, times, 0);
         BenchPoint b;
         b.method = "ngspice";
         b.setting = setting;
@@ -288,7 +297,7 @@ CircuitStudy study_circuit(const std::string& path, const std::string& probe_lis
         b.reference = reference;
         b.error_vs_ideal = compare(theirs, ideal_there.sink, ref_scale, h);
         if (have_smooth) {
-          Timed smooth_there = run(smooth, "smooth", h, 1e-10, 1e-13, times, 0);
+          Timed smooth_there = run(smooth, smooth_ref, h, 1e-10, 1e-13, times, 0);
           b.error = compare(theirs, smooth_there.sink, sref_scale, h);
         } else {
           b.error = b.error_vs_ideal;

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -36,6 +37,11 @@ struct ValidateArgs {
   bool print_deck = false;
 };
 int validate_command(const ValidateArgs& args);
+// validate_command with the diodes named in `reversed_in_ngspice_deck` connected backwards in
+// the ngspice deck only (never from the command line): tests show with it that the comparison
+// can fail (exit 4).
+int validate_with_reversed_diodes(const ValidateArgs& args,
+                                  const std::set<std::string>& reversed_in_ngspice_deck);
 
 struct BenchArgs {
   std::vector<std::string> netlists;  // empty: the suite in circuits/bench_suite.tsv

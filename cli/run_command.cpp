@@ -1,4 +1,3 @@
-#include <cstdlib>
 #include <iostream>
 
 #include "cli/commands.h"
@@ -7,6 +6,7 @@
 #include "cli/load_circuit.h"
 #include "cli/progress.h"
 #include "solver/integrators/transient.h"
+#include "solver/model/netlist_options.h"
 #include "solver/model/smooth_netlist.h"
 #include "solver/model/numerical_failure.h"
 
@@ -14,40 +14,55 @@ namespace lcs {
 
 namespace {
 
-// `.options method=` accepts the registry's names and ngspice's trap (theta 0.5).
-void apply_method_option(const Netlist& netlist, TransientOptions& options) {
-  auto it = netlist.options.find("method");
-  if (it == netlist.options.end()) return;
-  const std::string& m = it->second;
-  if (find_method(m)) {
-    options.method = m;
-  } else if (m == "trap" || m == "trapezoidal") {
-    options.method = "theta";
-    options.method_options.theta = 0.5;
-  } else if (m == "gear") {
-    warn(".options method=gear: lcspice has no Gear method; using implicit Euler (euler)");
-  } else {
-    throw CliError(kExitNetlist, format_diagnostic(netlist.option_locs.at("method"), "error",
-                                                   "unknown method '" + m + "' (known: " +
-                                                       method_names() + ", trap)"));
+// `.options method=` and `theta=` (read_netlist_options: registry names and ngspice's trap,
+// theta 0.5; gear is accepted with a warning and the default method).
+void apply_netlist_options(const Netlist& netlist, TransientOptions& options) {
+  NetlistOptions read;
+  try {
+    read = read_netlist_options(netlist);
+  } catch (const NetlistError& e) {
+    throw CliError(kExitNetlist, e.formatted());
   }
+  if (!read.method.empty()) options.method = read.method;
+  if (read.gear)
+    warn(".options method=gear: lcspice has no Gear method; using implicit Euler (" + options.method + ")");
+  if (read.theta) options.method_options.theta = *read.theta;
 }
 
-// SPEC §1: --diode ideal | shockley | auto. Shockley diodes are integrated by the smooth method
-// only; every other method solves complementarity problems with the ideal law.
+const MethodEntry& method_of(const TransientOptions& options) { return *find_method(options.method); }
+
+// "event, smooth": the methods --rtol/--atol apply to.
+std::string adaptive_method_names() {
+  std::string out;
+  for (const MethodEntry& e : method_registry())
+    if (e.adaptive()) out += (out.empty() ? "" : ", ") + e.name;
+  return out;
+}
+
+// The method that integrates Shockley diodes (smooth_reference); "(none)" if none is registered.
+std::string smooth_method_name() {
+  const MethodEntry* e = smooth_reference_method();
+  return e ? e->name : "(none)";
+}
+
+// SPEC §1: --diode ideal | shockley | auto. Shockley diodes are integrated by the smooth-model
+// method only; every other method solves complementarity problems with the ideal law.
 void apply_diode_model(const RunArgs& args, TransientOptions& options) {
   const std::string& d = args.diode;
   if (d.empty() || d == "auto") return;
+  const std::string smooth = smooth_method_name();
   if (d == "shockley") {
-    if (args.method.empty()) options.method = "smooth";
-    if (options.method != "smooth")
-      throw CliError(kExitUsage, "error: --diode shockley needs --method smooth (method " +
+    if (!smooth_reference_method())
+      throw CliError(kExitUsage, "error: --diode shockley: no method integrates Shockley diodes");
+    if (args.method.empty()) options.method = smooth;
+    if (!method_of(options).smooth_model)
+      throw CliError(kExitUsage, "error: --diode shockley needs --method " + smooth + " (method " +
                                      options.method + " uses the ideal law)");
     return;
   }
   if (d == "ideal") {
-    if (options.method == "smooth")
-      throw CliError(kExitUsage, "error: --method smooth integrates Shockley diodes; "
+    if (method_of(options).smooth_model)
+      throw CliError(kExitUsage, "error: --method " + options.method + " integrates Shockley diodes; "
                                  "--diode ideal needs a complementarity method");
     return;
   }
@@ -59,15 +74,7 @@ void apply_diode_model(const RunArgs& args, TransientOptions& options) {
 int run_command(const RunArgs& args) {
   Netlist netlist = load_netlist(args.netlist);
   TransientOptions options;
-  apply_method_option(netlist, options);
-  if (auto it = netlist.options.find("theta"); it != netlist.options.end()) {
-    char* end = nullptr;
-    const double theta = std::strtod(it->second.c_str(), &end);
-    if (it->second.empty() || *end != '\0' || !(theta >= 0 && theta <= 1))
-      throw CliError(kExitNetlist, format_diagnostic(netlist.option_locs.at("theta"), "error",
-                                                     ".options theta must be a number in [0, 1]"));
-    options.method_options.theta = theta;
-  }
+  apply_netlist_options(netlist, options);
   if (!args.method.empty()) {
     if (!find_method(args.method))
       throw CliError(kExitUsage, "error: unknown method '" + args.method + "' (known: " +
@@ -75,16 +82,17 @@ int run_command(const RunArgs& args) {
     options.method = args.method;
   }
   if (args.theta) options.method_options.theta = *args.theta;
-  if (args.theta && options.method != "theta")
+  if (args.theta && !method_of(options).uses_theta)
     warn("--theta is used only by --method theta; method " + options.method + " ignores it");
   apply_diode_model(args, options);
   if (args.rtol) options.method_options.rtol = *args.rtol;
   if (args.atol) options.method_options.atol = *args.atol;
-  if ((args.rtol || args.atol) && !find_method(options.method)->adaptive())
-    warn("--rtol/--atol are used by the adaptive methods (event, smooth); " + options.method +
-         " has a fixed step (--step)");
-  if (args.emission && options.method != "smooth")
-    warn("--emission is used only by --method smooth; method " + options.method + " ignores it");
+  if ((args.rtol || args.atol) && !method_of(options).adaptive())
+    warn("--rtol/--atol are used by the adaptive methods (" + adaptive_method_names() + "); " +
+         options.method + " has a fixed step (--step)");
+  if (args.emission && !method_of(options).smooth_model)
+    warn("--emission is used only by --method " + smooth_method_name() + "; method " + options.method +
+         " ignores it");
   if (args.emission && !(*args.emission > 0))
     throw CliError(kExitUsage, "error: --emission must be positive");
 
@@ -109,7 +117,7 @@ int run_command(const RunArgs& args) {
   std::string why;
   if (!options.IsValid(&why)) throw CliError(kExitUsage, "error: " + why);
 
-  if (options.method == "smooth") {
+  if (method_of(options).smooth_model) {
     SmoothingOptions smoothing;
     if (args.emission) smoothing.emission = *args.emission;
     netlist = smooth_netlist(netlist, smoothing);
@@ -119,18 +127,20 @@ int run_command(const RunArgs& args) {
   OutputMap outputs = output_map_or_exit(model, probes);
   for (const std::string& w : floating_probe_warnings(model, probes)) warn(w);
   CsvSink sink(args.output);
+  TransientSummary failed;  // the summary up to a numerical failure
   try {
     TransientSummary summary;
     {
       ProgressLine progress("run " + options.method);
       if (progress.enabled()) options.progress = [&progress](double f) { progress.update(f); };
-      summary = run_transient(model, outputs, options, sink);
+      summary = run_transient(model, outputs, options, sink, &failed);
     }
     for (const std::string& w : summary.warnings) warn(w);
     if (args.stats) std::cerr << summary.BriefReport() << "\n";
     if (!sink.path().empty() && sink.path() != "-")
       std::cerr << "lcspice: wrote " << summary.rows << " rows to " << sink.path() << "\n";
   } catch (const NumericalFailure& e) {
+    if (args.stats) std::cerr << failed.BriefReport() << "\n";
     std::string where;
     if (!sink.path().empty() && sink.path() != "-")
       where = sink.rows() > 0 ? "; rows computed so far are in " + sink.path()

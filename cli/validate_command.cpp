@@ -133,7 +133,10 @@ void write_report(const std::string& path, const std::vector<ProbeComparison>& r
 
 }  // namespace
 
-int validate_command(const ValidateArgs& args) {
+int validate_command(const ValidateArgs& args) { return validate_with_reversed_diodes(args, {}); }
+
+int validate_with_reversed_diodes(const ValidateArgs& args,
+                                  const std::set<std::string>& reversed_in_ngspice_deck) {
   Netlist netlist = load_netlist(args.netlist);
   if (!netlist.tran) {
     SourceLocation file_only;
@@ -141,7 +144,7 @@ int validate_command(const ValidateArgs& args) {
     throw CliError(kExitNetlist, format_diagnostic(file_only, "error", "no .tran card: nothing to validate"));
   }
   TransientOptions run;
-  run.method = args.method.empty() ? "euler" : args.method;
+  run.method = args.method.empty() ? default_method().name : args.method;
   if (!find_method(run.method))
     throw CliError(kExitUsage, "error: unknown method '" + run.method + "' (known: " + method_names() + ")");
   // lcspice's own first-order error must sit well below the model gap being checked.
@@ -160,7 +163,7 @@ int validate_command(const ValidateArgs& args) {
 
   CircuitModel model = build_model(netlist, 0.0, run.tstop);
   // What lcspice integrates: the ideal circuit, or for `smooth` the Shockley circuit of the deck.
-  const bool smooth = run.method == "smooth";
+  const bool smooth = find_method(run.method)->smooth_model;
   TranslationOptions topt;
   std::optional<CircuitModel> smooth_model;
   if (smooth) {
@@ -185,7 +188,7 @@ int validate_command(const ValidateArgs& args) {
   topt.emission = args.emission;
   if (args.max_step) topt.max_step = *args.max_step;
   topt.options = args.ngspice_options;
-  if (const char* hook = std::getenv("LCSPICE_TEST_NGSPICE_REVERSE_DIODE")) topt.reversed_diodes.insert(hook);
+  topt.reversed_diodes = reversed_in_ngspice_deck;
   const bool element_ics = std::any_of(netlist.elements.begin(), netlist.elements.end(),
                                        [](const Element& el) { return el.ic.has_value(); });
   if (!run.uic && element_ics) {

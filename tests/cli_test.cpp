@@ -114,6 +114,84 @@ TEST(BadNetlists, TopologyErrorsPointAtEveryElementInvolved) {
   EXPECT_EQ(r.err_line(4), path + ":5:1: note: voltage source v1 is here");
 }
 
+// --stats on a numerical failure: the summary up to the failure, then the error (exit 3).
+TEST(BadNetlists, NumericalFailureKeepsTheStatistics) {
+  const fs::path dir = scratch_dir("numerical_failure_stats");
+  const fs::path csv_path = dir / "out.csv";
+  Result r = run_lcspice("run '" + source_path("tests/bad_netlists/97-current-into-reverse-diode.cir").string() +
+                             "' --stats -o '" + csv_path.string() + "'",
+                         dir);
+  ASSERT_EQ(r.code, 3) << r.err;
+  const Csv csv = parse_csv(read_file(csv_path));
+  ASSERT_FALSE(csv.rows.empty());
+  // The rows before the failure (t = 0, 10 us, ..., 1 ms) and as many steps, after the warnings.
+  size_t k = 0;
+  while (k < 10 && r.err_line(k).find("warning: ") != std::string::npos) ++k;
+  const std::string first = r.err_line(k);
+  EXPECT_EQ(first.rfind("method euler: ", 0), 0u) << r.err;
+  EXPECT_NE(first.find(": " + std::to_string(csv.rows.size() - 1) + " steps, " +
+                       std::to_string(csv.rows.size()) + " rows, "),
+            std::string::npos)
+      << r.err;
+  EXPECT_NE(first.find(" LCP solves ("), std::string::npos) << r.err;
+  EXPECT_EQ(r.err_line(k + 1).rfind("CPU time: setup ", 0), 0u) << r.err;
+  EXPECT_EQ(r.err_line(k + 2).rfind("lcspice: error: numerical failure at t = 0.00101 s: ", 0), 0u) << r.err;
+  // An adaptive method: its own statistics (method->stats()) up to the failure.
+  Result event = run_lcspice("run '" + source_path("tests/bad_netlists/97-current-into-reverse-diode.cir").string() +
+                                 "' --method event --stats -o '" + csv_path.string() + "'",
+                             dir);
+  ASSERT_EQ(event.code, 3) << event.err;
+  const Csv event_csv = parse_csv(read_file(csv_path));
+  EXPECT_EQ(event.err_line(k).rfind("method event: 100 steps, " + std::to_string(event_csv.rows.size()) + " rows, ", 0), 0u)
+      << event.err;
+  EXPECT_EQ(event.err_line(k + 1).rfind("events 0, mode switches 0, distinct modes 1", 0), 0u) << event.err;
+  EXPECT_EQ(event.err_line(k + 2).rfind("CPU time: setup ", 0), 0u) << event.err;
+  EXPECT_EQ(event.err_line(k + 3).rfind("lcspice: error: numerical failure at t = 0.001 s: no next mode", 0), 0u)
+      << event.err;
+  // Without --stats: only the error.
+  Result quiet = run_lcspice("run '" + source_path("tests/bad_netlists/97-current-into-reverse-diode.cir").string() +
+                                 "' -o '" + csv_path.string() + "'",
+                             dir);
+  ASSERT_EQ(quiet.code, 3);
+  EXPECT_EQ(quiet.err_line(k).rfind("lcspice: error: numerical failure at t = 0.00101 s: ", 0), 0u) << quiet.err;
+}
+
+// A bad `.options` value is a located netlist error (exit 2) for every command that reads it.
+TEST(BadNetlists, BadOptionValueIsALocatedErrorForEveryCommand) {
+  const fs::path dir = scratch_dir("bad_ifit");
+  const fs::path deck = dir / "ifit.cir";
+  std::ofstream(deck) << "bad ifit\nV1 a 0 SIN(0 5 1k)\nR1 a b 1k\nD1 b 0 dx\n.model dx D\n"
+                         ".options reltol=1e-3 ifit=0\n.tran 10u 1m\n.end\n";
+  const std::string located = deck.string() + ":6:22: error: .options ifit must be a positive number of amperes";
+  for (const std::string command : {"run", "op", "analyze", "validate"}) {
+    Result r = run_lcspice(command + " '" + deck.string() + "'", dir);
+    EXPECT_EQ(r.code, 2) << command << "\n" << r.err;
+    EXPECT_EQ(r.err_line(0), located) << command;
+    EXPECT_EQ(r.err_line(1), ".options reltol=1e-3 ifit=0") << command;
+    EXPECT_EQ(r.err_line(2).find('^'), 21u) << command;
+  }
+  std::ofstream(dir / "theta.cir") << "bad theta\nV1 a 0 DC 1\nR1 a 0 1k\n.options theta=2\n.tran 10u 1m\n.end\n";
+  Result theta = run_lcspice("run '" + (dir / "theta.cir").string() + "'", dir);
+  EXPECT_EQ(theta.code, 2);
+  EXPECT_EQ(theta.err_line(0), (dir / "theta.cir").string() + ":4:10: error: .options theta must be a number in [0, 1]");
+  std::ofstream(dir / "method.cir") << "bad method\nV1 a 0 DC 1\nR1 a 0 1k\n.options method=rk4\n.tran 10u 1m\n.end\n";
+  Result method = run_lcspice("run '" + (dir / "method.cir").string() + "'", dir);
+  EXPECT_EQ(method.code, 2);
+  EXPECT_EQ(method.err_line(0), (dir / "method.cir").string() +
+                                    ":4:10: error: unknown method 'rk4' (known: euler, event, radau3, radau5, "
+                                    "smooth, theta, trap)");
+  std::ofstream(dir / "gear.cir") << "gear\nV1 a 0 DC 1\nR1 a 0 1k\n.options method=gear\n.tran 10u 20u\n.end\n";
+  Result gear = run_lcspice("run '" + (dir / "gear.cir").string() + "' --stats", dir);
+  EXPECT_EQ(gear.code, 0) << gear.err;
+  EXPECT_EQ(gear.err_line(0), "lcspice: warning: .options method=gear: lcspice has no Gear method; using implicit "
+                              "Euler (euler)");
+  EXPECT_EQ(gear.err_line(1).rfind("method euler: 2 steps, 3 rows", 0), 0u) << gear.err;
+  std::ofstream(dir / "trap.cir") << "trap\nV1 a 0 DC 1\nR1 a 0 1k\n.options method=trap\n.tran 10u 20u\n.end\n";
+  Result trap = run_lcspice("run '" + (dir / "trap.cir").string() + "' --stats", dir);
+  EXPECT_EQ(trap.code, 0) << trap.err;
+  EXPECT_EQ(trap.err_line(0).rfind("method theta: 2 steps, 3 rows", 0), 0u) << trap.err;
+}
+
 // ---------------------------------------------------------------------------------------------
 // CSV (SPEC §3)
 
@@ -369,6 +447,71 @@ TEST(Smooth, RowsAtEveryTstepMultiplePlusTheEvents) {
   }
   EXPECT_EQ(k, multiples) << "a multiple of TSTEP is missing";
   EXPECT_EQ(extra, events);
+}
+
+// The option warnings and --diode checks follow the registry's traits (uses_theta, adaptive,
+// smooth_model): each fires for the methods without the trait and only for them.
+TEST(MethodTraits, OptionWarningsFollowTheTraits) {
+  const fs::path dir = scratch_dir("method_traits");
+  const fs::path deck = dir / "rc.cir";
+  std::ofstream(deck) << "rc diode\nV1 a 0 SIN(0 5 1k)\nR1 a b 1k\nD1 b c dx\nC1 c 0 1u\nR2 c 0 10k\n.model dx D\n"
+                         ".tran 10u 1m\n.end\n";
+  const std::string csv = " -o '" + (dir / "out.csv").string() + "'";
+  auto run = [&](const std::string& flags) { return run_lcspice("run '" + deck.string() + "' " + flags + csv, dir); };
+  auto warned = [](const Result& r, const std::string& text) { return r.err.find(text) != std::string::npos; };
+
+  const std::string theta_warning = "lcspice: warning: --theta is used only by --method theta; method ";
+  for (const std::string m : {"euler", "event", "radau3", "radau5", "smooth"}) {
+    Result r = run("--method " + m + " --theta 0.3");
+    EXPECT_EQ(r.code, 0) << m << "\n" << r.err;
+    EXPECT_TRUE(warned(r, theta_warning + m + " ignores it")) << m << "\n" << r.err;
+  }
+  Result theta = run("--method theta --theta 0.3");
+  EXPECT_EQ(theta.code, 0) << theta.err;
+  EXPECT_FALSE(warned(theta, "--theta is used only")) << theta.err;
+
+  const std::string tol_warning = "lcspice: warning: --rtol/--atol are used by the adaptive methods (event, smooth); ";
+  for (const std::string m : {"euler", "radau3", "radau5", "theta"}) {
+    Result r = run("--method " + m + " --rtol 1e-6");
+    EXPECT_EQ(r.code, 0) << m << "\n" << r.err;
+    EXPECT_TRUE(warned(r, tol_warning + m + " has a fixed step (--step)")) << m << "\n" << r.err;
+  }
+  for (const std::string m : {"event", "smooth"}) {
+    Result r = run("--method " + m + " --rtol 1e-6");
+    EXPECT_EQ(r.code, 0) << m << "\n" << r.err;
+    EXPECT_FALSE(warned(r, "--rtol/--atol are used")) << m << "\n" << r.err;
+  }
+
+  for (const std::string m : {"euler", "event", "radau3", "radau5", "theta"}) {
+    Result r = run("--method " + m + " --emission 2");
+    EXPECT_EQ(r.code, 0) << m << "\n" << r.err;
+    EXPECT_TRUE(warned(r, "lcspice: warning: --emission is used only by --method smooth; method " + m + " ignores it"))
+        << m << "\n" << r.err;
+    Result ideal = run("--method " + m + " --diode ideal");
+    EXPECT_EQ(ideal.code, 0) << m << "\n" << ideal.err;
+  }
+  Result smooth = run("--method smooth --emission 2 --stats");
+  EXPECT_EQ(smooth.code, 0) << smooth.err;
+  EXPECT_FALSE(warned(smooth, "--emission is used only")) << smooth.err;
+  EXPECT_EQ(smooth.err_line(0).rfind("method smooth: ", 0), 0u) << smooth.err;
+  Result smooth_ideal = run("--method smooth --diode ideal");
+  EXPECT_EQ(smooth_ideal.code, 1);
+  EXPECT_EQ(smooth_ideal.err_line(0),
+            "error: --method smooth integrates Shockley diodes; --diode ideal needs a complementarity method");
+
+  // `.options method=smooth` in the deck: the smoothed circuit is integrated (the method's
+  // smooth_model trait), exactly as with --method smooth.
+  const fs::path opt_deck = dir / "rc_smooth.cir";
+  std::ofstream(opt_deck) << "rc diode\nV1 a 0 SIN(0 5 1k)\nR1 a b 1k\nD1 b c dx\nC1 c 0 1u\nR2 c 0 10k\n.model dx D\n"
+                             ".options method=smooth\n.tran 10u 1m\n.end\n";
+  Result from_deck = run_lcspice("run '" + opt_deck.string() + "' --probe 'v(c)' -o '" + (dir / "deck.csv").string() + "'", dir);
+  ASSERT_EQ(from_deck.code, 0) << from_deck.err;
+  Result from_flag = run_lcspice("run '" + deck.string() + "' --method smooth --probe 'v(c)' -o '" + (dir / "flag.csv").string() + "'", dir);
+  ASSERT_EQ(from_flag.code, 0) << from_flag.err;
+  EXPECT_EQ(read_file(dir / "deck.csv"), read_file(dir / "flag.csv"));
+  Result ideal_event = run_lcspice("run '" + deck.string() + "' --method event --probe 'v(c)' -o '" + (dir / "ideal.csv").string() + "'", dir);
+  ASSERT_EQ(ideal_event.code, 0) << ideal_event.err;
+  EXPECT_NE(read_file(dir / "ideal.csv"), read_file(dir / "flag.csv"));  // the ideal law differs
 }
 
 TEST(Smooth, DiodeShockleySelectsTheSmoothMethod) {

@@ -8,6 +8,8 @@
 
 #include <gtest/gtest.h>
 
+#include "cli/commands.h"
+#include "cli/exit_codes.h"
 #include "tests/cli_support.h"
 
 namespace lcs {
@@ -84,16 +86,24 @@ INSTANTIATE_TEST_SUITE_P(Circuits, Validation, ::testing::ValuesIn(manifest()),
                          });
 
 // The comparison can fail: the same circuit with one diode reversed only in the ngspice deck
-// (the test hook LCSPICE_TEST_NGSPICE_REVERSE_DIODE) is far outside any tolerance.
+// (validate_with_reversed_diodes, in-process: the binary has no such hook) is far outside any
+// tolerance.
 TEST(ValidationCanFail, ReversedDiodeInTheNgspiceDeckExitsFour) {
   const fs::path dir = scratch_dir("validate_reversed");
-  const std::string cmd = "env LCSPICE_TEST_NGSPICE_REVERSE_DIODE=d1 '" + std::string(LCSPICE_BINARY) +
-                          "' validate '" + source_path("circuits/half_wave_rectifier.cir").string() +
-                          "' --report '" + (dir / "report.csv").string() + "' >'" +
-                          (dir / "out.txt").string() + "' 2>&1";
-  const int status = std::system(cmd.c_str());
-  EXPECT_EQ(WEXITSTATUS(status), 4) << read_file(dir / "out.txt");
-  const std::string out = read_file(dir / "out.txt");
+  ValidateArgs args;
+  args.netlist = source_path("circuits/half_wave_rectifier.cir").string();
+  args.report = (dir / "report.csv").string();
+  int code = -1;
+  std::string error;
+  ::testing::internal::CaptureStdout();
+  try {
+    code = validate_with_reversed_diodes(args, {"d1"});
+  } catch (const CliError& e) {
+    code = e.code();
+    error = e.what();
+  }
+  const std::string out = ::testing::internal::GetCapturedStdout();
+  EXPECT_EQ(code, kExitValidate) << out << error;
   EXPECT_NE(out.find("FAIL: every probe within"), std::string::npos) << out;
   EXPECT_NE(out.find("OUTSIDE"), std::string::npos) << out;
   // The report: the table, both waveforms, one overlay per probe.
@@ -101,6 +111,20 @@ TEST(ValidationCanFail, ReversedDiodeInTheNgspiceDeckExitsFour) {
   EXPECT_EQ(table.header.front(), "probe");
   EXPECT_TRUE(fs::exists(dir / "report_waveforms.csv"));
   EXPECT_TRUE(fs::exists(dir / "report_v.out.png") || fs::exists(dir / "report_v_out.png"));
+}
+
+// The same circuit (with the probes of circuits/validation.tsv) passes with the environment
+// variable that used to be the binary's test hook set: the binary no longer reads it.
+TEST(ValidationCanFail, TheBinaryHasNoReverseDiodeHook) {
+  const fs::path dir = scratch_dir("validate_no_hook");
+  const std::string cmd = "env LCSPICE_TEST_NGSPICE_REVERSE_DIODE=d1 '" + std::string(LCSPICE_BINARY) +
+                          "' validate '" + source_path("circuits/half_wave_rectifier.cir").string() +
+                          "' --probe 'v(in),v(out),i(l1),i(d1)' >'" + (dir / "out.txt").string() + "' 2>&1";
+  const int status = std::system(cmd.c_str());
+  const std::string out = read_file(dir / "out.txt");
+  EXPECT_EQ(WEXITSTATUS(status), 0) << out;
+  EXPECT_NE(out.find("PASS: every probe within"), std::string::npos) << out;
+  EXPECT_EQ(out.find("OUTSIDE"), std::string::npos) << out;
 }
 
 TEST(ValidationErrors, NgspiceTimeoutIsAClearError) {

@@ -1,5 +1,7 @@
 #include "solver/integrators/method_registry.h"
 
+#include <stdexcept>
+
 #include "solver/integrators/event_driven.h"
 #include "solver/integrators/radau_iia.h"
 #include "solver/integrators/smooth_method.h"
@@ -7,45 +9,85 @@
 
 namespace lcs {
 
+namespace {
+
+using StepperFactory = decltype(MethodEntry::make_stepper);
+using ContinuousFactory = decltype(MethodEntry::make_continuous);
+
+MethodEntry fixed_step(const std::string& name, const std::string& description, StepperFactory make) {
+  MethodEntry e;
+  e.name = name;
+  e.description = description;
+  e.make_stepper = std::move(make);
+  e.bench_sweep = BenchSweep::StepSize;
+  return e;
+}
+
+MethodEntry adaptive(const std::string& name, const std::string& description, ContinuousFactory make) {
+  MethodEntry e;
+  e.name = name;
+  e.description = description;
+  e.make_continuous = std::move(make);
+  e.bench_sweep = BenchSweep::Tolerance;
+  return e;
+}
+
+std::vector<MethodEntry> make_table() {
+  std::vector<MethodEntry> table;
+
+  MethodEntry euler = fixed_step(
+      "euler", "implicit Euler (theta = 1), fixed step, one LCP per step",
+      [](const LcsProblem& m, const MethodOptions&) { return std::make_unique<ThetaMethod>(m, 1.0); });
+  euler.is_default = true;
+  table.push_back(euler);
+
+  MethodEntry event = adaptive(
+      "event",
+      "event-driven: exact matrix exponentials inside each mode, events located by bisection "
+      "(--rtol on event times, default 1e-13), next mode from a tiny-step LCP",
+      [](const LcsProblem& m, const MethodOptions& o) {
+        EventOptions e;
+        if (o.rtol > 0) e.rtol = o.rtol;
+        return std::make_unique<EventDriven>(m, e);
+      });
+  event.exact_reference = true;
+  table.push_back(event);
+
+  table.push_back(fixed_step(
+      "radau3", "Radau IIA, 2 stages (order 3), fixed step, one LCP of size 2m per step",
+      [](const LcsProblem& m, const MethodOptions&) { return std::make_unique<RadauIIA>(m, 2); }));
+  table.push_back(fixed_step(
+      "radau5", "Radau IIA, 3 stages (order 5), fixed step, one LCP of size 3m per step",
+      [](const LcsProblem& m, const MethodOptions&) { return std::make_unique<RadauIIA>(m, 3); }));
+
+  MethodEntry smooth = adaptive(
+      "smooth",
+      "Shockley diodes (Stewart 8.2 smoothing) as a DAE, SUNDIALS IDA (variable-order BDF), "
+      "--rtol/--atol",
+      [](const LcsProblem& m, const MethodOptions& o) { return std::make_unique<SmoothMethod>(m, o); });
+  smooth.smooth_model = true;
+  smooth.smooth_reference = true;
+  table.push_back(smooth);
+
+  MethodEntry theta = fixed_step(
+      "theta", "theta-method (--theta, default 0.5: trapezoidal), fixed step, one LCP per step",
+      [](const LcsProblem& m, const MethodOptions& o) { return std::make_unique<ThetaMethod>(m, o.theta); });
+  theta.uses_theta = true;
+  table.push_back(theta);
+
+  return table;
+}
+
+const MethodEntry& the_entry(bool MethodEntry::*trait, const char* what) {
+  for (const MethodEntry& e : method_registry())
+    if (e.*trait) return e;
+  throw std::logic_error(std::string("the method registry has no ") + what);
+}
+
+}  // namespace
+
 const std::vector<MethodEntry>& method_registry() {
-  static const std::vector<MethodEntry> table = {
-      {"euler", "implicit Euler (theta = 1), fixed step, one LCP per step",
-       [](const LcsProblem& m, const MethodOptions&) {
-         return std::make_unique<ThetaMethod>(m, 1.0);
-       },
-       {}},
-      {"event",
-       "event-driven: exact matrix exponentials inside each mode, events located by bisection "
-       "(--rtol on event times, default 1e-13), next mode from a tiny-step LCP",
-       {},
-       [](const LcsProblem& m, const MethodOptions& o) {
-         EventOptions e;
-         if (o.rtol > 0) e.rtol = o.rtol;
-         return std::make_unique<EventDriven>(m, e);
-       }},
-      {"radau3", "Radau IIA, 2 stages (order 3), fixed step, one LCP of size 2m per step",
-       [](const LcsProblem& m, const MethodOptions&) {
-         return std::make_unique<RadauIIA>(m, 2);
-       },
-       {}},
-      {"radau5", "Radau IIA, 3 stages (order 5), fixed step, one LCP of size 3m per step",
-       [](const LcsProblem& m, const MethodOptions&) {
-         return std::make_unique<RadauIIA>(m, 3);
-       },
-       {}},
-      {"smooth",
-       "Shockley diodes (Stewart 8.2 smoothing) as a DAE, SUNDIALS IDA (variable-order BDF), "
-       "--rtol/--atol",
-       {},
-       [](const LcsProblem& m, const MethodOptions& o) {
-         return std::make_unique<SmoothMethod>(m, o);
-       }},
-      {"theta", "theta-method (--theta, default 0.5: trapezoidal), fixed step, one LCP per step",
-       [](const LcsProblem& m, const MethodOptions& o) {
-         return std::make_unique<ThetaMethod>(m, o.theta);
-       },
-       {}},
-  };
+  static const std::vector<MethodEntry> table = make_table();
   return table;
 }
 
@@ -60,5 +102,31 @@ std::string method_names() {
   for (const MethodEntry& e : method_registry()) out += (out.empty() ? "" : ", ") + e.name;
   return out;
 }
+
+const MethodEntry& default_method() { return the_entry(&MethodEntry::is_default, "default method"); }
+
+const MethodEntry& exact_reference_method() {
+  return the_entry(&MethodEntry::exact_reference, "exact reference");
+}
+
+const MethodEntry* smooth_reference_method() {
+  for (const MethodEntry& e : method_registry())
+    if (e.smooth_reference) return &e;
+  return nullptr;
+}
+
+SpiceMethod find_spice_method(const std::string& name) {
+  SpiceMethod m;
+  if ((m.entry = find_method(name))) return m;
+  if (name == "trap" || name == "trapezoidal") {
+    m.entry = find_method("theta");
+    m.theta = 0.5;
+  } else if (name == "gear") {
+    m.gear = true;
+  }
+  return m;
+}
+
+std::string spice_method_names() { return method_names() + ", trap"; }
 
 }  // namespace lcs

@@ -3,6 +3,7 @@
 
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -18,8 +19,12 @@ struct MethodOptions {
   double rtol = 0, atol = 0;
 };
 
+// What `bench` varies for a method: the fixed step h, or the tolerance --rtol.
+enum class BenchSweep { StepSize, Tolerance };
+
 // Exactly one of make_stepper (fixed-step time-stepping, one LCP per step) and make_continuous
-// (methods that choose their own steps and output times) is set.
+// (methods that choose their own steps and output times) is set. The traits below are what the
+// commands ask of a method; nothing outside method_registry.cpp compares method names.
 struct MethodEntry {
   std::string name;
   std::string description;
@@ -27,11 +32,34 @@ struct MethodEntry {
       make_stepper;
   std::function<std::unique_ptr<ContinuousMethod>(const LcsProblem&, const MethodOptions&)>
       make_continuous;
+  bool smooth_model = false;     // integrates the smoothed circuit (Shockley diodes, smooth_netlist)
+                                 // instead of the ideal complementarity law
+  bool uses_theta = false;       // reads MethodOptions::theta (`--theta`, `.options theta=`)
+  BenchSweep bench_sweep = BenchSweep::StepSize;
+  bool exact_reference = false;  // bench's reference for the ideal circuit (exact: event)
+  bool smooth_reference = false; // bench's reference for the smoothed circuit
+  bool is_default = false;       // the method when none is given (`run`, `validate`)
+
   bool adaptive() const { return static_cast<bool>(make_continuous); }
+  bool fixed_step() const { return static_cast<bool>(make_stepper); }
 };
 
 const std::vector<MethodEntry>& method_registry();
 const MethodEntry* find_method(const std::string& name);  // nullptr when unknown
 std::string method_names();                                // "euler, event, ..."
+const MethodEntry& default_method();                       // the entry with is_default
+const MethodEntry& exact_reference_method();               // the entry with exact_reference
+const MethodEntry* smooth_reference_method();  // the entry with smooth_reference; nullptr: none
+
+// `.options method=NAME` of a SPICE deck: a registry name, or one of ngspice's: trap and
+// trapezoidal (the theta method at theta 0.5) and gear (no equivalent here: entry null, gear set).
+// entry null and gear false: unknown.
+struct SpiceMethod {
+  const MethodEntry* entry = nullptr;
+  std::optional<double> theta;  // the theta the name implies (trap: 0.5)
+  bool gear = false;
+};
+SpiceMethod find_spice_method(const std::string& name);
+std::string spice_method_names();  // method_names() and the ngspice names accepted: "..., trap"
 
 }  // namespace lcs

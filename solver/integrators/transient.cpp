@@ -21,11 +21,12 @@ bool TransientOptions::IsValid(std::string* why) const {
     if (why) *why = m;
     return false;
   };
-  if (!find_method(method)) return fail("unknown method '" + method + "' (known: " + method_names() + ")");
+  const MethodEntry* entry = find_method(method);
+  if (!entry) return fail("unknown method '" + method + "' (known: " + method_names() + ")");
   if (!(step > 0) || !std::isfinite(step)) return fail("the step must be positive");
   if (!(tstop > 0) || !std::isfinite(tstop)) return fail("TSTOP must be positive");
   if (!(tstart >= 0) || tstart >= tstop) return fail("TSTART must be in [0, TSTOP)");
-  if (method == "theta" && !(method_options.theta >= 0 && method_options.theta <= 1))
+  if (entry->uses_theta && !(method_options.theta >= 0 && method_options.theta <= 1))
     return fail("--theta must be in [0, 1]");
   if (tstop / step > 2e9) return fail("TSTOP/step is too large (more than 2e9 steps)");
   if (!(method_options.rtol >= 0 && method_options.rtol < 1) || !(method_options.atol >= 0) ||
@@ -118,7 +119,13 @@ void run_adaptive(const CircuitModel& model, const OutputMap& outputs, const Tra
   if (options.progress) progress = [&](double t) { options.progress(t / options.tstop); };
   const double loop0 = process_cpu_seconds();
   summary.cpu_setup = loop0 - cpu0;
-  method->Run(x0, grid, emit, progress);
+  try {
+    method->Run(x0, grid, emit, progress);
+  } catch (const NumericalFailure&) {
+    summary.cpu_steps = process_cpu_seconds() - loop0;
+    summary.stepper = method->stats();  // the statistics up to the failure
+    throw;
+  }
   summary.cpu_steps = process_cpu_seconds() - loop0;
   summary.stepper = method->stats();
 }
@@ -147,24 +154,30 @@ void run_fixed_step(const CircuitModel& model, const OutputMap& outputs, const T
   const double loop0 = process_cpu_seconds();
   if (options.tstart <= 0) emit(0.0);
   double t = 0.0;
-  for (long k = 1; k <= total; ++k) {
-    // Full steps use h itself: k*h - (k-1)*h differs from h in the last bits, and every
-    // distinct step size costs a factorisation and a cold warm start.
-    const double t_next = k <= full_steps ? k * h : options.tstop;
-    const double step = k <= full_steps ? h : t_next - t;
-    if (substeps == 1) {
-      stepper->Step(t, step, x, z);
-      if (history) model.accept(t_next, x, z);
-    } else {
-      for (int j = 0; j < substeps; ++j) {
-        const double tj = j + 1 == substeps ? t_next : t + (j + 1) * (step / substeps);
-        stepper->Step(t + j * (step / substeps), step / substeps, x, z);
-        model.accept(tj, x, z);
+  try {
+    for (long k = 1; k <= total; ++k) {
+      // Full steps use h itself: k*h - (k-1)*h differs from h in the last bits, and every
+      // distinct step size costs a factorisation and a cold warm start.
+      const double t_next = k <= full_steps ? k * h : options.tstop;
+      const double step = k <= full_steps ? h : t_next - t;
+      if (substeps == 1) {
+        stepper->Step(t, step, x, z);
+        if (history) model.accept(t_next, x, z);
+      } else {
+        for (int j = 0; j < substeps; ++j) {
+          const double tj = j + 1 == substeps ? t_next : t + (j + 1) * (step / substeps);
+          stepper->Step(t + j * (step / substeps), step / substeps, x, z);
+          model.accept(tj, x, z);
+        }
       }
+      t = t_next;
+      if (t >= options.tstart * (1 - 1e-12)) emit(t);
+      if (options.progress && (k & 4095) == 0) options.progress(t / options.tstop);
     }
-    t = t_next;
-    if (t >= options.tstart * (1 - 1e-12)) emit(t);
-    if (options.progress && (k & 4095) == 0) options.progress(t / options.tstop);
+  } catch (const NumericalFailure&) {
+    summary.cpu_steps = process_cpu_seconds() - loop0;
+    summary.stepper = stepper->stats();  // the statistics up to the failure
+    throw;
   }
   summary.cpu_steps = process_cpu_seconds() - loop0;
   summary.stepper = stepper->stats();
@@ -173,7 +186,8 @@ void run_fixed_step(const CircuitModel& model, const OutputMap& outputs, const T
 }  // namespace
 
 TransientSummary run_transient(const CircuitModel& model, const OutputMap& outputs,
-                               const TransientOptions& options, OutputSink& sink) {
+                               const TransientOptions& options, OutputSink& sink,
+                               TransientSummary* failed) {
   std::string why;
   if (!options.IsValid(&why)) throw std::invalid_argument(why);
   TransientSummary summary;
@@ -189,6 +203,9 @@ TransientSummary run_transient(const CircuitModel& model, const OutputMap& outpu
     else
       run_fixed_step(model, outputs, options, entry, init.x, sink, summary, cpu0);
   } catch (const NumericalFailure&) {
+    if (summary.cpu_setup == 0)  // failed before the stepping loop
+      summary.cpu_setup = process_cpu_seconds() - cpu0;
+    if (failed) *failed = summary;
     sink.finish();  // the rows computed so far are kept (SPEC §4)
     throw;
   }

@@ -12,7 +12,7 @@
 namespace lcs {
 
 struct TransientOptions {
-  std::string method = "euler";
+  std::string method = default_method().name;
   MethodOptions method_options;
   double step = 0;     // fixed step h (> 0); for adaptive methods the output spacing (TSTEP)
   double tstart = 0;   // no output rows before tstart
@@ -38,9 +38,12 @@ struct TransientSummary {
   std::string BriefReport() const;
 };
 
-// Throws NumericalFailure after finishing `sink` with the rows computed so far.
+// Throws NumericalFailure after finishing `sink` with the rows computed so far; `failed`, when
+// given, then holds the summary up to the failure (rows, steps and the method's statistics so
+// far, CPU time, warnings), so that `--stats` can still report it.
 TransientSummary run_transient(const CircuitModel& model, const OutputMap& outputs,
-                               const TransientOptions& options, OutputSink& sink);
+                               const TransientOptions& options, OutputSink& sink,
+                               TransientSummary* failed = nullptr);
 
 double process_cpu_seconds();
 

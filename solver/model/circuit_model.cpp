@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "solver/devices/device_registry.h"
+#include "solver/model/netlist_options.h"
 
 namespace lcs {
 
@@ -12,23 +13,13 @@ namespace {
 
 enum class Role { State, Static, Forced };  // how a branch's primary unknown is determined
 
-double option_value(const Netlist& netlist, const std::string& name, double fallback) {
-  auto it = netlist.options.find(name);
-  if (it == netlist.options.end() || it->second.empty()) return fallback;
-  try {
-    return std::stod(it->second);
-  } catch (...) {
-    return fallback;
-  }
-}
-
 }  // namespace
 
 CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& options) {
   CircuitModel m;
   m.netlist_ = netlist;
   DeviceOptions device_options;
-  device_options.ifit = option_value(netlist, "ifit", options.ifit);
+  device_options.ifit = read_netlist_options(netlist).ifit.value_or(options.ifit);  // NetlistError
   m.devices_ = make_devices(m.netlist_, device_options);
   m.graph_ = graph_of_devices(m.devices_);
   const CircuitGraph& g = m.graph_;

@@ -15,6 +15,7 @@ struct SmoothingOptions {
   double ifit = 10e-3;                // fit current of cards without VON/RON (`.options ifit=`)
 };
 
+// Throws NetlistError for a bad `.options` value (read_netlist_options).
 Netlist smooth_netlist(const Netlist& netlist, const SmoothingOptions& options);
 
 }  // namespace lcs

@@ -1,0 +1,99 @@
+// The method registry: its shape and the traits the commands read instead of comparing names.
+#include <algorithm>
+#include <set>
+
+#include <gtest/gtest.h>
+
+#include "solver/integrators/method_registry.h"
+#include "solver/integrators/transient.h"
+
+namespace lcs {
+namespace {
+
+TEST(MethodRegistry, SortedUniqueAndOneFactoryEach) {
+  const std::vector<MethodEntry>& table = method_registry();
+  ASSERT_EQ(table.size(), 6u);
+  std::set<std::string> names;
+  for (size_t k = 0; k < table.size(); ++k) {
+    const MethodEntry& e = table[k];
+    if (k > 0) {
+      EXPECT_LT(table[k - 1].name, e.name) << "sorted by name";
+    }
+    EXPECT_TRUE(names.insert(e.name).second) << e.name << " twice";
+    EXPECT_NE(static_cast<bool>(e.make_stepper), static_cast<bool>(e.make_continuous))
+        << e.name << ": exactly one of make_stepper and make_continuous";
+    EXPECT_NE(e.adaptive(), e.fixed_step()) << e.name;
+    EXPECT_FALSE(e.description.empty()) << e.name;
+    // A fixed-step method is swept over steps; an adaptive one over tolerances.
+    EXPECT_EQ(e.bench_sweep == BenchSweep::Tolerance, e.adaptive()) << e.name;
+  }
+  EXPECT_EQ(method_names(), "euler, event, radau3, radau5, smooth, theta");
+}
+
+TEST(MethodRegistry, TraitsOfEachMethod) {
+  struct Expected {
+    std::string name;
+    bool adaptive, smooth_model, uses_theta, exact_reference, smooth_reference, is_default;
+  };
+  const std::vector<Expected> expected = {
+      {"euler", false, false, false, false, false, true},
+      {"event", true, false, false, true, false, false},
+      {"radau3", false, false, false, false, false, false},
+      {"radau5", false, false, false, false, false, false},
+      {"smooth", true, true, false, false, true, false},
+      {"theta", false, false, true, false, false, false},
+  };
+  for (const Expected& x : expected) {
+    const MethodEntry* e = find_method(x.name);
+    ASSERT_NE(e, nullptr) << x.name;
+    EXPECT_EQ(e->name, x.name);
+    EXPECT_EQ(e->adaptive(), x.adaptive) << x.name;
+    EXPECT_EQ(e->fixed_step(), !x.adaptive) << x.name;
+    EXPECT_EQ(e->smooth_model, x.smooth_model) << x.name;
+    EXPECT_EQ(e->uses_theta, x.uses_theta) << x.name;
+    EXPECT_EQ(e->exact_reference, x.exact_reference) << x.name;
+    EXPECT_EQ(e->smooth_reference, x.smooth_reference) << x.name;
+    EXPECT_EQ(e->is_default, x.is_default) << x.name;
+    EXPECT_EQ(e->bench_sweep, x.adaptive ? BenchSweep::Tolerance : BenchSweep::StepSize) << x.name;
+  }
+}
+
+TEST(MethodRegistry, ReferencesAndDefault) {
+  EXPECT_EQ(exact_reference_method().name, "event");
+  ASSERT_NE(smooth_reference_method(), nullptr);
+  EXPECT_EQ(smooth_reference_method()->name, "smooth");
+  EXPECT_EQ(default_method().name, "euler");
+  EXPECT_EQ(TransientOptions().method, "euler");
+  EXPECT_EQ(&exact_reference_method(), find_method("event"));
+}
+
+TEST(MethodRegistry, UnknownNames) {
+  EXPECT_EQ(find_method("rk4"), nullptr);
+  EXPECT_EQ(find_method(""), nullptr);
+  EXPECT_EQ(find_method("Euler"), nullptr);  // names are exact
+  EXPECT_EQ(find_method("trap"), nullptr);   // an ngspice name, only for `.options method=`
+}
+
+TEST(MethodRegistry, SpiceMethodNames) {
+  const SpiceMethod euler = find_spice_method("euler");
+  EXPECT_EQ(euler.entry, find_method("euler"));
+  EXPECT_FALSE(euler.theta);
+  EXPECT_FALSE(euler.gear);
+  for (const std::string trap : {"trap", "trapezoidal"}) {
+    const SpiceMethod m = find_spice_method(trap);
+    EXPECT_EQ(m.entry, find_method("theta")) << trap;
+    ASSERT_TRUE(m.theta) << trap;
+    EXPECT_EQ(*m.theta, 0.5) << trap;
+    EXPECT_FALSE(m.gear) << trap;
+  }
+  const SpiceMethod gear = find_spice_method("gear");
+  EXPECT_EQ(gear.entry, nullptr);
+  EXPECT_TRUE(gear.gear);
+  const SpiceMethod unknown = find_spice_method("rk4");
+  EXPECT_EQ(unknown.entry, nullptr);
+  EXPECT_FALSE(unknown.gear);
+  EXPECT_EQ(spice_method_names(), "euler, event, radau3, radau5, smooth, theta, trap");
+}
+
+}  // namespace
+}  // namespace lcs
