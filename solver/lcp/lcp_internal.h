@@ -54,6 +54,7 @@ class LemkeEngine {
   void entering_column(int var);
   int lexicographic_leaving_row(double pivot_tol);
   void refactor();
+  LcpStatus pivot_to_end(const LemkeOptions& options, int& pivots);
   void finish(const Eigen::MatrixXd& M, const Eigen::VectorXd& q, double qn,
               const LemkeOptions& options, bool solved, LcpSolution& out);
 

@@ -39,6 +39,9 @@ constexpr double kTieTol = 1e-12;
 // Basic values |y_i| below kClampTol * max(1, |y|_inf) are set to exactly 0 (if the residual
 // does not get worse by it).
 constexpr double kClampTol = 1e-12;
+// Shift of the normalised q (max-norm 1) along the covering vector after a ray: a hundred times
+// below LemkeOptions::feas_tol's default, far above the rounding of the circuit's elimination.
+constexpr double kRoundingShift = 1e-12;
 
 }  // namespace
 
@@ -209,6 +212,44 @@ void LemkeEngine::finish(const Eigen::MatrixXd& M, const Eigen::VectorXd& q, dou
   out.w.noalias() += M * out.z;
 }
 
+// Complementary pivoting on the normalised data qt_ from the all-w basis until the artificial
+// variable leaves (Solved), a ray, or the pivot limit. Leaves the final basis in basis_/b_.
+LcpStatus LemkeEngine::pivot_to_end(const LemkeOptions& options, int& pivots) {
+  const int max_pivots = options.max_pivots > 0 ? options.max_pivots : 50 * (n_ + 1);
+  const int s = 2 * n_;
+  Binv_.setIdentity();
+  b_ = qt_;
+  for (int i = 0; i < n_; ++i) basis_[i] = i;
+  since_refactor_ = 0;
+  if ((qt_.array() >= 0.0).all()) return LcpStatus::Solved;  // z = 0: the all-w basis
+
+  // First pivot: s enters at the level making qt + s d >= 0; w_r leaves for the most negative
+  // qt_r. Ties: the lexicographic rule on [qt_i, e_i] picks the largest index.
+  const double qmin = qt_.minCoeff();
+  const double qtol = kTieTol * std::max(1.0, std::abs(qmin));
+  int r = 0;
+  for (int i = 0; i < n_; ++i)
+    if (qt_(i) <= qmin + qtol) r = i;
+  a_.setConstant(-1.0);
+  int leaving = basis_[r];
+  pivot(r, s);
+  ++pivots;
+
+  const int refactor_every = std::max(64, n_);
+  for (;;) {
+    if (leaving == s) return LcpStatus::Solved;
+    if (pivots >= max_pivots) return LcpStatus::IterationLimit;
+    const int entering = leaving < n_ ? leaving + n_ : leaving - n_;
+    entering_column(entering);
+    r = lexicographic_leaving_row(options.pivot_tol);
+    if (r < 0) return LcpStatus::RayTermination;
+    leaving = basis_[r];
+    pivot(r, entering);
+    ++pivots;
+    if (++since_refactor_ >= refactor_every) refactor();
+  }
+}
+
 void LemkeEngine::solve(const Eigen::MatrixXd& M, const Eigen::VectorXd& q,
                         const LemkeOptions& options, LcpSolution& out) {
   check_square(M, q, "solve_lemke");
@@ -222,50 +263,22 @@ void LemkeEngine::solve(const Eigen::MatrixXd& M, const Eigen::VectorXd& q,
     return;
   }
   const double qn = normalise_q(eq_, q, qt_);
-  const int max_pivots = options.max_pivots > 0 ? options.max_pivots : 50 * (n_ + 1);
-  const int s = 2 * n_;
-
-  Binv_.setIdentity();
-  b_ = qt_;
-  for (int i = 0; i < n_; ++i) basis_[i] = i;
-  since_refactor_ = 0;
-
-  // First pivot: s enters at the level making qt + s d >= 0; w_r leaves for the most negative
-  // qt_r. Ties: the lexicographic rule on [qt_i, e_i] picks the largest index.
-  const double qmin = qt_.minCoeff();
-  const double qtol = kTieTol * std::max(1.0, std::abs(qmin));
-  int r = 0;
-  for (int i = 0; i < n_; ++i)
-    if (qt_(i) <= qmin + qtol) r = i;
-  a_.setConstant(-1.0);
-  int leaving = basis_[r];
-  pivot(r, s);
-  out.pivots = 1;
-
-  const int refactor_every = std::max(64, n_);
-  for (;;) {
-    if (leaving == s) {
-      finish(M, q, qn, options, true, out);
-      return;
-    }
-    if (out.pivots >= max_pivots) {
-      out.status = LcpStatus::IterationLimit;
-      finish(M, q, qn, options, false, out);
-      return;
-    }
-    const int entering = leaving < n_ ? leaving + n_ : leaving - n_;
-    entering_column(entering);
-    r = lexicographic_leaving_row(options.pivot_tol);
-    if (r < 0) {
-      out.status = LcpStatus::RayTermination;
-      finish(M, q, qn, options, false, out);
-      return;
-    }
-    leaving = basis_[r];
-    pivot(r, entering);
-    ++out.pivots;
-    if (++since_refactor_ >= refactor_every) refactor();
+  LcpStatus status = pivot_to_end(options, out.pivots);
+  if (status == LcpStatus::RayTermination) {
+    // For copositive-plus M a ray means the LCP is infeasible (Stewart 2.2.1, Theorem 2.10) —
+    // but circuit data can be infeasible by rounding alone: where KCL ties a pair's w to the
+    // others' z exactly (w_1 = -z_2: a node reached only through diodes), a q_1 that should be 0
+    // and comes out of the elimination as -1e-17 leaves no solution. Solve the neighbouring LCP
+    // with q moved along the covering vector by far less than the accepted residual; finish()
+    // accepts its z only if it solves the LCP as given within feas_tol.
+    const Eigen::VectorXd qt_given = qt_;
+    qt_.array() += kRoundingShift;
+    status = pivot_to_end(options, out.pivots);
+    qt_ = qt_given;
+    if (status == LcpStatus::Solved) b_.noalias() = Binv_ * qt_;
   }
+  out.status = status;
+  finish(M, q, qn, options, status == LcpStatus::Solved, out);
 }
 
 }  // namespace lcp_detail

@@ -6,6 +6,7 @@
 
 #include "solver/devices/device_registry.h"
 #include "solver/model/netlist_options.h"
+#include "solver/model/structural_zeros.h"
 
 namespace lcs {
 
@@ -173,6 +174,7 @@ CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& opt
       throw TopologyError("the resistive part of the circuit has no unique solution", elements);
     }
     Eigen::MatrixXd sol = -es_lu.solve(row_scale.asDiagonal() * rhs);
+    clear_structural_zeros(Es, rhs, sol);
     for (int r = 0; r < ns; ++r) P.row(statics[r]) = sol.row(r);
   }
   for (int b = 0; b < nb; ++b)

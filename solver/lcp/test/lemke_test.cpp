@@ -226,6 +226,25 @@ TEST(Lemke, LinearProgramsAsLcp) {
   EXPECT_TRUE(enumerate_lcp_solutions(M, q).empty());
 }
 
+// Infeasible by rounding alone (issue 9, defect 3): a node reached only through two diodes,
+// RON = 9 ohm. KCL ties d1's w (its current) to d2's z: w1 = q1 - z2, and q1, exactly 0, comes
+// out of the elimination as -1.4e-17. As given the LCP has no solution (w1 >= 0 needs
+// z2 <= q1 < 0); within rounding it has z = 0 (q2 > 0) or z1 = -q2 (q2 < 0).
+TEST(Lemke, InfeasibleOnlyByRoundingIsSolved) {
+  Eigen::MatrixXd M(2, 2);
+  M << 0, -1, 1, 18;
+  const LcpSolution up = solve_lemke(M, vec({-1.3877787807814457e-17, 0.22210760746361391}));
+  ASSERT_EQ(up.status, LcpStatus::Solved);
+  EXPECT_EQ(up.z(0), 0.0);
+  EXPECT_EQ(up.z(1), 0.0);
+  const LcpSolution down = solve_lemke(M, vec({-1.3877787807814457e-17, -0.2}));
+  ASSERT_EQ(down.status, LcpStatus::Solved);
+  EXPECT_NEAR(down.z(0), 0.2, 1e-15);
+  EXPECT_EQ(down.z(1), 0.0);
+  // Infeasible by more than rounding still ends on a ray.
+  EXPECT_EQ(solve_lemke(M, vec({-1e-6, 0.2})).status, LcpStatus::RayTermination);
+}
+
 TEST(Lemke, InfeasibleEndsOnRay) {
   {
     Eigen::MatrixXd M(1, 1);
@@ -233,7 +252,7 @@ TEST(Lemke, InfeasibleEndsOnRay) {
     Eigen::VectorXd q = vec({-1});  // w = -z - 1 < 0
     LcpSolution s = solve_lemke(M, q);
     EXPECT_EQ(s.status, LcpStatus::RayTermination);
-    EXPECT_EQ(s.pivots, 1);
+    EXPECT_EQ(s.pivots, 2);  // one ray, then one on q shifted by the rounding allowance
     EXPECT_TRUE(enumerate_lcp_solutions(M, q).empty());
   }
   {
