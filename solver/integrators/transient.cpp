@@ -1,5 +1,7 @@
 #include "solver/integrators/transient.h"
 
+#include "solver/integrators/distinct_rows.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -98,7 +100,8 @@ class RowWriter {
 };
 
 // Adaptive methods: they step and emit on their own; rows at the same or an earlier time than
-// the last (an event on a grid time) and before TSTART are dropped.
+// the last (an event on a grid time), or printing alike (DistinctRows), and before TSTART are
+// dropped.
 void run_adaptive(const CircuitModel& model, const OutputMap& outputs, const TransientOptions& options,
                   const MethodEntry& entry, const Eigen::VectorXd& x0, OutputSink& sink,
                   TransientSummary& summary, double cpu0) {
@@ -108,12 +111,12 @@ void run_adaptive(const CircuitModel& model, const OutputMap& outputs, const Tra
   grid.tstop = options.tstop;
   grid.extra = options.extra_output_times;
   RowWriter writer(model, outputs, sink);
-  double last_t = -1;
-  auto emit = [&](double t, const Eigen::VectorXd& x, const Eigen::VectorXd& z, bool) {
-    if (t <= last_t || t < options.tstart * (1 - 1e-12)) return;
+  DistinctRows rows([&](double t, const Eigen::VectorXd& x, const Eigen::VectorXd& z) {
     writer.write(t, x, z);
-    last_t = t;
     ++summary.rows;
+  });
+  auto emit = [&](double t, const Eigen::VectorXd& x, const Eigen::VectorXd& z, bool event) {
+    if (t >= options.tstart * (1 - 1e-12)) rows.add(t, x, z, event);
   };
   ContinuousMethod::Progress progress;
   if (options.progress) progress = [&](double t) { options.progress(t / options.tstop); };
@@ -121,7 +124,9 @@ void run_adaptive(const CircuitModel& model, const OutputMap& outputs, const Tra
   summary.cpu_setup = loop0 - cpu0;
   try {
     method->Run(x0, grid, emit, progress);
+    rows.flush();
   } catch (const NumericalFailure&) {
+    rows.flush();
     summary.cpu_steps = process_cpu_seconds() - loop0;
     summary.stepper = method->stats();  // the statistics up to the failure
     throw;
