@@ -1,6 +1,9 @@
 #include "graph/topology.h"
 
+#include <algorithm>
+#include <cmath>
 #include <functional>
+#include <map>
 #include <limits>
 #include <queue>
 
@@ -152,6 +155,39 @@ void check_ideal_diode_loops(const Netlist& netlist, const CircuitGraph& graph,
                             "): an ideal diode has no solution there (Figure 5.5); give it "
                             "RON > 0 or add a series resistance",
                         elements);
+  }
+  check_balanced_ideal_diode_loops(netlist, graph, law);
+}
+
+// Ideal (RON = 0) diodes in parallel, same direction, same VON: while they conduct they are at
+// the same threshold, so any split of their total current satisfies every law and the currents
+// are not unique (assumption 5.40 fails as it does for a conducting loop). With different VONs
+// the lower one takes it all, which is unique. Larger balanced loops (a diode parallel to two in
+// series) are not searched: the rest of the circuit usually allows balance only at instants
+// (a bridge at a zero crossing), and telling those apart needs the whole LCS.
+void check_balanced_ideal_diode_loops(const Netlist& netlist, const CircuitGraph& graph,
+                                      const std::vector<IdealDiodeLaw>& law) {
+  std::map<std::pair<int, int>, std::vector<int>> between;  // (anode, cathode) -> RON = 0 diodes
+  for (int b = 0; b < static_cast<int>(graph.branches.size()); ++b) {
+    const Branch& br = graph.branches[b];
+    if (br.cls == BranchClass::Diode && law[b].ron == 0.0 && br.from != br.to)
+      between[{br.from, br.to}].push_back(b);
+  }
+  for (const auto& [ends, diodes] : between) {
+    for (size_t i = 0; i < diodes.size(); ++i) {
+      std::vector<int> elements{graph.branches[diodes[i]].element};
+      const double von = law[diodes[i]].von;
+      for (size_t j = i + 1; j < diodes.size(); ++j)
+        if (std::abs(law[diodes[j]].von - von) <= 1e-12 * std::max(std::abs(von), 1e-300))
+          elements.push_back(graph.branches[diodes[j]].element);
+      if (elements.size() < 2) continue;
+      std::sort(elements.begin(), elements.end());
+      throw TopologyError("ideal diodes " + join_names(names_of(netlist, elements)) +
+                              " are in parallel with the same VON and RON = 0: when they conduct, "
+                              "the current divides between them in no defined ratio (assumption "
+                              "5.40); give them RON > 0, or use one diode",
+                          elements);
+    }
   }
 }
 

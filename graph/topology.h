@@ -46,6 +46,10 @@ struct IdealDiodeLaw {  // 0 <= i  ⟂  von + ron*i - v >= 0
 // Loops blocked by a diode's orientation (bridge rectifiers) or by thresholds (anti-parallel
 // clamps with VON > 0, a supply that keeps a diode reverse-biased) are accepted.
 // `law` is indexed by branch (entries of non-diode branches are ignored).
+// Called by check_ideal_diode_loops: RON = 0 diodes in parallel with equal VON (their currents
+// are not unique). Throws TopologyError.
+void check_balanced_ideal_diode_loops(const Netlist& netlist, const CircuitGraph& graph,
+                                      const std::vector<IdealDiodeLaw>& law);
 void check_ideal_diode_loops(const Netlist& netlist, const CircuitGraph& graph,
                              const std::vector<IdealDiodeLaw>& law, double t0, double t1);
 

@@ -82,6 +82,9 @@ struct Netlist {
   std::vector<NodeIc> node_ics;
   std::vector<Probe> probes;           // `.print tran` and `.save`, in order, duplicates removed
   std::map<std::string, std::string> options;  // `.options` name (lower-case) -> value text ("" for flags)
+  // Set by smooth_netlist (solver/model): every diode is a Shockley junction with the card's
+  // VON in series, so the checks of the ideal law (impedance-free diode loops) do not apply.
+  bool smooth_junctions = false;
   std::map<std::string, SourceLocation> option_locs;
   std::vector<std::string> warnings;   // formatted "FILE:LINE:COL: warning: ..." lines
 

@@ -56,7 +56,8 @@ CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& opt
     info.voltage_type = t.in_tree[p.branch];
     m.pairs_.push_back(info);
   }
-  check_ideal_diode_loops(netlist, g, law, options.t0, options.t1);
+  // A Shockley junction conducts through an impedance at every current (issue 9, defect 2).
+  if (!netlist.smooth_junctions) check_ideal_diode_loops(netlist, g, law, options.t0, options.t1);
 
   // A source branch's primary quantity is one input: v_b = u_k (tree) or i_b = u_k (link).
   std::vector<int> input_of(nb, -1);

@@ -7,6 +7,7 @@ namespace lcs {
 
 Netlist smooth_netlist(const Netlist& netlist, const SmoothingOptions& options) {
   Netlist out = netlist;
+  out.smooth_junctions = true;
   const double ifit = read_netlist_options(netlist).ifit.value_or(options.ifit);  // NetlistError
   for (auto& [name, card] : out.diode_models) {
     const SmoothDiodeLaw s = smooth_equivalent(card, resolve_diode_law(card, ifit), options.emission,

@@ -301,5 +301,34 @@ TEST(Degenerate, RlcWithoutDiodesFollowsTheClosedFormThroughAJump) {
   EXPECT_GT(r.summary.stepper.jacobian_evals, 0);
 }
 
+// Issue 9, defect 2: smooth integrates Shockley junctions, so the ideal law's loop check does
+// not apply to its rewrite. An RON = 0, VON = 0 diode antiparallel to a user's Shockley diode
+// (IS, N, no VON/RON: RS = 0 in the rewrite) is an impedance-free ideal loop; smooth runs it.
+// At the source's negative peak the user's junction carries I = (5 V + v(a)) / R with
+// v(a) = -Vt ln(1 + I / IS), the other junction only its leakage.
+TEST(Degenerate, ShockleyDiodeAntiparallelToAZeroImpedanceDiodeRuns) {
+  const double R = 100, IS = 1e-14;
+  NetlistBuilder b;
+  b.v("v1", "in", "0", NetlistBuilder::sin(0, 5, 1e3)).r("r1", "in", "a", R).d("d1", "a", "0");
+  Netlist n = b.build();
+  Element d2 = n.elements.back();
+  d2.name = "d2";
+  d2.nodes = {"0", "a"};
+  d2.model = "m_user";
+  DiodeModel user;
+  user.name = "m_user";
+  user.is = IS;
+  user.n = 1;
+  user.has_is = user.has_n = true;
+  n.diode_models["m_user"] = user;
+  n.elements.push_back(d2);
+  SmoothRun r = simulate(shockley(n, 0.05), {"v(a)"}, 2.5e-5, 1e-3, true, 1e-9);
+  double va = -0.6;
+  for (int it = 0; it < 100; ++it) va = -kThermalVoltage * std::log1p((5 + va) / R / IS);
+  const auto peak = std::find(r.sink.times.begin(), r.sink.times.end(), 30 * 2.5e-5);
+  ASSERT_NE(peak, r.sink.times.end());
+  EXPECT_NEAR(r.column("v(a)")[peak - r.sink.times.begin()], va, 1e-4);
+}
+
 }  // namespace
 }  // namespace lcs

@@ -160,6 +160,35 @@ TEST(Topology, AntiParallelIdealDiodesWithoutThresholdAreRejected) {
   }
 }
 
+// Issue 9, defect 4: before, event failed with "no consistent mode" and euler and radau5 picked
+// a split silently. Every command builds the model, so every method refuses alike.
+TEST(Topology, ParallelIdealDiodesWithTheSameThresholdAreRejected) {
+  NetlistBuilder b;
+  b.v("v1", "in", "0", NetlistBuilder::dc(5)).r("r1", "in", "a", 100);
+  b.d("d1", "a", "out", 0.7).d("d2", "a", "out", 0.7).r("r2", "out", "0", 100);
+  try {
+    build(b);
+    FAIL() << "expected a topology error";
+  } catch (const TopologyError& e) {
+    EXPECT_EQ(e.message(),
+              "ideal diodes d1 and d2 are in parallel with the same VON and RON = 0: when they "
+              "conduct, the current divides between them in no defined ratio (assumption 5.40); "
+              "give them RON > 0, or use one diode");
+    EXPECT_EQ(e.elements().size(), 2u);
+  }
+}
+
+TEST(Topology, ParallelIdealDiodesWithDifferentThresholdsOrResistanceAreAccepted) {
+  NetlistBuilder b;
+  b.v("v1", "in", "0", NetlistBuilder::dc(5)).r("r1", "in", "a", 100);
+  b.d("d1", "a", "out", 0.7).d("d2", "a", "out", 0.6).r("r2", "out", "0", 100);
+  EXPECT_NO_THROW(build(b));
+  NetlistBuilder c;
+  c.v("v1", "in", "0", NetlistBuilder::dc(5)).r("r1", "in", "a", 100);
+  c.d("d1", "a", "out", 0.7, 0.1).d("d2", "a", "out", 0.7, 0.1).r("r2", "out", "0", 100);
+  EXPECT_NO_THROW(build(c));
+}
+
 TEST(Topology, AntiParallelDiodesWithThresholdsAreAccepted) {
   NetlistBuilder b;
   b.v("v1", "a", "0", NetlistBuilder::dc(1)).r("r1", "a", "b", 1);
