@@ -1,5 +1,7 @@
 #include "netlist/source_card.h"
 
+#include <cmath>
+
 #include "netlist/number.h"
 
 namespace lcs::parse {
@@ -93,6 +95,14 @@ Waveform parse_source_waveform(const Card& card, std::size_t first, const ParamS
         for (std::size_t k = 2; k < w.params.size(); k += 2)
           if (w.params[k] < w.params[k - 2])
             throw NetlistError(card.at(args[k]), "pwl times must not decrease");
+      }
+      if (fn->kind == Waveform::Kind::Sin) {
+        // value = VO + VA exp(-THETA (t - TD)) sin(2 pi FREQ (t - TD) + 2 pi PHASE / 360)
+        const double two_pi = 6.283185307179586;
+        if (w.params.size() > 2 && !std::isfinite(two_pi * w.params[2]))
+          throw NetlistError(card.at(args[2]), "sin frequency is too large: 2*pi*FREQ is not a finite number");
+        if (w.params.size() > 5 && !std::isfinite(two_pi * w.params[5] / 360))
+          throw NetlistError(card.at(args[5]), "sin phase is too large: 2*pi*PHASE/360 is not a finite number");
       }
       if (fn->kind == Waveform::Kind::Pulse) {
         const char* what[] = {nullptr, nullptr, nullptr, "rise time", "fall time", "width", "period"};

@@ -385,6 +385,25 @@ TEST(Op, DividerWithDiode) {
   EXPECT_NE(all.out.find("* 1 solution\n"), std::string::npos) << all.out;
 }
 
+// The --all limit is checked on the circuit's size, not inferred from whatever exception the
+// solver raises (issue 9, defect 1: a numerical failure was reported as this limit).
+TEST(Op, AllRefusesMoreThanTwentyFourDiodesAndOnlyThen) {
+  const fs::path dir = scratch_dir("op_all_limit");
+  std::ofstream deck(dir / "ladder.cir");
+  deck << "25 diodes in a ladder\nV1 n0 0 DC 10\n";
+  for (int k = 1; k <= 25; ++k)
+    deck << "D" << k << " n" << (k - 1) << " n" << k << " dd\nR" << k << " n" << k << " 0 1k\n";
+  deck << ".model dd D(VON=0.1 RON=1)\n.end\n";
+  deck.close();
+  Result r = run_lcspice("op --all '" + (dir / "ladder.cir").string() + "'", dir);
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("error: op --all enumerates circuits of at most 24 diodes; this one has 25"),
+            std::string::npos)
+      << r.err;
+  Result one = run_lcspice("op '" + (dir / "ladder.cir").string() + "'", dir);
+  EXPECT_EQ(one.code, 0) << one.err;
+}
+
 TEST(Analyze, BridgeRectifierJson) {
   const fs::path dir = scratch_dir("analyze_bridge");
   Result r = run_lcspice("analyze --json '" + source_path("circuits/bridge_rectifier.cir").string() + "'", dir);

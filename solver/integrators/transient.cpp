@@ -88,6 +88,11 @@ class RowWriter {
     y_.noalias() += outputs_.H * z;
     y_.noalias() += outputs_.J * u_;
     if (has_k_) y_.noalias() += outputs_.K * model_.input_derivatives(t);
+    if (!y_.allFinite()) {  // never written: SPEC §3 rows hold numbers
+      Eigen::Index k = 0;
+      while (std::isfinite(y_(k))) ++k;
+      throw NumericalFailure(t, outputs_.names[k] + " is not a finite number");
+    }
     sink_.row(t, y_);
   }
 

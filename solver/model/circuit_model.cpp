@@ -1,6 +1,7 @@
 #include "solver/model/circuit_model.h"
 
 #include <cmath>
+#include <cstdio>
 #include <set>
 #include <stdexcept>
 
@@ -13,6 +14,33 @@ namespace lcs {
 namespace {
 
 enum class Role { State, Static, Forced };  // how a branch's primary unknown is determined
+
+}  // namespace
+
+namespace {
+
+// A source whose value overflows somewhere in [0, t1] (a growing SIN, an EXP with a tiny time
+// constant, parameters near the double range) is an error at its card, not a run that writes nan.
+// Sampled at its corners, both ends and 256 points between: the waveforms are smooth between
+// corners and monotone in their exponentials, so an overflow shows at an end or a corner.
+void check_finite_inputs(const Netlist& netlist, const InputProvider& inputs, double t1) {
+  for (int k = 1; k < inputs.size(); ++k) {
+    const InputSignal& s = inputs[k];
+    std::vector<double> times = s.waveform.breakpoints(0, t1);
+    times.push_back(0);
+    if (t1 > 0)
+      for (int j = 1; j <= 256; ++j) times.push_back(t1 * j / 256);
+    for (double t : times) {
+      const double v = s.waveform.value(t), d = s.waveform.derivative(t);
+      if (std::isfinite(v) && std::isfinite(d)) continue;
+      char at[48];
+      std::snprintf(at, sizeof at, "%.9g s", t);
+      throw NetlistError(netlist.elements.at(s.element).loc,
+                         "source " + s.label + ": its " + (std::isfinite(v) ? "slope" : "value") +
+                             " at t = " + at + " is not a finite number");
+    }
+  }
+}
 
 }  // namespace
 
@@ -68,6 +96,7 @@ CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& opt
     if (own.of == primary && own.index == r.branch && own.coeff == 1.0) input_of[r.branch] = r.terms[1].index;
   }
   m.inputs_ = InputProvider(stamps.inputs);
+  check_finite_inputs(netlist, m.inputs_, options.t1);
   for (const std::shared_ptr<Device>& d : m.devices_)
     if (d->has_history()) m.history_devices_.push_back(d);
 
