@@ -26,6 +26,18 @@ CLI::Option* add_number(CLI::App* cmd, const std::string& name, std::optional<do
       help);
 }
 
+// The same for an option with a default value.
+CLI::Option* add_number(CLI::App* cmd, const std::string& name, double& target, const std::string& help) {
+  return cmd->add_option_function<std::string>(
+      name,
+      [&target, name](const std::string& text) {
+        const std::optional<double> v = parse::parse_number(text);
+        if (!v) throw CLI::ValidationError(name, "'" + text + "' is not a finite number");
+        target = *v;
+      },
+      help);
+}
+
 }  // namespace
 
 int run_cli(int argc, char** argv) {
@@ -66,17 +78,17 @@ int run_cli(int argc, char** argv) {
   CLI::App* validate_cmd = app.add_subcommand(
       "validate", "run the circuit in ngspice (Shockley diodes) too and compare every probe");
   validate_cmd->add_option("netlist", validate.netlist, "netlist file")->required();
-  validate_cmd->add_option("--tol", validate.tol, "tolerance on max|error|/range per probe (default 0.02)");
+  add_number(validate_cmd, "--tol", validate.tol, "tolerance on max|error|/range per probe (default 0.02)");
   validate_cmd->add_option("--report", validate.report,
                            "write the table as CSV here, and per-probe PNG overlays beside it");
   validate_cmd->add_flag("--print-deck", validate.print_deck, "print the ngspice deck and stop");
-  validate_cmd->add_option("--emission", validate.emission,
+  add_number(validate_cmd, "--emission", validate.emission,
                            "emission coefficient N of the Shockley diodes (default 0.05)");
-  validate_cmd->add_option("--max-step", validate.max_step, "ngspice's maximum step (default TSTEP)");
+  add_number(validate_cmd, "--max-step", validate.max_step, "ngspice's maximum step (default TSTEP)");
   validate_cmd->add_option("--method", validate.method, "lcspice method: " + method_names());
-  validate_cmd->add_option("--step", validate.step, "lcspice step (default TSTEP/10)");
+  add_number(validate_cmd, "--step", validate.step, "lcspice step (default TSTEP/10)");
   validate_cmd->add_option("--probe", validate.probes, "comma-separated probes, overrides .print/.save");
-  validate_cmd->add_option("--timeout", validate.timeout, "seconds of wall time for ngspice (default 600)");
+  add_number(validate_cmd, "--timeout", validate.timeout, "seconds of wall time for ngspice (default 600)");
   validate_cmd->add_option("--ngspice-option", validate.ngspice_options,
                            "an .options word for the ngspice deck (repeatable), e.g. rshunt=1e9");
 
@@ -90,7 +102,7 @@ int run_cli(int argc, char** argv) {
   bench_cmd->add_option("--method", bench.methods, "comma-separated methods (default: all)");
   bench_cmd->add_option("--probe", bench.probes, "comma-separated probes for the netlists given");
   bench_cmd->add_option("--ngspice-option", bench.ngspice_options, "extra ngspice .options word (repeatable)");
-  bench_cmd->add_option("--ngspice-timeout", bench.ngspice_timeout, "seconds of wall time per ngspice run (default 300)");
+  add_number(bench_cmd, "--ngspice-timeout", bench.ngspice_timeout, "seconds of wall time per ngspice run (default 300)");
 
   PlotArgs plot;
   CLI::App* plot_cmd = app.add_subcommand("plot", "plot a waveform CSV against time (PNG, gnuplot)");

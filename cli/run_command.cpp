@@ -115,7 +115,12 @@ int run_command(const RunArgs& args) {
   if (!netlist.tran)  // source defaults (SIN frequency, PULSE edges and width) follow the run
     for (Element& el : netlist.elements) el.waveform.reresolve(options.step, options.tstop);
   std::string why;
-  if (!options.IsValid(&why)) throw CliError(kExitUsage, "error: " + why);
+  if (!options.IsValid(&why)) {
+    // Values from the .tran card are the netlist's: a located error (exit 2), not a usage one.
+    if (netlist.tran && !args.step && !args.tstop)
+      throw CliError(kExitNetlist, NetlistError(netlist.tran->loc, why).formatted());
+    throw CliError(kExitUsage, "error: " + why);
+  }
 
   if (method_of(options).smooth_model) {
     SmoothingOptions smoothing;

@@ -153,7 +153,10 @@ int validate_with_reversed_diodes(const ValidateArgs& args,
   run.tstart = netlist.tran->tstart;
   run.uic = netlist.tran->uic;
   std::string why;
-  if (!run.IsValid(&why)) throw CliError(kExitUsage, "error: " + why);
+  if (!run.IsValid(&why)) {
+    if (!args.step) throw CliError(kExitNetlist, NetlistError(netlist.tran->loc, why).formatted());
+    throw CliError(kExitUsage, "error: " + why);
+  }
   auto positive = [](double v) { return v > 0 && std::isfinite(v); };
   if (!positive(args.tol)) throw CliError(kExitUsage, "error: --tol must be a positive number");
   if (!positive(args.emission)) throw CliError(kExitUsage, "error: --emission must be a positive number");

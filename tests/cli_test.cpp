@@ -404,6 +404,26 @@ TEST(Op, AllRefusesMoreThanTwentyFourDiodesAndOnlyThen) {
   EXPECT_EQ(one.code, 0) << one.err;
 }
 
+// Issue 9, defect 8: a .tran value the run cannot take is the netlist's error, located (exit 2);
+// numeric options of every command take SPICE numbers.
+TEST(Run, ATranStepTooSmallIsALocatedNetlistError) {
+  const fs::path dir = scratch_dir("tran_tiny");
+  std::ofstream(dir / "t.cir") << "tiny step\nV1 a 0 DC 1\nR1 a 0 1\n.tran 1e-300 1\n.end\n";
+  Result r = run_lcspice("run '" + (dir / "t.cir").string() + "' -o '" + (dir / "t.csv").string() + "'", dir);
+  EXPECT_EQ(r.code, 2);
+  EXPECT_EQ(r.err_line(0), (dir / "t.cir").string() + ":4:1: error: TSTOP/step is too large (more than 2e9 steps)");
+  EXPECT_FALSE(fs::exists(dir / "t.csv"));
+}
+
+TEST(Validate, MaxStepTakesASpiceNumber) {
+  const fs::path dir = scratch_dir("validate_max_step");
+  Result r = run_lcspice("validate '" + source_path("circuits/peak_detector.cir").string() +
+                             "' --max-step 10u --tol 40m",
+                         dir);
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("PASS"), std::string::npos) << r.out;
+}
+
 TEST(Analyze, BridgeRectifierJson) {
   const fs::path dir = scratch_dir("analyze_bridge");
   Result r = run_lcspice("analyze --json '" + source_path("circuits/bridge_rectifier.cir").string() + "'", dir);
