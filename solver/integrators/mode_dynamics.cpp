@@ -48,8 +48,9 @@ ModeDynamics ModeDynamics::build(const Lcs& s, const std::vector<bool>& is_activ
   m.Cc = N.transpose() * Ca;
   m.Fc = N.transpose() * Fa;
 
-  Eigen::FullPivLU<Eigen::MatrixXd> lu(Q);
+  Eigen::FullPivLU<Eigen::MatrixXd> lu;  // of Q; with no active pair Q is 0 x 0: nothing to solve
   if (a > 0) {
+    lu.compute(Q);
     const double scale = Q.cwiseAbs().maxCoeff();
     lu.setThreshold(1e-12);
     m.well_posed = scale > 0 && lu.isInvertible();
