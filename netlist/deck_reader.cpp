@@ -11,6 +11,10 @@ namespace {
 namespace fs = std::filesystem;
 
 constexpr std::size_t kMaxIncludeDepth = 64;
+// Work bounds over the whole deck, so that includes repeating each other (40 files of 40
+// `.include` lines each, nested four deep, open 40^4 files) cannot run for minutes.
+constexpr std::size_t kMaxIncludeOpens = 10'000;
+constexpr std::size_t kMaxIncludedBytes = std::size_t{64} << 20;
 
 std::string identity(const std::string& path) {
   std::error_code ec;
@@ -56,8 +60,15 @@ class Reader {
       for (const std::string& open : stack_)
         if (open == id) throw NetlistError(loc, "include cycle: " + quote(name) + " is already being included");
       if (stack_.size() >= kMaxIncludeDepth) throw NetlistError(loc, "include files nested too deeply");
+      if (++opens_ > kMaxIncludeOpens)
+        throw NetlistError(loc, "more than " + std::to_string(kMaxIncludeOpens) +
+                                    " .include files read for one netlist (includes that repeat each other?)");
       std::string text;
       if (!read_file(path, text, true)) throw NetlistError(loc, "cannot open include file " + quote(name));
+      bytes_ += text.size();
+      if (bytes_ > kMaxIncludedBytes)
+        throw NetlistError(loc, "included text exceeds " + std::to_string(kMaxIncludedBytes >> 20) +
+                                    " MiB for one netlist");
       expand(make_source_file(path, text), false, out);
     }
     stack_.pop_back();
@@ -66,6 +77,7 @@ class Reader {
  private:
   std::vector<std::string>& warnings_;
   std::vector<std::string> stack_;  // identities of the files being read, outermost first
+  std::size_t opens_ = 0, bytes_ = 0;
 };
 
 }  // namespace

@@ -4,6 +4,9 @@
 #include <random>
 #include <string>
 
+#include <filesystem>
+#include <fstream>
+#include <unistd.h>
 #include <gtest/gtest.h>
 
 #include "netlist/netlist.h"
@@ -56,9 +59,11 @@ TEST(ParseRobustness, RunawayContinuationIsFastAndReportsTheFirstExtraToken) {
 
 TEST(ParseRobustness, LongLinesAndManyElements) {
   std::string text = "t\n";
-  for (int i = 0; i < 20000; ++i) text += "R" + std::to_string(i) + " n" + std::to_string(i) + " n" + std::to_string(i + 1) + " 1k\n";
+  for (int i = 0; i < 5000; ++i) text += "R" + std::to_string(i) + " n" + std::to_string(i) + " n" + std::to_string(i + 1) + " 1k\n";
   Netlist n = parse_netlist_string(text, "big.cir");
-  EXPECT_EQ(n.elements.size(), 20000u);
+  EXPECT_EQ(n.elements.size(), 5000u);  // the limit itself is admitted
+  EXPECT_EQ(outcome(text + "R5000 n5000 n5001 1k\n"),
+            "netlist too large (more than 5000 elements after subcircuit expansion)");
   std::string line = "t\nR1 a 0 1 " + std::string(1 << 20, 'x') + "\n";
   EXPECT_EQ(outcome(line), "unexpected extra token '" + std::string(40, 'x') + "...'");
 }
@@ -73,8 +78,33 @@ TEST(ParseRobustness, ExponentialSubcircuitExpansionIsCapped) {
   }
   text += "Xtop n s10\n";
   auto start = std::chrono::steady_clock::now();
-  EXPECT_EQ(outcome(text), "netlist too large (more than 100000 elements after subcircuit expansion)");
+  EXPECT_EQ(outcome(text), "netlist too large (more than 5000 elements after subcircuit expansion)");
   EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(20));
+}
+
+// Issue 9, defect 6: five files of 40 `.include` lines of the next would open 40^4 files.
+TEST(ParseRobustness, IncludesThatRepeatEachOtherAreBounded) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / ("lcspice-inc-" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  for (int level = 0; level < 5; ++level) {
+    std::ofstream f(dir / ("l" + std::to_string(level) + ".inc"));
+    if (level == 4) {
+      f << "R1 a 0 1\n";
+      continue;
+    }
+    for (int j = 0; j < 40; ++j) f << ".include l" << level + 1 << ".inc\n";
+  }
+  std::ofstream(dir / "top.cir") << "t\n.include l0.inc\n.end\n";
+  auto start = std::chrono::steady_clock::now();
+  try {
+    parse_netlist_file((dir / "top.cir").string());
+    ADD_FAILURE() << "parsed";
+  } catch (const NetlistError& e) {
+    EXPECT_EQ(e.message(), "more than 10000 .include files read for one netlist (includes that repeat each other?)");
+  }
+  EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(20));
+  fs::remove_all(dir);
 }
 
 TEST(ParseRobustness, DeepNesting) {

@@ -1,6 +1,7 @@
 // Radau IIA time-stepping (8.4.1): exact tableaux, classical order 2s - 1 on circuits that stay in
 // one mode (closed forms), complementarity at every step of a switching circuit, circuits
 // without states or without diodes, an LCP of 3 * 30 pairs, and no heap allocation per step.
+#include "tests/support/sanitizers.h"
 #include <algorithm>
 #include <atomic>
 #include <cmath>
@@ -18,7 +19,7 @@
 
 // Count heap allocations by interposing malloc/calloc/realloc, as warm_solver_test.cpp does
 // (forwarded to glibc's allocator, so glibc's free stays valid).
-#if defined(__GLIBC__) && !defined(__SANITIZE_ADDRESS__)
+#if defined(__GLIBC__) && !LCS_UNDER_ASAN
 #define LCS_COUNT_ALLOCS 1
 extern "C" void* __libc_malloc(std::size_t);
 extern "C" void* __libc_calloc(std::size_t, std::size_t);

@@ -1,5 +1,6 @@
 // LcpWarmSolver: same answers as Lemke on slowly varying q, exact warm-hit accounting,
 // fallback on active-set changes, no heap allocation on steady-state warm hits.
+#include "tests/support/sanitizers.h"
 #include <gtest/gtest.h>
 
 #include <atomic>
@@ -14,7 +15,7 @@
 
 // Count heap allocations by interposing malloc/calloc/realloc (forwarded to glibc's allocator,
 // so glibc's free stays valid). operator new and Eigen both go through malloc.
-#if defined(__GLIBC__) && !defined(__SANITIZE_ADDRESS__)
+#if defined(__GLIBC__) && !LCS_UNDER_ASAN
 #define LCS_COUNT_ALLOCS 1
 extern "C" void* __libc_malloc(std::size_t);
 extern "C" void* __libc_calloc(std::size_t, std::size_t);
