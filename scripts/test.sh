@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
-# Set up, then run the whole test suite (unit, golden-waveform, command-line tests).
+# Set up, then run the whole test suite (unit, golden-waveform, command-line tests) in the
+# Release build, then again under AddressSanitizer + UndefinedBehaviorSanitizer in a Debug build.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
-cd build
-ctest --output-on-failure -j"$(nproc)"
+(cd build && ctest --output-on-failure -j"$(nproc)")
+bash scripts/test_sanitized.sh

@@ -2,6 +2,7 @@
 // concurrent runs, every failure kind, and the process conditions of CI (no passwd entry, no
 // HOME, closed standard input). Tests that need a fresh ngspice (it is one per process, and some
 // failures leave it unusable) run in a child process through EXPECT_EXIT.
+#include "tests/support/sanitizers.h"
 #include <gtest/gtest.h>
 #include <grp.h>
 #include <pwd.h>
@@ -259,7 +260,7 @@ long resident_kib() {
 // Each RC run makes a plot of 4 x 5022 doubles (160 kB) and a circuit; without `destroy all`
 // and `remcirc` between runs, 100 runs keep 18 MB (no `remcirc`: 2 MB; neither: 0.1-0.3 MB here).
 TEST(NgspiceSession, RepeatedRunsDoNotAccumulatePlotsOrCircuits) {
-#if defined(__SANITIZE_ADDRESS__)
+#if LCS_UNDER_ASAN
   GTEST_SKIP() << "AddressSanitizer's quarantine keeps freed memory resident";
 #endif
   for (int i = 0; i < 10; ++i) run_ngspice_transient(run_of(kRcDeck));

@@ -1,4 +1,5 @@
 #include "solver/integrators/event_driven.h"
+#include "solver/model/empty_safe.h"
 
 #include <algorithm>
 #include <array>
@@ -207,8 +208,8 @@ void EventDriven::Impl::prepare(double tstep, double tstop) {
   eta = 1e-8 * (rate > 0 ? std::min(tstep, 1.0 / rate) : tstep);
   const Eigen::MatrixXd W = Eigen::MatrixXd::Identity(n, n) - eta * s.A;
   Eigen::PartialPivLU<Eigen::MatrixXd> lu(W);
-  const Eigen::MatrixXd WB = n > 0 ? Eigen::MatrixXd(lu.solve(s.B)) : Eigen::MatrixXd(0, m);
-  const Eigen::MatrixXd WE = n > 0 ? Eigen::MatrixXd(lu.solve(s.E)) : Eigen::MatrixXd(0, s.inputs());
+  const Eigen::MatrixXd WB = n > 0 ? solve_or_empty(lu, s.B) : Eigen::MatrixXd(0, m);
+  const Eigen::MatrixXd WE = n > 0 ? solve_or_empty(lu, s.E) : Eigen::MatrixXd(0, s.inputs());
   Csel = n > 0 ? Eigen::MatrixXd(s.C * lu.inverse()) : Eigen::MatrixXd(m, 0);
   Fsel = eta * s.C * WE + s.F;
   selector = std::make_unique<LcpWarmSolver>(s.D + eta * s.C * WB);

@@ -1,5 +1,7 @@
 #include "solver/integrators/mode_dynamics.h"
 
+#include "solver/model/empty_safe.h"
+
 namespace lcs {
 
 namespace {
@@ -58,9 +60,9 @@ ModeDynamics ModeDynamics::build(const Lcs& s, const std::vector<bool>& is_activ
     m.well_posed = true;
   }
   if (!m.well_posed) return m;
-  m.Kx = a > 0 ? Eigen::MatrixXd(-lu.solve(Rx)) : Eigen::MatrixXd(0, n);
-  m.Ku = a > 0 ? Eigen::MatrixXd(-lu.solve(Ru)) : Eigen::MatrixXd(0, nu);
-  m.Kd = a > 0 ? Eigen::MatrixXd(-lu.solve(Rd)) : Eigen::MatrixXd(0, nu);
+  m.Kx = -solve_or_empty(lu, Rx);
+  m.Ku = -solve_or_empty(lu, Ru);
+  m.Kd = -solve_or_empty(lu, Rd);
   m.Ax = s.A + Ba * m.Kx;
   m.Eu = s.E + Ba * m.Ku;
   m.Ed = Ba * m.Kd;

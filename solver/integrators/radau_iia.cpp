@@ -1,4 +1,5 @@
 #include "solver/integrators/radau_iia.h"
+#include "solver/model/empty_safe.h"
 
 #include <cmath>
 #include <stdexcept>
@@ -78,9 +79,9 @@ RadauIIA::StepFactors& RadauIIA::factors(double h) {
   if (n > 0) {
     Eigen::PartialPivLU<Eigen::MatrixXd> N(Eigen::MatrixXd::Identity(st * n, st * n) -
                                            h * kron(a, s.A));
-    Px = N.solve(kron(ones, Eigen::MatrixXd::Identity(n, n)));
-    PZ = N.solve(h * kron(a, s.B));
-    PU = N.solve(h * kron(a, s.E));
+    Px = solve_or_empty(N, kron(ones, Eigen::MatrixXd::Identity(n, n)));
+    PZ = solve_or_empty(N, h * kron(a, s.B));
+    PU = solve_or_empty(N, h * kron(a, s.E));
   }
   auto f = std::make_unique<StepFactors>();
   f->Sx = Px.bottomRows(n);

@@ -1,4 +1,5 @@
 #include "solver/integrators/start_complementarity.h"
+#include "solver/model/empty_safe.h"
 
 #include <algorithm>
 #include <string>
@@ -34,9 +35,9 @@ Eigen::VectorXd consistent_start_z(const LcsProblem& model, double t0, double h_
   const double h = start_step(s, h_run);
   Eigen::MatrixXd I = Eigen::MatrixXd::Identity(n, n);
   Eigen::PartialPivLU<Eigen::MatrixXd> W(I - h * s.A);
-  const Eigen::MatrixXd Phi = n > 0 ? W.solve(I) : Eigen::MatrixXd(0, 0);
-  const Eigen::MatrixXd Pu = n > 0 ? W.solve(h * s.E) : Eigen::MatrixXd(0, s.inputs());
-  const Eigen::MatrixXd WB = n > 0 ? W.solve(h * s.B) : Eigen::MatrixXd(0, s.pairs());
+  const Eigen::MatrixXd Phi = n > 0 ? solve_or_empty(W, I) : Eigen::MatrixXd(0, 0);
+  const Eigen::MatrixXd Pu = n > 0 ? solve_or_empty(W, h * s.E) : Eigen::MatrixXd(0, s.inputs());
+  const Eigen::MatrixXd WB = n > 0 ? solve_or_empty(W, h * s.B) : Eigen::MatrixXd(0, s.pairs());
   LcpWarmSolver lcp(s.D + s.C * WB);
   ++stats.factorisations;
   const Eigen::VectorXd q = s.C * Phi * x + (s.C * Pu + s.F) * model.input_values(t0 + h);

@@ -1,4 +1,5 @@
 #include "solver/integrators/theta_method.h"
+#include "solver/model/empty_safe.h"
 
 #include "solver/integrators/start_complementarity.h"
 #include "solver/model/numerical_failure.h"
@@ -27,11 +28,11 @@ ThetaMethod::StepFactors& ThetaMethod::factors(double h) {
   Eigen::MatrixXd I = Eigen::MatrixXd::Identity(n, n);
   Eigen::PartialPivLU<Eigen::MatrixXd> W(I - h * theta * s.A);
   const double explicit_part = h * (1 - theta);
-  f->Phi = n > 0 ? W.solve(I + explicit_part * s.A) : Eigen::MatrixXd(0, 0);
-  f->Pz = n > 0 ? W.solve(explicit_part * s.B) : Eigen::MatrixXd(0, s.pairs());
-  f->Pu0 = n > 0 ? W.solve(explicit_part * s.E) : Eigen::MatrixXd(0, s.inputs());
-  f->Pu1 = n > 0 ? W.solve(h * theta * s.E) : Eigen::MatrixXd(0, s.inputs());
-  f->WB = n > 0 ? W.solve(h * theta * s.B) : Eigen::MatrixXd(0, s.pairs());
+  f->Phi = n > 0 ? solve_or_empty(W, I + explicit_part * s.A) : Eigen::MatrixXd(0, 0);
+  f->Pz = n > 0 ? solve_or_empty(W, explicit_part * s.B) : Eigen::MatrixXd(0, s.pairs());
+  f->Pu0 = n > 0 ? solve_or_empty(W, explicit_part * s.E) : Eigen::MatrixXd(0, s.inputs());
+  f->Pu1 = n > 0 ? solve_or_empty(W, h * theta * s.E) : Eigen::MatrixXd(0, s.inputs());
+  f->WB = n > 0 ? solve_or_empty(W, h * theta * s.B) : Eigen::MatrixXd(0, s.pairs());
   f->CPhi = s.C * f->Phi;
   f->CPz = s.C * f->Pz;
   f->CPu0 = s.C * f->Pu0;

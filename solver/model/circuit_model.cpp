@@ -1,4 +1,5 @@
 #include "solver/model/circuit_model.h"
+#include "solver/model/empty_safe.h"
 
 #include <cmath>
 #include <cstdio>
@@ -203,7 +204,7 @@ CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& opt
       for (int b : statics) elements.push_back(g.branches[b].element);
       throw TopologyError("the resistive part of the circuit has no unique solution", elements);
     }
-    Eigen::MatrixXd sol = -es_lu.solve(row_scale.asDiagonal() * rhs);
+    Eigen::MatrixXd sol = -solve_or_empty(es_lu, row_scale.asDiagonal() * rhs);
     clear_structural_zeros(Es, rhs, sol);
     for (int r = 0; r < ns; ++r) P.row(statics[r]) = sol.row(r);
   }
@@ -289,8 +290,8 @@ CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& opt
                           "are not supported yet; use k < 1)",
                           elements);
     }
-    Xdot = m_lu.solve(Rfull);
-    Xdot.rightCols(nu) = m_lu.solve(Kdu);
+    Xdot = solve_or_empty(m_lu, Rfull);
+    Xdot.rightCols(nu) = solve_or_empty(m_lu, Kdu);
   }
   Lcs& s = m.lcs_;
   s.A = Xdot.leftCols(n);

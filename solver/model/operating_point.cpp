@@ -1,4 +1,5 @@
 #include "solver/model/operating_point.h"
+#include "solver/model/empty_safe.h"
 
 #include <algorithm>
 
@@ -35,8 +36,8 @@ StaticProblem static_problem(const CircuitModel& model, double t) {
       A -= (scale > 0 ? 1e-9 * scale : 1e-9) * Eigen::MatrixXd::Identity(n, n);
     }
     Eigen::PartialPivLU<Eigen::MatrixXd> lu_reg(A);
-    p.XofZ = -lu_reg.solve(s.B);
-    p.x0 = -lu_reg.solve(s.E * u);
+    p.XofZ = -solve_or_empty(lu_reg, s.B);
+    p.x0 = -solve_or_empty(lu_reg, s.E * u);
   } else {
     p.XofZ = Eigen::MatrixXd::Zero(0, s.pairs());
     p.x0 = Eigen::VectorXd::Zero(0);

@@ -66,7 +66,9 @@ TEST_P(RcThroughDiode, ImplicitEulerMatchesItsDiscreteClosedForm) {
 }
 
 TEST_P(RcThroughDiode, ImplicitEulerIsFirstOrder) {
-  const auto [VON, RON] = GetParam();
+  // Plain variables, not a structured binding: the lambda below captures VON, which C++17
+  // (and clang 14) does not allow for bindings.
+  const double VON = GetParam().first, RON = GetParam().second;
   const double V = 10, R = 1e3, C = 1e-6, tau = (R + RON) * C, T = 2e-3;
   const Netlist netlist = rc_through_diode(V, VON, RON, R, C);
   auto error = [&](double h) {
