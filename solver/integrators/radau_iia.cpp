@@ -38,6 +38,7 @@ namespace {
 // a ⊗ b (the tensor product of 8.4.2).
 Eigen::MatrixXd kron(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
   Eigen::MatrixXd k(a.rows() * b.rows(), a.cols() * b.cols());
+  if (k.size() == 0) return k;  // blocks of an empty matrix point at null (UBSan)
   for (Eigen::Index i = 0; i < a.rows(); ++i)
     for (Eigen::Index j = 0; j < a.cols(); ++j)
       k.block(i * b.rows(), j * b.cols(), b.rows(), b.cols()) = a(i, j) * b;
@@ -84,9 +85,14 @@ RadauIIA::StepFactors& RadauIIA::factors(double h) {
     PU = solve_or_empty(N, h * kron(a, s.E));
   }
   auto f = std::make_unique<StepFactors>();
-  f->Sx = Px.bottomRows(n);
-  f->Sz = PZ.bottomRows(n);
-  f->Su = PU.bottomRows(n);
+  // The last stage's rows (stiffly accurate); with no states there are none, and a block of an
+  // empty matrix points at null (UBSan).
+  auto last_stage = [&](const Eigen::MatrixXd& P) {
+    return P.size() > 0 ? Eigen::MatrixXd(P.bottomRows(n)) : Eigen::MatrixXd::Zero(n, P.cols()).eval();
+  };
+  f->Sx = last_stage(Px);
+  f->Sz = last_stage(PZ);
+  f->Su = last_stage(PU);
   const Eigen::MatrixXd IC = kron(Is, s.C);
   f->Qx = IC * Px;
   f->Qu = IC * PU + kron(Is, s.F);
@@ -114,7 +120,8 @@ void RadauIIA::DoStep(double t, double h, Eigen::VectorXd& x, Eigen::VectorXd& z
   x_next_.noalias() += f.Sz * sol.z;
   x_next_.noalias() += f.Su * U_;
   x = x_next_;
-  z = sol.z.tail(m);
+  if (m > 0) z = sol.z.tail(m);  // a tail of an empty vector points at null (UBSan)
+  else z.resize(0);
 }
 
 StepperStats RadauIIA::stats() const {

@@ -416,9 +416,10 @@ OutputMap CircuitModel::output_map(const std::vector<Probe>& probes) const {
       }
     }
     out.names.push_back(p.name());
-    out.G.row(r) = row.g;
-    out.H.row(r) = row.h;
-    out.J.row(r) = row.j;
+    // Row blocks of a 0-column matrix point at null (UBSan): only non-empty ones are copied.
+    if (n > 0) out.G.row(r) = row.g;
+    if (mp > 0) out.H.row(r) = row.h;
+    out.J.row(r) = row.j;  // nu >= 1: u[0] = 1 is always an input
     out.K.row(r) = row.k;
   }
   return out;

@@ -1,0 +1,47 @@
+// libFuzzer target: the first byte picks a method from the registry, the rest is a netlist run
+// for at most kMaxSteps output steps. Every row must be finite and times strictly increasing.
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+
+#include "solver/integrators/method_registry.h"
+#include "solver/integrators/transient.h"
+#include "solver/model/smooth_netlist.h"
+#include "tests/fuzz/fuzz_outcome.h"
+
+namespace {
+constexpr double kMaxSteps = 400;
+}
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  if (size < 1 || size > lcs::fuzz::kMaxInputBytes) return 0;
+  const std::vector<lcs::MethodEntry>& methods = lcs::method_registry();
+  const lcs::MethodEntry& entry = methods[data[0] % methods.size()];
+  const std::string text(reinterpret_cast<const char*>(data + 1), size - 1);
+  lcs::fuzz::run_expecting_documented_errors([&] {
+    lcs::Netlist netlist = lcs::parse_netlist_string(text, "/nonexistent-fuzz-dir/deck.cir");
+    if (netlist.elements.size() > lcs::fuzz::kMaxElements || !netlist.tran) return;
+    lcs::TransientOptions o;
+    o.method = entry.name;
+    o.tstop = netlist.tran->tstop;
+    o.step = std::max(netlist.tran->tstep, o.tstop / kMaxSteps);
+    o.uic = netlist.tran->uic;
+    std::string why;
+    if (!o.IsValid(&why)) return;  // `run` reports these as errors before simulating
+    if (entry.smooth_model) netlist = lcs::smooth_netlist(netlist, lcs::SmoothingOptions{});
+    lcs::ModelOptions mo;
+    mo.t1 = o.tstop;
+    const lcs::CircuitModel model = lcs::CircuitModel::build(netlist, mo);
+    lcs::MemorySink sink;
+    lcs::run_transient(model, model.output_map(model.default_probes()), o, sink);
+    for (size_t k = 0; k < sink.times.size(); ++k) {
+      if (!sink.rows[k].allFinite() || (k > 0 && !(sink.times[k] > sink.times[k - 1]))) {
+        std::fprintf(stderr, "fuzz finding: row %zu (t = %g) is not finite or not after the last\n", k,
+                     sink.times[k]);
+        std::abort();
+      }
+    }
+  });
+  return 0;
+}
