@@ -56,9 +56,8 @@ int op_command(const OpArgs& args) {
   }
   if (points.empty())
     throw CliError(kExitNumerical, "lcspice: error: the operating point has no solution");
-  for (const std::string& s : points.front().undetermined)
-    warn("no DC path for " + s + ": the operating point leaves it undetermined and sets it to 0 "
-         "(use UIC with IC= or .ic to choose it)");
+  if (!points.front().undetermined.empty())
+    warn(undetermined_state_warning(points.front().undetermined));
   std::printf("* operating point at t = 0: %s\n", netlist.title.c_str());
   if (args.all) std::printf("* %zu solution%s\n", points.size(), points.size() == 1 ? "" : "s");
   for (size_t k = 0; k < points.size(); ++k) {

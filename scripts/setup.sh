@@ -5,7 +5,8 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 packages=(cmake g++ make pkg-config libeigen3-dev libboost-graph-dev libsundials-dev
-          libngspice0-dev libgtest-dev libcli11-dev gnuplot-nox)
+          libngspice0-dev libgtest-dev libcli11-dev gnuplot-nox
+          clang libclang-rt-14-dev)  # clang: the ASan+UBSan suite and libFuzzer (scripts/fuzz.sh)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -267,6 +267,8 @@ CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& opt
   //   Tl^T Lf (Tl x' + Tlu u')      = -sum over V, C, R, D tree branches f of b_{f,e} v_f
   Eigen::MatrixXd Mdyn = Tc.transpose() * Cd.asDiagonal() * Tc + Tl.transpose() * Lf * Tl;
   Eigen::MatrixXd Kdu = -(Tc.transpose() * Cd.asDiagonal() * Tcu + Tl.transpose() * Lf * Tlu);
+  m.energy_xx_ = Mdyn;
+  m.energy_xu_ = -Kdu;
   Eigen::MatrixXd Rp = Eigen::MatrixXd::Zero(n, nb);
   for (int b = 0; b < nb; ++b) {
     if (role[b] != Role::State) continue;

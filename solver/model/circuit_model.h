@@ -67,6 +67,12 @@ class CircuitModel : public LcsProblem {
   // Per branch: its storage (capacitors and inductors), empty for the others.
   const std::vector<std::optional<StorageInfo>>& storage() const { return storage_; }
 
+  // Energy stored in capacitors and inductors over the physical state x (u the inputs):
+  //   W(x) = 1/2 x^T energy_xx x + x^T energy_xu u + (terms in u alone),
+  // since every capacitor voltage and inductor current is Tc x + Tcu u, Tl x + Tlu u.
+  const Eigen::MatrixXd& energy_xx() const { return energy_xx_; }
+  const Eigen::MatrixXd& energy_xu() const { return energy_xu_; }
+
   OutputRow branch_voltage(int branch) const;
   OutputRow branch_current(int branch) const;
   OutputRow node_voltage(int node) const;
@@ -91,6 +97,7 @@ class CircuitModel : public LcsProblem {
   std::vector<std::optional<StorageInfo>> storage_;
   // Branch voltages and currents as rows over [x_phys | z | u | du] (physical state).
   Eigen::MatrixXd branch_v_, branch_i_;
+  Eigen::MatrixXd energy_xx_, energy_xu_;
 };
 
 }  // namespace lcs

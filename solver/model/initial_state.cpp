@@ -18,13 +18,7 @@ InitialState initial_state(const CircuitModel& model, bool uic, double t0) {
     OperatingPoint op = solve_operating_point(model, t0);
     physical = model.physical_state(op.x, t0);
     z = op.z;
-    if (!op.undetermined.empty()) {
-      std::string list;
-      for (const std::string& s : op.undetermined) list += (list.empty() ? "" : ", ") + s;
-      init.warnings.push_back("no DC path for " + list +
-                              ": the operating point leaves it undetermined and sets it to 0 "
-                              "(use UIC with IC= or .ic to choose it)");
-    }
+    if (!op.undetermined.empty()) init.warnings.push_back(undetermined_state_warning(op.undetermined));
   }
   Eigen::VectorXd x_lcs = model.lcs_state(physical, t0);
 

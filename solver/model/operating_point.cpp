@@ -55,12 +55,32 @@ OperatingPoint point_from(const StaticProblem& p, const Eigen::VectorXd& z) {
   return op;
 }
 
+// Moves sol = [x; z_J] within the solutions sol + N c of the DC equations (N: their kernel) to
+// the one of least stored energy W(x) (CircuitModel::energy_xx/xu). A loop of inductors only
+// carries a circulating current, and capacitors in series share a charge, that DC does not fix;
+// of all of them, least energy is the one a circuit switched on from rest reaches (inductors in
+// parallel take currents inversely proportional to L, series capacitors the capacitive divider),
+// and it is one choice shared by `op` and every method (SPEC §2; issue 9, defect 5).
+//   min_c W(x + N_x c)  <=>  (N_x^T Wxx N_x) c = -N_x^T (Wxx (x + Gamma u) + Wxu u)
+Eigen::VectorXd least_energy(const CircuitModel& model, const Eigen::VectorXd& u,
+                             const Eigen::MatrixXd& N, const Eigen::VectorXd& sol) {
+  const int n = model.lcs().states();
+  if (n == 0 || N.cols() == 0) return sol;
+  const Eigen::MatrixXd Nx = N.topRows(n);
+  const Eigen::VectorXd x_phys = sol.head(n) + model.lcs().Gamma * u;
+  const Eigen::MatrixXd H = Nx.transpose() * model.energy_xx() * Nx;
+  const Eigen::VectorXd g = Nx.transpose() * (model.energy_xx() * x_phys + model.energy_xu() * u);
+  Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(H);
+  cod.setThreshold(1e-12);
+  return sol - N * cod.solve(g);
+}
+
 // With the conducting set J = {z_i > 0} known, the operating point solves the linear system
 //   A x + B_J z_J = -E u,   C_J x + D_JJ z_J = -F_J u
 // exactly. This replaces the regularised solution, whose x = (B z + E u)/eps loses every digit
 // when A is singular only because a diode current is what holds a state (a capacitor charged
-// through a diode). States the system leaves free (no DC path at all) take the minimum-norm
-// value 0, as SPICE's GMIN would give. Returns false when the result is not complementary.
+// through a diode). States the system leaves free take the values of least stored energy
+// (least_energy). Returns false when the result is not complementary.
 bool polish(const CircuitModel& model, double t, OperatingPoint& op) {
   const Lcs& s = model.lcs();
   const int n = s.states(), m = s.pairs();
@@ -86,28 +106,39 @@ bool polish(const CircuitModel& model, double t, OperatingPoint& op) {
   Eigen::MatrixXd Ks = scale.asDiagonal() * K;
   Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(Ks);
   cod.setThreshold(1e-12);
-  const Eigen::VectorXd sol = cod.solve(scale.asDiagonal() * rhs);
-  const double residual = (Ks * sol - scale.asDiagonal() * rhs).cwiseAbs().maxCoeff();
+  const Eigen::VectorXd min_norm = cod.solve(scale.asDiagonal() * rhs);
+  const double residual = (Ks * min_norm - scale.asDiagonal() * rhs).cwiseAbs().maxCoeff();
   if (!(residual <= 1e-9 * std::max(1.0, max_abs(scale.asDiagonal() * rhs))))
     return false;
-  Eigen::VectorXd z = Eigen::VectorXd::Zero(m);
-  for (int a = 0; a < k; ++a) z(J[a]) = sol(n + a);
-  const Eigen::VectorXd x = sol.head(n);
-  const Eigen::VectorXd w = s.C * x + s.D * z + s.F * u;
-  const double tol = 1e-9 * std::max({1.0, max_abs(w), max_abs(z)});
-  for (int i = 0; i < m; ++i)
-    if (z(i) < -tol || w(i) < -tol) return false;
-  op.x = x;
-  op.z = z.cwiseMax(0.0);
-  op.undetermined.clear();
+  std::vector<std::string> undetermined;
+  std::vector<Eigen::VectorXd> candidates;
   if (cod.rank() < n + k) {
     Eigen::FullPivLU<Eigen::MatrixXd> lu(Ks);
     lu.setThreshold(1e-12);
-    const Eigen::MatrixXd kernel = lu.kernel();
+    const Eigen::MatrixXd kernel = lu.rank() < n + k ? Eigen::MatrixXd(lu.kernel())
+                                                     : Eigen::MatrixXd(n + k, 0);
     for (int j = 0; j < n; ++j)
-      if (kernel.row(j).cwiseAbs().maxCoeff() > 1e-9) op.undetermined.push_back(model.states()[j].label);
+      if (kernel.cols() > 0 && kernel.row(j).cwiseAbs().maxCoeff() > 1e-9)
+        undetermined.push_back(model.states()[j].label);
+    candidates.push_back(least_energy(model, u, kernel, min_norm));
   }
-  return true;
+  candidates.push_back(min_norm);  // when least energy would turn a diode current negative
+  for (const Eigen::VectorXd& sol : candidates) {
+    Eigen::VectorXd z = Eigen::VectorXd::Zero(m);
+    for (int a = 0; a < k; ++a) z(J[a]) = sol(n + a);
+    const Eigen::VectorXd x = sol.head(n);
+    const Eigen::VectorXd w = s.C * x + s.D * z + s.F * u;
+    const double tol = 1e-9 * std::max({1.0, max_abs(w), max_abs(z)});
+    bool complementary = true;
+    for (int i = 0; i < m; ++i)
+      if (z(i) < -tol || w(i) < -tol) complementary = false;
+    if (!complementary) continue;
+    op.x = x;
+    op.z = z.cwiseMax(0.0);
+    op.undetermined = undetermined;
+    return true;
+  }
+  return false;
 }
 
 }  // namespace
@@ -122,6 +153,14 @@ OperatingPoint solve_operating_point(const CircuitModel& model, double t) {
   op.pivots = sol.pivots;
   polish(model, t, op);
   return op;
+}
+
+std::string undetermined_state_warning(const std::vector<std::string>& labels) {
+  std::string list;
+  for (const std::string& l : labels) list += (list.empty() ? "" : ", ") + l;
+  return "the operating point does not determine " + list +
+         " (a loop of inductors, or capacitors with no DC path): they start at the values of "
+         "least stored energy (set IC= with UIC, or .ic, to choose them)";
 }
 
 std::vector<OperatingPoint> enumerate_operating_points(const CircuitModel& model, double t) {

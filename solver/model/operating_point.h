@@ -16,8 +16,8 @@ struct OperatingPoint {
   Eigen::VectorXd x;  // LCS state
   Eigen::VectorXd z;
   int pivots = 0;
-  // States with no DC path at all (not even through a conducting diode): undetermined by the
-  // circuit; they take the minimum-norm value (0), as SPICE's GMIN would give. Labels listed.
+  // States DC leaves free (a loop of inductors, capacitors with no DC path, not even through a
+  // conducting diode): they take the values of least stored energy. Labels listed.
   std::vector<std::string> undetermined;
 };
 
@@ -26,5 +26,8 @@ OperatingPoint solve_operating_point(const CircuitModel& model, double t = 0.0);
 
 // Every solution of the static LCP (multistable circuits; diode-only circuits have one).
 std::vector<OperatingPoint> enumerate_operating_points(const CircuitModel& model, double t = 0.0);
+
+// The warning `op` and `run` print for OperatingPoint::undetermined.
+std::string undetermined_state_warning(const std::vector<std::string>& labels);
 
 }  // namespace lcs

@@ -269,19 +269,20 @@ TEST(OperatingPoint, CapacitorHeldByAConductingDiodeIsExact) {
   EXPECT_NEAR(m.evaluate_dc(m.node_voltage(m.graph().node_index("a")), op.x, op.z, 0), 1.7, 1e-12);
 }
 
-TEST(OperatingPoint, NoDcPathIsReportedAndSetToZero) {
+TEST(OperatingPoint, NoDcPathIsReportedAndTakesTheLeastEnergySplit) {
   NetlistBuilder b;
-  b.v("v1", "a", "0", NetlistBuilder::dc(5)).c("c1", "a", "m", 1e-6).c("c2", "m", "n", 1e-6);
+  b.v("v1", "a", "0", NetlistBuilder::dc(5)).c("c1", "a", "m", 1e-6).c("c2", "m", "n", 3e-6);
   b.r("r1", "n", "0", 1e3);
   CircuitModel m = CircuitModel::build(b.build(), {});
   OperatingPoint op = solve_operating_point(m);
   // c1 and c2 in series (both tree capacitors: n is reached through c2 before r1) across v1,
   // r1 to ground carries no DC current: v(c1) + v(c2) = 5, but how it splits is not fixed at
-  // DC, so both states lie in the undetermined direction; the minimum-norm split is 2.5 / 2.5.
+  // DC, so both states lie in the undetermined direction. Least energy 1/2 (C1 v1^2 + C2 v2^2)
+  // on v1 + v2 = 5 is the capacitive divider C1 v1 = C2 v2: 3.75 V / 1.25 V.
   EXPECT_EQ(op.undetermined, (std::vector<std::string>{"v(c1)", "v(c2)"}));
   Eigen::VectorXd x = m.physical_state(op.x, 0);
-  EXPECT_NEAR(x(0), 2.5, 1e-12);
-  EXPECT_NEAR(x(1), 2.5, 1e-12);
+  EXPECT_NEAR(x(0), 3.75, 1e-12);
+  EXPECT_NEAR(x(1), 1.25, 1e-12);
 }
 
 // Operating point with sources that are ramping at t = 0: capacitors open, so no C du/dt.

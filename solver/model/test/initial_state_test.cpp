@@ -79,3 +79,26 @@ TEST(InitialState, IcOnANodeWithoutAStateCapacitorIsReported) {
 
 }  // namespace
 }  // namespace lcs
+
+namespace lcs {
+namespace {
+
+// A loop of inductors only: the warning names the states DC leaves free and the rule used.
+TEST(InitialState, AnInductorLoopIsChosenOnceAndSaidSo) {
+  testing::NetlistBuilder b;
+  b.v("v1", "in", "0", testing::NetlistBuilder::dc(5)).r("r1", "in", "a", 10);
+  b.l("l1", "a", "0", 1e-3).l("l2", "a", "0", 3e-3);
+  CircuitModel m = CircuitModel::build(b.build(), {});
+  InitialState init = initial_state(m, false, 0.0);
+  ASSERT_EQ(init.warnings.size(), 1u);
+  EXPECT_EQ(init.warnings[0],
+            "the operating point does not determine i(l1), i(l2) (a loop of inductors, or "
+            "capacitors with no DC path): they start at the values of least stored energy (set "
+            "IC= with UIC, or .ic, to choose them)");
+  const Eigen::VectorXd x = m.physical_state(init.x, 0.0);
+  EXPECT_NEAR(x(0), 0.375, 1e-15);  // 0.5 A split 3 : 1, inversely to L
+  EXPECT_NEAR(x(1), 0.125, 1e-15);
+}
+
+}  // namespace
+}  // namespace lcs
