@@ -82,6 +82,8 @@ int run_cli(int argc, char** argv) {
   validate_cmd->add_option("--report", validate.report,
                            "write the table as CSV here, and per-probe PNG overlays beside it");
   validate_cmd->add_flag("--print-deck", validate.print_deck, "print the ngspice deck and stop");
+  validate_cmd->add_flag("--converge", validate.converge,
+                         "run ngspice again at N/2, N/4, N/8 and report the rate the disagreement shrinks");
   add_number(validate_cmd, "--emission", validate.emission,
                            "emission coefficient N of the Shockley diodes (default 0.05)");
   add_number(validate_cmd, "--max-step", validate.max_step, "ngspice's maximum step (default TSTEP)");

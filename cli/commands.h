@@ -1,6 +1,7 @@
 // One function per subcommand; each returns the process exit code or throws CliError.
 #pragma once
 
+#include <map>
 #include <optional>
 #include <set>
 #include <string>
@@ -35,13 +36,16 @@ struct ValidateArgs {
   std::optional<double> step, max_step;
   std::vector<std::string> ngspice_options;  // extra `.options` words for the ngspice deck
   bool print_deck = false;
+  bool converge = false;      // ngspice again at N/2, N/4, ...: the rate the disagreement shrinks
 };
 int validate_command(const ValidateArgs& args);
-// validate_command with the diodes named in `reversed_in_ngspice_deck` connected backwards in
-// the ngspice deck only (never from the command line): tests show with it that the comparison
-// can fail (exit 4).
-int validate_with_reversed_diodes(const ValidateArgs& args,
-                                  const std::set<std::string>& reversed_in_ngspice_deck);
+// Faults put into the ngspice deck only (never from the command line): tests show with them
+// that the comparison fails (exit 4) on a wrong witness.
+struct NgspiceDeckFaults {
+  std::set<std::string> reversed_diodes, open_diodes;  // swapped / left out
+  std::map<std::string, double> ron_factor;            // a diode's RON scaled
+};
+int validate_with_faults(const ValidateArgs& args, const NgspiceDeckFaults& faults);
 
 struct BenchArgs {
   std::vector<std::string> netlists;  // empty: the suite in circuits/bench_suite.tsv

@@ -67,6 +67,9 @@ TranslatedDeck translate_to_ngspice(const CircuitModel& model, const std::vector
   for (const std::shared_ptr<Device>& device : model.devices()) {
     context.current_probed = current_probes.count(device->name()) > 0;
     context.reversed = options.reversed_diodes.count(device->name()) > 0;
+    context.open = options.open_diodes.count(device->name()) > 0;
+    auto factor = options.ron_factor.find(device->name());
+    context.ron_factor = factor != options.ron_factor.end() ? factor->second : 1.0;
     auto given = options.initial_conditions.find(device->name());
     context.initial_value.reset();
     if (given != options.initial_conditions.end()) context.initial_value = given->second;

@@ -43,8 +43,10 @@ struct TranslationOptions {
   double saturation_current = 1e-14; // IS of those diodes
   double max_step = 0;               // ngspice TMAX; 0: TSTEP (or the netlist's smaller TMAX)
   std::vector<std::string> options;  // extra `.options` words, e.g. "reltol=1e-4"
-  // Test hook: diodes written anode/cathode swapped in the deck only (`validate` must fail).
-  std::set<std::string> reversed_diodes;
+  // Test hooks, in the deck only (`validate` must fail): diodes written anode/cathode swapped,
+  // with their series resistance scaled, or left out (open).
+  std::set<std::string> reversed_diodes, open_diodes;
+  std::map<std::string, double> ron_factor;
   // When set, ngspice starts from these capacitor voltages / inductor currents (by element name)
   // with UIC: lcspice's own initial state, for netlists whose IC= ngspice would ignore without UIC.
   std::map<std::string, double> initial_conditions;

@@ -2,6 +2,7 @@
 // ngspice (Shockley diodes, in-process) within the tolerance stated next to the netlists. Also:
 // a deliberately wrong deck must fail (exit 4), and ngspice failures must surface as errors.
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <set>
 #include <sstream>
@@ -10,6 +11,7 @@
 
 #include "cli/commands.h"
 #include "cli/exit_codes.h"
+#include "cli/validate_tube.h"
 #include "tests/cli_support.h"
 
 namespace lcs {
@@ -97,7 +99,7 @@ TEST(ValidationCanFail, ReversedDiodeInTheNgspiceDeckExitsFour) {
   std::string error;
   ::testing::internal::CaptureStdout();
   try {
-    code = validate_with_reversed_diodes(args, {"d1"});
+    code = validate_with_faults(args, NgspiceDeckFaults{{"d1"}, {}, {}});
   } catch (const CliError& e) {
     code = e.code();
     error = e.what();
@@ -111,6 +113,104 @@ TEST(ValidationCanFail, ReversedDiodeInTheNgspiceDeckExitsFour) {
   EXPECT_EQ(table.header.front(), "probe");
   EXPECT_TRUE(fs::exists(dir / "report_waveforms.csv"));
   EXPECT_TRUE(fs::exists(dir / "report_v.out.png") || fs::exists(dir / "report_v_out.png"));
+}
+
+// A wrong witness fails at the defaults: a diode's RON ten times too large, a diode missing
+// (open) in the ngspice deck. Each changes a probe by far more than the tube of the model gap.
+int validate_quietly(const ValidateArgs& args, const NgspiceDeckFaults& faults, std::string& out) {
+  int code = -1;
+  ::testing::internal::CaptureStdout();
+  try {
+    code = validate_with_faults(args, faults);
+  } catch (const CliError& e) {
+    code = e.code();
+  }
+  out = ::testing::internal::GetCapturedStdout();
+  return code;
+}
+
+TEST(ValidationCanFail, AWrongRonOrAMissingDiodeExitsFour) {
+  ValidateArgs peak;
+  peak.netlist = source_path("circuits/peak_detector.cir").string();
+  std::string out;
+  EXPECT_EQ(validate_quietly(peak, {}, out), kExitOk) << out;  // the same deck, right: passes
+  EXPECT_EQ(validate_quietly(peak, NgspiceDeckFaults{{}, {}, {{"d1", 10.0}}}, out), kExitValidate) << out;
+  EXPECT_NE(out.find("OUTSIDE"), std::string::npos) << out;
+
+  ValidateArgs bridge;
+  bridge.netlist = source_path("circuits/bridge_rectifier.cir").string();
+  bridge.ngspice_options = {"rshunt=1e9"};
+  EXPECT_EQ(validate_quietly(bridge, NgspiceDeckFaults{{}, {"d2"}, {}}, out), kExitValidate) << out;
+  EXPECT_NE(out.find("FAIL: every probe within 0.02"), std::string::npos) << out;
+}
+
+// --converge: the disagreement with ngspice halves with N on a rectifier (rates near 1, the
+// evidence that the ideal answer is the Shockley answers' limit), and does not shrink for a
+// wrong witness (one diode reversed), which fails.
+double converge_rate(const std::string& out, const std::string& probe) {
+  std::istringstream in(out);
+  std::string line;
+  bool table = false;
+  while (std::getline(in, line)) {
+    if (line.find("convergence as N -> 0") != std::string::npos) table = true;
+    if (!table || line.rfind("  " + probe + " ", 0) != 0) continue;
+    const size_t at = line.find(" rate ");
+    if (at != std::string::npos) return std::stod(line.substr(at + 6));
+  }
+  return NAN;
+}
+
+TEST(ValidateConverge, RatesNearOneOnARectifierAndNoConvergenceForAWrongWitness) {
+  ValidateArgs args;
+  args.netlist = source_path("circuits/half_wave_rectifier.cir").string();
+  args.probes = "v(out),i(d1)";
+  args.ngspice_options = {"rshunt=1e9"};
+  args.converge = true;
+  std::string out;
+  EXPECT_EQ(validate_quietly(args, {}, out), kExitOk) << out;
+  EXPECT_NEAR(converge_rate(out, "v(out)"), 1.0, 0.1) << out;  // measured 0.99
+  EXPECT_NEAR(converge_rate(out, "i(d1)"), 1.0, 0.1) << out;   // measured 0.99
+  EXPECT_EQ(validate_quietly(args, NgspiceDeckFaults{{"d1"}, {}, {}}, out), kExitValidate) << out;
+  EXPECT_LT(converge_rate(out, "v(out)"), 0.5) << out;
+  EXPECT_NE(out.find("NOT converging"), std::string::npos) << out;
+}
+
+// The tube in closed form: a step at t = 1 (nominal) and t = 1.5 (shifted wall); the witness
+// steps at 1.25 and overshoots to 1.2 at t = 3.
+TEST(ValidateTube, DistanceIsZeroBetweenTheWallsAndCountsOnlyWhatLiesOutside) {
+  std::vector<double> t, nominal, shifted, witness;
+  for (int k = 0; k <= 16; ++k) {
+    const double s = 0.25 * k;
+    t.push_back(s);
+    nominal.push_back(s >= 1 ? 1 : 0);
+    shifted.push_back(s >= 1.5 ? 0.9 : 0);
+    witness.push_back(s == 3 ? 1.2 : s >= 1.25 ? 0.95 : 0);
+  }
+  const TubeDistance d = tube_distance(t, nominal, shifted, witness, 0.25);
+  EXPECT_DOUBLE_EQ(d.max, 0.2);  // only the overshoot: 1.2 against the upper wall 1
+  EXPECT_EQ(d.worst_time, 3.0);
+  witness[12] = 0.95;
+  witness[5] = 1.0;  // at t = 1.25 the witness is already up: inside the walls' window
+  EXPECT_EQ(tube_distance(t, nominal, shifted, witness, 0.25).max, 0.0);
+  // Without a time window the step between samples is outside: 0.95 against the walls' 0 at 0.75.
+  witness[3] = 0.95;
+  EXPECT_DOUBLE_EQ(tube_distance(t, nominal, shifted, witness, 0.0).max, 0.95);
+  EXPECT_EQ(tube_distance(t, nominal, shifted, witness, 0.25).max, 0.0);
+}
+
+// A junction whose voltage rises at 2 V/s before each turn-on: the gap 0.1 V delays it 0.05 s.
+TEST(ValidateTube, TurnOnShiftIsTheGapOverTheApproachSlope) {
+  std::vector<double> t, vd, id;
+  for (int k = 0; k <= 40; ++k) {
+    const double s = 0.1 * k, phase = std::fmod(s, 1.0);
+    t.push_back(s);
+    vd.push_back(phase < 0.5 ? 2 * phase : 1);  // rises, then clamped while conducting
+    id.push_back(phase < 0.5 ? 0 : 1);
+  }
+  EXPECT_NEAR(turn_on_shift(t, vd, id, 0.1), 0.05, 1e-12);
+  EXPECT_EQ(turn_on_shift(t, vd, std::vector<double>(t.size(), 0.0), 0.1), 0.0);  // never on
+  EXPECT_NEAR(model_gap(1e-2, 0.05, 1e-14), 0.05 * 0.025864186 * std::log(1e12), 1e-15);
+  EXPECT_EQ(model_gap(1e-15, 0.05, 1e-14), 0.0);
 }
 
 // The same circuit (with the probes of circuits/validation.tsv) passes with the environment

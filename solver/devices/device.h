@@ -85,7 +85,11 @@ struct NgspiceDeckContext {
   double emission = 0.05;             // N of the Shockley diodes standing in for ideal ones
   double saturation_current = 1e-14;  // their IS
   bool current_probed = false;        // i(device) is probed: it needs an ammeter
-  bool reversed = false;              // test hook: a diode written anode/cathode swapped
+  // Test hooks (`validate` must fail on a wrong witness): a diode written anode/cathode swapped,
+  // with its series resistance scaled, or left out (an open circuit in its place).
+  bool reversed = false;
+  double ron_factor = 1.0;
+  bool open = false;
   std::optional<double> initial_value;  // UIC start value of a capacitor or inductor
   // A name unique in the deck (threshold sources, ammeters, their nodes).
   std::function<std::string(const std::string&)> fresh;

@@ -68,9 +68,12 @@ NgspiceCards Diode::ngspice(const NgspiceDeckContext& context) const {
       smooth_equivalent(card_, law_, context.emission, context.saturation_current);
   cards.lines.push_back(meter + " " + anode + " " + mid + " DC " + number(smooth.series_von));
   cards.models.push_back(".model " + model + " D(IS=" + number(smooth.is) + " N=" + number(smooth.n) +
-                         " RS=" + number(smooth.rs) + ")");
+                         " RS=" + number(smooth.rs * context.ron_factor) + ")");
   cards.ideal_diode = !(law_.fitted || card_.has_is || card_.has_n || card_.has_rs);
-  cards.lines.push_back(deck_name('d', name()) + " " + mid + " " + cathode + " " + model);
+  if (context.open)
+    cards.lines.push_back(deck_name('r', "open_" + name()) + " " + mid + " " + cathode + " 1e15");
+  else
+    cards.lines.push_back(deck_name('d', name()) + " " + mid + " " + cathode + " " + model);
   cards.probes["i(" + name() + ")"] = {meter + "#branch", ""};
   return cards;
 }
