@@ -132,4 +132,10 @@ std::vector<std::string> floating_probe_warnings(const CircuitModel& model,
   return out;
 }
 
+bool has_floating_potential(const CircuitModel& model, const std::string& node) {
+  const NodePartition h = h_components(model.graph());
+  const int n = model.graph().node_index(node);
+  return n >= 0 && h.component[n] != h.component[0];
+}
+
 }  // namespace lcs

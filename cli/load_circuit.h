@@ -31,4 +31,6 @@ std::vector<std::string> floating_potential_warnings(const CircuitModel& model);
 // The same, only for components holding a node whose absolute voltage is probed.
 std::vector<std::string> floating_probe_warnings(const CircuitModel& model,
                                                  const std::vector<Probe>& probes);
+// Whether `node` lies in such a component.
+bool has_floating_potential(const CircuitModel& model, const std::string& node);
 }  // namespace lcs

@@ -40,6 +40,7 @@ struct ProbeComparison {
   std::string name;
   double max_error = 0, range = 0, magnitude = 0, worst_time = 0;  // pointwise
   TubeDistance tube;  // outside the tube of the model gap (validate_tube.h)
+  std::string not_judged;  // why the witness cannot judge this probe; empty: it can
   // Relative to the range; a probe that is constant in lcspice is measured against its size.
   double scale() const { return range > 0 ? range : magnitude > 0 ? magnitude : 1.0; }
   double relative() const { return max_error / scale(); }
@@ -97,7 +98,7 @@ void write_report(const std::string& path, const std::vector<ProbeComparison>& r
   for (const ProbeComparison& c : rows) {
     std::snprintf(buf, sizeof buf, ",%.6e,%.6e,%.6e,%.9e,%.6e,%.9e,%.3e,%s\n", c.max_error, c.range,
                   c.relative(), c.worst_time, c.tube_relative(), c.tube.worst_time, tol,
-                  c.tube_relative() <= tol ? "yes" : "no");
+                  !c.not_judged.empty() ? "not judged" : c.tube_relative() <= tol ? "yes" : "no");
     table << csv_quote(c.name) << buf;
   }
   write_atomically(path, table.str());
@@ -274,6 +275,32 @@ bool report_convergence(const ValidateArgs& args, const CircuitModel& model, con
   return converging;
 }
 
+// Probes the Shockley witness cannot judge, and why. The absolute potential of a sub-circuit
+// reached only through diodes is not unique while none conducts: lcspice reports a vertex of
+// the solution set, ngspice whatever its leakage currents balance at. A node joined only to
+// inductors and diodes hangs, while the diodes are off and the inductor current is zero, on KVL
+// in the ideal model and on the leakage's L di/dt in the witness (no junction capacitance),
+// which spikes by tens of volts.
+std::string why_not_judged(const CircuitModel& model, const Probe& probe) {
+  if (probe.kind != Probe::Kind::NodeVoltage) return "";
+  if (has_floating_potential(model, probe.a))
+    return "its potential is not unique while no diode of its sub-circuit conducts (compare a "
+           "voltage across the sub-circuit, v(a,b), instead)";
+  const CircuitGraph& g = model.graph();
+  const int node = g.node_index(probe.a);
+  bool inductor = false, diode = false, other = false;
+  for (const Branch& b : g.branches) {
+    if (b.from != node && b.to != node) continue;
+    if (b.cls == BranchClass::Inductor) inductor = true;
+    else if (b.cls == BranchClass::Diode) diode = true;
+    else other = true;
+  }
+  if (inductor && diode && !other)
+    return "the node joins only inductors and diodes: while they are off the witness (no junction "
+           "capacitance) spikes there (compare the inductor's current instead)";
+  return "";
+}
+
 }  // namespace
 
 int validate_command(const ValidateArgs& args) { return validate_with_faults(args, {}); }
@@ -409,6 +436,7 @@ int validate_with_faults(const ValidateArgs& args, const NgspiceDeckFaults& faul
     const std::vector<double> mine = column(ours, p);
     ProbeComparison c = compare(outputs.names[p], ours.times, mine, interpolated[p]);
     c.tube = tube_distance(ours.times, mine, far_wall ? column(*far_wall, p) : mine, interpolated[p], dt);
+    c.not_judged = why_not_judged(model, probes[p]);
     rows.push_back(c);
   }
 
@@ -448,10 +476,13 @@ int validate_with_faults(const ValidateArgs& args, const NgspiceDeckFaults& faul
   std::vector<bool> within(rows.size());
   for (size_t p = 0; p < rows.size(); ++p) {
     const ProbeComparison& c = rows[p];
-    within[p] = c.tube_relative() <= args.tol;
+    within[p] = c.tube_relative() <= args.tol || !c.not_judged.empty();
     std::printf("  %-16s %12.4e %12.4e %14.4e %14.6e %14.4e  %s\n", c.name.c_str(), c.max_error, c.range,
-                c.relative(), c.worst_time, c.tube_relative(), within[p] ? "ok" : "OUTSIDE");
+                c.relative(), c.worst_time, c.tube_relative(),
+                !c.not_judged.empty() ? "not judged" : within[p] ? "ok" : "OUTSIDE");
   }
+  for (const ProbeComparison& c : rows)
+    if (!c.not_judged.empty()) std::printf("  %s not judged: %s\n", c.name.c_str(), c.not_judged.c_str());
   if (args.converge) {
     const bool converging = report_convergence(args, model, all, topt, outputs, ours, rows);
     for (size_t p = 0; p < rows.size(); ++p) within[p] = within[p] || converging;

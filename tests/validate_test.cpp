@@ -144,6 +144,31 @@ TEST(ValidationCanFail, AWrongRonOrAMissingDiodeExitsFour) {
   EXPECT_NE(out.find("FAIL: every probe within 0.02"), std::string::npos) << out;
 }
 
+// Probes the witness cannot judge are reported with the reason and left out of the verdict: a
+// node joining only an inductor and a diode (the half-wave rectifier's n1), the absolute
+// potential of a bridge's floating load side.
+TEST(ValidationCanFail, ProbesTheWitnessCannotJudgeAreSaidAndLeftOut) {
+  ValidateArgs half;
+  half.netlist = source_path("circuits/half_wave_rectifier.cir").string();
+  std::string out;
+  EXPECT_EQ(validate_quietly(half, {}, out), kExitOk) << out;
+  EXPECT_NE(out.find("  v(n1) not judged: the node joins only inductors and diodes: while they are "
+                     "off the witness (no junction capacitance) spikes there (compare the inductor's "
+                     "current instead)"),
+            std::string::npos)
+      << out;
+  ValidateArgs bridge;
+  bridge.netlist = source_path("circuits/bridge_rectifier.cir").string();
+  bridge.probes = "v(p),v(p,n)";
+  bridge.ngspice_options = {"rshunt=1e9"};
+  EXPECT_EQ(validate_quietly(bridge, {}, out), kExitOk) << out;
+  EXPECT_NE(out.find("  v(p) not judged: its potential is not unique while no diode of its "
+                     "sub-circuit conducts"),
+            std::string::npos)
+      << out;
+  EXPECT_EQ(out.find("v(p,n) not judged"), std::string::npos) << out;
+}
+
 // --converge: the disagreement with ngspice halves with N on a rectifier (rates near 1, the
 // evidence that the ideal answer is the Shockley answers' limit), and does not shrink for a
 // wrong witness (one diode reversed), which fails.
