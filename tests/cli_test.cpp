@@ -447,6 +447,29 @@ TEST(Analyze, HalfWaveRectifierDiodeIsAnInductorDiode) {
   EXPECT_NE(r.out.find("\"index\": 1, \"state_labels\": [\"v(c1)\", \"i(l1)\"]"), std::string::npos) << r.out;
 }
 
+// K ... 1 used to be refused ("the inductance matrix is singular"); now only the magnetising
+// current is a state, and every winding's current is still a probe.
+TEST(Analyze, PerfectCouplingKeepsTheMagnetisingCurrent) {
+  const fs::path dir = scratch_dir("analyze_ideal_transformer");
+  Result r = run_lcspice("analyze --json '" + source_path("circuits/ideal_transformer_rectifier.cir").string() + "'", dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("\"state_labels\": [\"imag(l1)\"]"), std::string::npos) << r.out;
+}
+
+TEST(Run, PerfectCouplingRunsAndProbesEveryWinding) {
+  const fs::path dir = scratch_dir("run_ideal_transformer");
+  Result r = run_lcspice("run '" + source_path("circuits/ideal_transformer_rectifier.cir").string() +
+                             "' --method euler -o '" + (dir / "out.csv").string() + "'",
+                         dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  Csv csv = parse_csv(read_file(dir / "out.csv"));
+  EXPECT_EQ(csv.header, (std::vector<std::string>{"time", "v(p)", "v(s)", "v(out)", "i(l1)", "i(l2)", "i(d1)"}));
+  ASSERT_EQ(csv.rows.size(), 3001u);
+  const std::vector<double>& row = csv.rows[250];  // t = 5 ms, the source's crest
+  EXPECT_NEAR(row[2], 2 * row[1], 1e-12);
+  EXPECT_NEAR(row[6], (20 - 0.7) / 100.5, 1e-9);
+}
+
 
 // ---------------------------------------------------------------------------------------------
 // run --method smooth

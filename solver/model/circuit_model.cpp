@@ -8,6 +8,7 @@
 
 #include "solver/devices/device_registry.h"
 #include "solver/model/netlist_options.h"
+#include "solver/model/perfect_coupling.h"
 #include "solver/model/structural_zeros.h"
 
 namespace lcs {
@@ -41,6 +42,71 @@ void check_finite_inputs(const Netlist& netlist, const InputProvider& inputs, do
                              " at t = " + at + " is not a finite number");
     }
   }
+}
+
+std::string join_names(const std::vector<std::string>& names) {
+  std::string out;
+  for (size_t k = 0; k < names.size(); ++k) {
+    if (k > 0) out += k + 1 == names.size() ? " and " : ", ";
+    out += names[k];
+  }
+  return out;
+}
+
+// Mdyn's diagonal without cancellation, |Tc|^T C |Tc| + |Tl|^T |Lf| |Tl| (diagonal only): what
+// tells two windings in series opposition (L1 + L2 - 2M = 0) from a small inductance.
+Eigen::VectorXd uncancelled_diagonal(const Eigen::MatrixXd& Tc, const Eigen::VectorXd& Cd,
+                                     const Eigen::MatrixXd& Tl, const Eigen::MatrixXd& Lf) {
+  Eigen::VectorXd out = Eigen::VectorXd::Zero(Tc.cols());
+  for (int k = 0; k < Tc.rows(); ++k) out += Cd(k) * Tc.row(k).cwiseAbs2().transpose();
+  for (int k = 0; k < Lf.rows(); ++k)
+    for (int l = 0; l < Lf.cols(); ++l)
+      if (Lf(k, l) != 0)
+        out += std::abs(Lf(k, l)) * Tl.row(k).cwiseAbs().cwiseProduct(Tl.row(l).cwiseAbs()).transpose();
+  return out;
+}
+
+// The inductors (rows of TlN over `inds`) that a flux-free current pattern moves.
+std::vector<int> moved_inductors(const std::vector<int>& inds, const Eigen::MatrixXd& TlN) {
+  std::vector<int> out;
+  const double big = TlN.size() > 0 ? TlN.cwiseAbs().maxCoeff() : 0.0;
+  for (int k = 0; k < static_cast<int>(inds.size()); ++k)
+    if (TlN.row(k).cwiseAbs().maxCoeff() > 1e-12 * big) out.push_back(inds[k]);
+  return out;
+}
+
+TopologyError flux_free_current_undetermined(const Netlist& netlist, const CircuitGraph& g,
+                                             const std::vector<int>& inds, const Eigen::MatrixXd& TlN) {
+  std::vector<int> elements;
+  std::vector<std::string> names;
+  for (int b : moved_inductors(inds, TlN)) {
+    elements.push_back(g.branches[b].element);
+    names.push_back(netlist.elements[g.branches[b].element].name);
+  }
+  return TopologyError("perfectly coupled inductors " + join_names(names) +
+                           " (k = 1): the current that carries no flux between the windings meets "
+                           "no resistance or diode, so the winding currents are not determined "
+                           "(a higher-index circuit); put resistance in series with a winding or "
+                           "use k < 1",
+                       elements);
+}
+
+// The states after the flux reduction: a kept state that shares the flux of eliminated ones is
+// its group's magnetising current referred to its own winding, xi_j = x_j - sum N(j, e) x_e.
+std::vector<StateInfo> magnetising_states(const std::vector<StateInfo>& states,
+                                          const FluxReduction& flux) {
+  std::vector<StateInfo> out;
+  for (int j : flux.kept) {
+    StateInfo s = states[j];
+    for (size_t e = 0; e < flux.eliminated.size(); ++e) {
+      if (flux.N(j, e) == 0) continue;
+      if (s.windings.empty()) s.windings.push_back({s.branch, 1.0});
+      s.windings.push_back({states[flux.eliminated[e]].branch, -flux.N(j, e)});
+    }
+    if (!s.windings.empty()) s.label = "imag" + s.label.substr(1);  // i(l1) -> imag(l1)
+    out.push_back(s);
+  }
+  return out;
 }
 
 }  // namespace
@@ -126,13 +192,13 @@ CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& opt
       const bool cap = g.branches[b].cls == BranchClass::Capacitor;
       if (cap != (pass == 0)) continue;
       state_of[b] = static_cast<int>(m.states_.size());
-      m.states_.push_back({g.branches[b].element, b, (cap ? "v(" : "i(") + g.branches[b].name + ")", cap});
+      m.states_.push_back({g.branches[b].element, b, (cap ? "v(" : "i(") + g.branches[b].name + ")", cap, {}});
     }
 
-  const int n = static_cast<int>(m.states_.size());
+  int n = static_cast<int>(m.states_.size());  // fewer after perfect couplings (below)
   const int mp = static_cast<int>(m.pairs_.size());
   const int nu = static_cast<int>(m.inputs_.size());
-  const int ncol = n + mp + 2 * nu;  // columns of [x | z | u | du]
+  int ncol = n + mp + 2 * nu;  // columns of [x | z | u | du]
   auto col_z = [&](int k) { return n + k; };
   auto col_u = [&](int k) { return n + mp + k; };
   auto Bt = [&](int tree_branch, int link_branch) {
@@ -267,8 +333,6 @@ CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& opt
   //   Tl^T Lf (Tl x' + Tlu u')      = -sum over V, C, R, D tree branches f of b_{f,e} v_f
   Eigen::MatrixXd Mdyn = Tc.transpose() * Cd.asDiagonal() * Tc + Tl.transpose() * Lf * Tl;
   Eigen::MatrixXd Kdu = -(Tc.transpose() * Cd.asDiagonal() * Tcu + Tl.transpose() * Lf * Tlu);
-  m.energy_xx_ = Mdyn;
-  m.energy_xu_ = -Kdu;
   Eigen::MatrixXd Rp = Eigen::MatrixXd::Zero(n, nb);
   for (int b = 0; b < nb; ++b) {
     if (role[b] != Role::State) continue;
@@ -282,15 +346,37 @@ CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& opt
     }
   }
   Eigen::MatrixXd Rfull = Rp * P;  // forced rows of P are still zero and Rp never uses them
+
+  // Perfectly coupled inductors (k = 1): Mdyn is singular and the flux-free currents are
+  // algebraic (perfect_coupling.h). Change to the kept states xi, x = T xi + N eta(xi, z, u):
+  // every row over [x z u du] becomes a row over [xi z u du], and the equations are projected
+  // on T^T. Lf Tl N = 0 and Tc N = 0, so the forced rows below need only xi'.
+  const FluxReduction flux = flux_reduction(Mdyn, uncancelled_diagonal(Tc, Cd, Tl, Lf));
+  if (!flux.empty()) {
+    Eigen::MatrixXd Cmap;
+    if (!substitute_flux_free(flux, Rfull, n, Cmap))
+      throw flux_free_current_undetermined(netlist, g, inds, Tl * flux.N);
+    const Eigen::MatrixXd& T = flux.T;
+    P = P * Cmap;
+    Rfull = T.transpose() * Rfull * Cmap;
+    Mdyn = T.transpose() * Mdyn * T;
+    Kdu = T.transpose() * Kdu;
+    Tc = Tc * T;
+    Tl = Tl * T;
+    m.states_ = magnetising_states(m.states_, flux);
+    n = static_cast<int>(flux.kept.size());
+    ncol = n + mp + 2 * nu;
+  }
+  // Stored energy over the (kept) states: the flux-free currents of a perfect coupling store none.
+  m.energy_xx_ = Mdyn;
+  m.energy_xu_ = -Kdu;
   Eigen::MatrixXd Xdot = Eigen::MatrixXd::Zero(n, ncol);  // physical x' = A x + B z + E u + Gamma u'
   if (n > 0) {
     Eigen::FullPivLU<Eigen::MatrixXd> m_lu(Mdyn);
-    if (!m_lu.isInvertible()) {
+    if (!m_lu.isInvertible()) {  // not expected once perfect couplings are reduced
       std::vector<int> elements;
       for (int b : inds) elements.push_back(g.branches[b].element);
-      throw TopologyError("the inductance matrix is singular (perfectly coupled inductors, k = 1, "
-                          "are not supported yet; use k < 1)",
-                          elements);
+      throw TopologyError("the inductance matrix is singular", elements);
     }
     Xdot = solve_or_empty(m_lu, Rfull);
     Xdot.rightCols(nu) = solve_or_empty(m_lu, Kdu);

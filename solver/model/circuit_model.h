@@ -8,6 +8,9 @@
 // (inductor/current-source cutsets) are dependent and folded into the effective capacitance and
 // inductance matrices; the source derivatives they bring are absorbed by the state shift
 // x = x_phys - Gamma u, so the LCS state is x and the physical one x + Gamma u.
+// Perfectly coupled inductors (k = 1) make the inductance matrix singular: their currents that
+// carry no flux are algebraic and solved for, and only the flux stays a state, as the
+// magnetising current imag(l1) (perfect_coupling.h); branch rows still give every winding.
 // Inputs: u[0] = 1 (carries the thresholds VON), u[k] = value of the k-th independent source.
 // One complementarity pair per diode: a link diode is current-type (z = i, w = VON + RON i - v),
 // a tree diode voltage-type (z = VON + RON i - v, w = i), the swap of 5.4.4.

@@ -1,6 +1,8 @@
 // The state at the start of a transient (SPEC §2): with UIC, zero; otherwise the operating
 // point. Then IC= on capacitors and inductors, and `.ic v(node)=` for capacitor voltages,
 // override it (a node without .ic keeps its operating-point voltage, or 0 with UIC).
+// Perfectly coupled windings (k = 1) share one state: their IC= give it as the flux they carry
+// together, and a warning tells when the circuit cannot start with those winding currents.
 #pragma once
 
 #include <string>

@@ -7,6 +7,7 @@
 
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Dense>
@@ -29,8 +30,12 @@ struct Lcs {
 struct StateInfo {
   int element = -1;
   int branch = -1;
-  std::string label;       // "v(c1)" or "i(l1)"
+  std::string label;       // "v(c1)", "i(l1)", or "imag(l1)" (below)
   bool capacitor = true;   // a capacitor voltage; else an inductor current
+  // Perfectly coupled windings (K ... 1) share one state, the magnetising current referred to
+  // `branch`: the sum over `windings` of ratio * i(branch) (the first is `branch` itself, ratio
+  // 1; for two windings the second ratio is sqrt(L2/L1)). Empty for every other state.
+  std::vector<std::pair<int, double>> windings;  // (inductor branch, ratio)
 };
 
 struct PairInfo : PairLaw {

@@ -322,5 +322,111 @@ TEST(CircuitModel, BadlyScaledResistorsAreNotSingular) {
   EXPECT_NEAR(m.evaluate_dc(m.node_voltage(m.graph().node_index("b")), op.x, op.z, 0), 0.5, 1e-12);
 }
 
+int branch_named(const CircuitModel& m, const std::string& name) {
+  for (int b = 0; b < static_cast<int>(m.graph().branches.size()); ++b)
+    if (m.graph().branches[b].name == name) return b;
+  return -1;
+}
+
+// Perfect coupling (K ... 1): v1 across l1 (1 mH), l2 (4 mH) into rl. Lf = s s^T is singular and
+// only the flux is a state, kept as the magnetising current referred to l1,
+// imag(l1) = i(l1) + n i(l2), n = sqrt(L2/L1) = 2: L1 d imag/dt = u. The windings are algebraic:
+// v(s) = n u, i(l2) = -n u / RL, i(l1) = imag - n i(l2) = imag + n^2 u / RL.
+TEST(PerfectCoupling, OnlyTheMagnetisingCurrentIsAState) {
+  const double L1 = 1e-3, L2 = 4e-3, RL = 50, n = 2;
+  NetlistBuilder b;
+  b.v("v1", "p", "0", NetlistBuilder::sin(0, 10, 1000)).l("l1", "p", "0", L1).l("l2", "s", "0", L2);
+  b.k("k1", "l1", "l2", 1.0).r("rl", "s", "0", RL);
+  CircuitModel m = build(b);
+  ASSERT_EQ(m.lcs().states(), 1);
+  const StateInfo& st = m.states()[0];
+  EXPECT_EQ(st.label, "imag(l1)");
+  EXPECT_FALSE(st.capacitor);
+  ASSERT_EQ(st.windings.size(), 2u);
+  EXPECT_EQ(st.windings[0].first, branch_named(m, "l1"));
+  EXPECT_EQ(st.windings[0].second, 1.0);
+  EXPECT_EQ(st.windings[1].first, branch_named(m, "l2"));
+  EXPECT_NEAR(st.windings[1].second, n, 1e-12);
+  const Lcs& s = m.lcs();
+  EXPECT_NEAR(s.A(0, 0), 0, 1e-12 / L1);
+  EXPECT_NEAR(s.E(0, 1), 1 / L1, 1e-9 / L1);
+  EXPECT_NEAR(s.Gamma(0, 1), 0, 1e-15);
+  const OutputRow i2 = m.branch_current(branch_named(m, "l2"));
+  EXPECT_NEAR(i2.g(0), 0, 1e-12);
+  EXPECT_NEAR(i2.j(1), -n / RL, 1e-12);
+  const OutputRow i1 = m.branch_current(branch_named(m, "l1"));
+  EXPECT_NEAR(i1.g(0), 1, 1e-12);
+  EXPECT_NEAR(i1.j(1), n * n / RL, 1e-12);
+  const OutputRow vs = m.node_voltage(m.graph().node_index("s"));
+  EXPECT_NEAR(vs.j(1), n, 1e-12);
+}
+
+// Three windings coupled pairwise with k = 1 share one flux: one state, imag(l1) =
+// i(l1) + sqrt(L2/L1) i(l2) + sqrt(L3/L1) i(l3).
+TEST(PerfectCoupling, ThreeWindingsShareOneFlux) {
+  NetlistBuilder b;
+  b.v("v1", "p", "0", NetlistBuilder::sin(0, 10, 1000)).r("r1", "p", "a", 1).l("l1", "a", "0", 1e-3);
+  b.l("l2", "s", "0", 4e-3).r("r2", "s", "0", 10).l("l3", "t", "0", 9e-3).r("r3", "t", "0", 20);
+  b.k("k12", "l1", "l2", 1.0).k("k13", "l1", "l3", 1.0).k("k23", "l2", "l3", 1.0);
+  CircuitModel m = build(b);
+  ASSERT_EQ(m.lcs().states(), 1);
+  const StateInfo& st = m.states()[0];
+  EXPECT_EQ(st.label, "imag(l1)");
+  ASSERT_EQ(st.windings.size(), 3u);
+  EXPECT_NEAR(st.windings[1].second, 2, 1e-12);
+  EXPECT_NEAR(st.windings[2].second, 3, 1e-12);
+}
+
+// Two equal windings in series opposition with k = 1: L1 + L2 - 2M = 0, the loop has no
+// inductance left and no state; its current is the resistive one at once, v(b) = 0.
+TEST(PerfectCoupling, EqualWindingsInSeriesOppositionLeaveNoState) {
+  NetlistBuilder b;
+  b.v("v1", "a", "0", NetlistBuilder::sin(0, 10, 1000)).r("r1", "a", "b", 10);
+  b.l("l1", "b", "c", 1e-3).l("l2", "0", "c", 1e-3).k("k1", "l1", "l2", 1.0);
+  CircuitModel m = build(b);
+  EXPECT_EQ(m.lcs().states(), 0);
+  const OutputRow i = m.branch_current(branch_named(m, "r1"));
+  EXPECT_NEAR(i.j(1), 0.1, 1e-12);
+  EXPECT_NEAR(m.node_voltage(m.graph().node_index("b")).j(1), 0, 1e-12);
+  EXPECT_NEAR(m.node_voltage(m.graph().node_index("c")).j(1), 0, 1e-12);
+}
+
+// 1 - k = 1e-6 is far above the tolerance that counts a coupled group as flux-free (1e-12): both
+// currents stay states, and the leakage inductance is simulated.
+TEST(PerfectCoupling, NearlyPerfectCouplingKeepsBothStates) {
+  NetlistBuilder b;
+  b.v("v1", "p", "0", NetlistBuilder::sin(0, 10, 1000)).l("l1", "p", "0", 1e-3).l("l2", "s", "0", 4e-3);
+  b.k("k1", "l1", "l2", 1 - 1e-6).r("rl", "s", "0", 50);
+  CircuitModel m = build(b);
+  ASSERT_EQ(m.lcs().states(), 2);
+  EXPECT_EQ(m.states()[0].label, "i(l1)");
+  EXPECT_EQ(m.states()[1].label, "i(l2)");
+}
+
+// (4) An ideal transformer straight from a voltage source into a capacitor: the current that
+// carries no flux sees no resistance, v(c1) = 2 u would be forced (an impulsive current, higher
+// index). Refused, naming both windings.
+TEST(PerfectCoupling, HigherIndexCircuitIsRefusedNamingTheWindings) {
+  NetlistBuilder b;
+  b.v("v1", "p", "0", NetlistBuilder::sin(0, 10, 1000)).l("l1", "p", "0", 1e-3).l("l2", "s", "0", 4e-3);
+  b.k("k1", "l1", "l2", 1.0).c("c1", "s", "0", 1e-6);
+  try {
+    build(b);
+    FAIL() << "expected a topology error";
+  } catch (const TopologyError& e) {
+    EXPECT_EQ(e.message(),
+              "perfectly coupled inductors l1 and l2 (k = 1): the current that carries no flux "
+              "between the windings meets no resistance or diode, so the winding currents are not "
+              "determined (a higher-index circuit); put resistance in series with a winding or use "
+              "k < 1");
+    EXPECT_EQ(e.elements(), (std::vector<int>{1, 2}));
+  }
+  // With a resistor in series with the secondary the same circuit is fine.
+  NetlistBuilder r;
+  r.v("v1", "p", "0", NetlistBuilder::sin(0, 10, 1000)).l("l1", "p", "0", 1e-3).l("l2", "s", "0", 4e-3);
+  r.k("k1", "l1", "l2", 1.0).r("r2", "s", "c", 1).c("c1", "c", "0", 1e-6);
+  EXPECT_EQ(build(r).lcs().states(), 2);  // imag(l1) and v(c1)
+}
+
 }  // namespace
 }  // namespace lcs

@@ -102,3 +102,61 @@ TEST(InitialState, AnInductorLoopIsChosenOnceAndSaidSo) {
 
 }  // namespace
 }  // namespace lcs
+
+namespace lcs {
+namespace {
+
+using testing::NetlistBuilder;
+
+// A 1:2 perfectly coupled transformer (k = 1) whose secondary feeds a diode: only the magnetising
+// current imag(l1) = i(l1) + 2 i(l2) is a state. IC= on the windings set it as the flux they
+// carry together; the winding currents at the start are then the circuit's.
+CircuitModel transformer_with_diode(std::optional<double> ic1, std::optional<double> ic2) {
+  NetlistBuilder b;
+  b.v("v1", "p", "0", NetlistBuilder::sin(0, 10, 1000)).r("r1", "p", "a", 1).l("l1", "a", "0", 1e-3, ic1);
+  b.l("l2", "s", "0", 4e-3, ic2).k("k1", "l1", "l2", 1.0).d("d1", "s", "out", 0.7, 0.5).r("rl", "out", "0", 50);
+  return CircuitModel::build(b.build(), {});
+}
+
+// IC= 1 A on the primary alone: the secondary diode blocks at the start (v(s) = -2 V), so the
+// primary does carry 1 A: the flux is 1 A referred to l1 and nothing is reported.
+TEST(InitialState, PerfectlyCoupledPrimaryIcHolds) {
+  CircuitModel m = transformer_with_diode(1.0, {});
+  ASSERT_EQ(m.states().size(), 1u);
+  InitialState init = initial_state(m, true, 0.0);
+  EXPECT_NEAR(m.physical_state(init.x, 0.0)(0), 1.0, 1e-15);
+  EXPECT_TRUE(init.warnings.empty()) << init.warnings.front();
+}
+
+// IC= 1 A and 0.5 A: the flux is 1 + 2 x 0.5 = 2 A referred to l1, but the blocking diode leaves
+// the secondary no current: the primary starts with all 2 A, and the warning says so.
+TEST(InitialState, PerfectlyCoupledIcsThatDisagreeWithTheCircuitAreReported) {
+  CircuitModel m = transformer_with_diode(1.0, 0.5);
+  InitialState init = initial_state(m, true, 0.0);
+  EXPECT_NEAR(m.physical_state(init.x, 0.0)(0), 2.0, 1e-15);
+  ASSERT_EQ(init.warnings.size(), 1u);
+  EXPECT_EQ(init.warnings[0],
+            "IC= on l1 and l2: perfectly coupled windings (k = 1) share one state, imag(l1) = "
+            "i(l1) + 2*i(l2), set to 2 A by the IC=s; the circuit starts with i(l1) = 2 A, "
+            "i(l2) = 0 A");
+}
+
+// Without UIC a winding without IC= brings its operating-point current: 5 V through 2 ohm gives
+// i(l1) = 2.5 A, i(l2) = 0; IC= 0.25 A on l2 makes the flux 2.5 + 2 x 0.25 = 3 A. With the
+// secondary's 10 ohm the circuit then starts with i(l2) = 1/9 A and i(l1) = 3 - 2/9 A.
+TEST(InitialState, PerfectlyCoupledIcWithTheOperatingPoint) {
+  NetlistBuilder b;
+  b.v("v1", "p", "0", NetlistBuilder::dc(5)).r("r1", "p", "a", 2).l("l1", "a", "0", 1e-3);
+  b.l("l2", "s", "0", 4e-3, 0.25).k("k1", "l1", "l2", 1.0).r("r2", "s", "0", 10);
+  CircuitModel m = CircuitModel::build(b.build(), {});
+  InitialState init = initial_state(m, false, 0.0);
+  EXPECT_NEAR(m.physical_state(init.x, 0.0)(0), 3.0, 1e-12);
+  ASSERT_EQ(init.warnings.size(), 1u);
+  EXPECT_EQ(init.warnings[0],
+            "IC= on l2: perfectly coupled windings (k = 1) share one state, imag(l1) = i(l1) + "
+            "2*i(l2), set to 3 A by the IC=s; the circuit starts with i(l1) = 2.77778 A, "
+            "i(l2) = 0.111111 A");
+}
+
+}  // namespace
+}  // namespace lcs
