@@ -283,7 +283,13 @@ Mode& EventDriven::Impl::select(double t, const Eigen::VectorXd& x, const std::s
   if (m > 0) {
     const Eigen::VectorXd q = Csel * x + Fsel * model.input_values(t + eta);
     const LcpSolution& sol = selector->solve(q);
-    if (sol.status != LcpStatus::Solved)
+    // Lemke's "numerical failure" still returns its residual-minimal point. At an event the
+    // switching LCP is degenerate by construction (a pair just reached zero), and rows whose
+    // entries are all O(eta) (a diode whose only other path is an inductor) can leave the
+    // final basis too ill-conditioned to pass feas_tol. Its active set is then only a first
+    // guess, checked by consistent() and searched around like any other; only a ray or the
+    // pivot limit (no solution found at all) ends the run.
+    if (sol.status != LcpStatus::Solved && sol.status != LcpStatus::NumericalFailure)
       throw NumericalFailure(t, std::string("no next mode: the switching LCP has no solution (Lemke: ") +
                                     lcp_status_name(sol.status) + ")");
     for (int i = 0; i < m; ++i) active[i] = sol.z(i) > 0;
