@@ -463,6 +463,18 @@ bool EventDriven::Impl::advance_to(const DyadicTime& target, const Progress& pro
   return true;
 }
 
+Eigen::VectorXd event_mode_z(const LcsProblem& model, double t0, double h_run, const Eigen::VectorXd& x) {
+  EventDriven::Impl r(model, EventOptions{});
+  r.prepare(h_run, t0 + h_run);  // sources' breakpoints only as far as the first step
+  const std::string signature = r.sources->signature(t0);
+  Mode& md = r.select(t0, x, signature, nullptr);
+  Eigen::VectorXd sigma;
+  r.sources->sigma(t0, signature, sigma);
+  Eigen::VectorXd Xs(r.n + sigma.size());
+  Xs << x, sigma;
+  return md.Z * Xs;
+}
+
 EventDriven::EventDriven(const LcsProblem& model, const EventOptions& options)
     : ContinuousMethod(model), impl_(std::make_unique<Impl>(model, options)) {}
 
