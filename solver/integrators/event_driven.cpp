@@ -87,6 +87,7 @@ struct EventDriven::Impl {
   int stop_level = 43;
   double bracket = 0;  // 2 h0 / 2^stop_level: twice the length events are located to
   int n = 0, m = 0;
+  bool step_levels = true;  // modes get their step level (an eigenvalue problem); not to select one
 
   // Mode selection: implicit Euler with the tiny step eta, LCP(Csel x + Fsel u(t + eta), Msel).
   double eta = 0;
@@ -168,7 +169,7 @@ Mode& EventDriven::Impl::mode(const std::vector<bool>& active, const std::string
     md->GMMnorm = md->GMM.rowwise().norm();
     md->Pcnorm = md->Pc.rowwise().norm();
     double omega = 0;
-    if (md->q > 0) {
+    if (md->q > 0 && step_levels) {
       Eigen::EigenSolver<Eigen::MatrixXd> es(md->M, false);
       if (es.info() == Eigen::Success) omega = es.eigenvalues().imag().cwiseAbs().maxCoeff();
     }
@@ -465,6 +466,7 @@ bool EventDriven::Impl::advance_to(const DyadicTime& target, const Progress& pro
 
 Eigen::VectorXd event_mode_z(const LcsProblem& model, double t0, double h_run, const Eigen::VectorXd& x) {
   EventDriven::Impl r(model, EventOptions{});
+  r.step_levels = false;         // no steps here
   r.prepare(h_run, t0 + h_run);  // sources' breakpoints only as far as the first step
   const std::string signature = r.sources->signature(t0);
   Mode& md = r.select(t0, x, signature, nullptr);
