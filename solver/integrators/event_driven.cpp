@@ -87,6 +87,7 @@ struct EventDriven::Impl {
   int stop_level = 43;
   double bracket = 0;  // 2 h0 / 2^stop_level: twice the length events are located to
   int n = 0, m = 0;
+  bool step_levels = true;  // modes get their step level (an eigenvalue problem); not to select one
 
   // Mode selection: implicit Euler with the tiny step eta, LCP(Csel x + Fsel u(t + eta), Msel).
   double eta = 0;
@@ -168,7 +169,7 @@ Mode& EventDriven::Impl::mode(const std::vector<bool>& active, const std::string
     md->GMMnorm = md->GMM.rowwise().norm();
     md->Pcnorm = md->Pc.rowwise().norm();
     double omega = 0;
-    if (md->q > 0) {
+    if (md->q > 0 && step_levels) {
       Eigen::EigenSolver<Eigen::MatrixXd> es(md->M, false);
       if (es.info() == Eigen::Success) omega = es.eigenvalues().imag().cwiseAbs().maxCoeff();
     }
@@ -283,7 +284,13 @@ Mode& EventDriven::Impl::select(double t, const Eigen::VectorXd& x, const std::s
   if (m > 0) {
     const Eigen::VectorXd q = Csel * x + Fsel * model.input_values(t + eta);
     const LcpSolution& sol = selector->solve(q);
-    if (sol.status != LcpStatus::Solved)
+    // Lemke's "numerical failure" still returns its residual-minimal point. At an event the
+    // switching LCP is degenerate by construction (a pair just reached zero), and rows whose
+    // entries are all O(eta) (a diode whose only other path is an inductor) can leave the
+    // final basis too ill-conditioned to pass feas_tol. Its active set is then only a first
+    // guess, checked by consistent() and searched around like any other; only a ray or the
+    // pivot limit (no solution found at all) ends the run.
+    if (sol.status != LcpStatus::Solved && sol.status != LcpStatus::NumericalFailure)
       throw NumericalFailure(t, std::string("no next mode: the switching LCP has no solution (Lemke: ") +
                                     lcp_status_name(sol.status) + ")");
     for (int i = 0; i < m; ++i) active[i] = sol.z(i) > 0;
@@ -455,6 +462,19 @@ bool EventDriven::Impl::advance_to(const DyadicTime& target, const Progress& pro
     if (progress && (stats.steps & 4095) == 0) progress(pos.seconds(h0));
   }
   return true;
+}
+
+Eigen::VectorXd event_mode_z(const LcsProblem& model, double t0, double h_run, const Eigen::VectorXd& x) {
+  EventDriven::Impl r(model, EventOptions{});
+  r.step_levels = false;         // no steps here
+  r.prepare(h_run, t0 + h_run);  // sources' breakpoints only as far as the first step
+  const std::string signature = r.sources->signature(t0);
+  Mode& md = r.select(t0, x, signature, nullptr);
+  Eigen::VectorXd sigma;
+  r.sources->sigma(t0, signature, sigma);
+  Eigen::VectorXd Xs(r.n + sigma.size());
+  Xs << x, sigma;
+  return md.Z * Xs;
 }
 
 EventDriven::EventDriven(const LcsProblem& model, const EventOptions& options)

@@ -13,6 +13,8 @@
 
 #include <memory>
 
+#include <Eigen/Dense>
+
 #include "solver/integrators/continuous_method.h"
 
 namespace lcs {
@@ -38,6 +40,13 @@ class EventDriven : public ContinuousMethod {
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
+  friend Eigen::VectorXd event_mode_z(const LcsProblem&, double, double, const Eigen::VectorXd&);
 };
+
+// z at t0+ in the mode the event method would start in from the state x (x taken as it is, no
+// jump): the switching LCP's mode, checked against its derivatives and index-one constraints,
+// and searched around where that fails. For the time-stepping methods' start
+// (start_complementarity.h). Throws NumericalFailure when no mode fits x.
+Eigen::VectorXd event_mode_z(const LcsProblem& model, double t0, double h_run, const Eigen::VectorXd& x);
 
 }  // namespace lcs

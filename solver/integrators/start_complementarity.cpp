@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <string>
 
+#include "solver/integrators/event_driven.h"
 #include "solver/lcp/lcp.h"
 #include "solver/model/numerical_failure.h"
 
@@ -46,6 +47,28 @@ Eigen::VectorXd consistent_start_z(const LcsProblem& model, double t0, double h_
   if (sol.status != LcpStatus::Solved)
     throw NumericalFailure(t0, std::string("no consistent initial complementarity state (Lemke: ") +
                                    lcp_status_name(sol.status) + ")");
+  // The LCP alone is not enough where a pair's own row has no O(1) entry (D_ii = 0: a diode whose
+  // only other path is an inductor, w = i_L) or where it leaves a pair at z = w = 0. Its z is
+  // then set by O(h) entries: the 1e-15 A of rounding an operating point leaves in i_L, divided
+  // by h/L, put such a diode's voltage 0.36 V off; a pair coupled to a neighbour by O(1) entries
+  // was left at its threshold, 0.7 V off (tests/random). The theta method carried either into
+  // its steps as a ringing. There the event method's mode selection decides, which checks the
+  // mode against its derivatives and index-one constraints; a state it cannot fit (one that
+  // must jump) keeps the LCP's answer.
+  bool ambiguous = false;
+  const double qs = q.size() > 0 ? q.cwiseAbs().maxCoeff() : 0.0;
+  const double zs = (sol.z.size() > 0 ? sol.z.cwiseAbs().maxCoeff() : 0.0) + qs;
+  for (int i = 0; i < s.pairs(); ++i) {
+    const bool index_one = !(s.D(i, i) > 1e-12 * s.D.row(i).cwiseAbs().maxCoeff());
+    const bool degenerate = std::abs(sol.z(i)) <= 1e-9 * zs && std::abs(sol.w(i)) <= 1e-9 * qs;
+    ambiguous = ambiguous || index_one || degenerate;
+  }
+  if (ambiguous) {
+    try {
+      return event_mode_z(model, t0, h_run, x);
+    } catch (const NumericalFailure&) {
+    }
+  }
   return sol.z;
 }
 
