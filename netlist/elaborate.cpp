@@ -158,6 +158,7 @@ class Elaborator {
     model_types_[flat] = m.type;
     in.models[m.name] = flat;
     if (m.type == "d") net_.diode_models[flat] = std::move(m.diode);
+    if (m.type == "npn" || m.type == "pnp") net_.bjt_models[flat] = std::move(m.bjt);
   }
 
   void add_element(const Card& card, Instance& in) {
@@ -165,10 +166,12 @@ class Elaborator {
     scope.params = in.scope.get();
     scope.prefix = in.prefix;
     scope.node = [&](const std::string& n) { return map_node(in, n); };
+    scope.is_model = [&](const std::string& n) { return !find_model(in, n).empty(); };
     ParsedElement pe = parse_element(card, scope, net_.warnings);
     register_name(pe.element.name, card.at(0), "element");
     const std::size_t index = net_.elements.size();
     if (pe.element.kind == ElementKind::Diode) pe.element.model = resolve_diode_model(in, card, pe.model_token);
+    if (pe.element.kind == ElementKind::Bjt) pe.element.model = resolve_bjt_model(in, card, pe.model_token);
     if (pe.element.kind == ElementKind::Coupling)
       coupling_refs_.push_back({index, {card.at(pe.coupled_tokens[0]), card.at(pe.coupled_tokens[1])}});
     net_.elements.push_back(std::move(pe.element));
@@ -227,6 +230,25 @@ class Elaborator {
   }
 
   // The flat name of the model a diode card names: the innermost instance that defines it.
+  // The model a name denotes in this instance or an enclosing one (flat name), or "".
+  std::string find_model(const Instance& in, const std::string& name) const {
+    for (const Instance* p = &in; p; p = p->parent) {
+      auto it = p->models.find(name);
+      if (it != p->models.end()) return it->second;
+    }
+    return "";
+  }
+
+  std::string resolve_bjt_model(const Instance& in, const Card& card, std::size_t token) const {
+    const std::string& name = card[token].lower;
+    const std::string flat = find_model(in, name);
+    if (flat.empty()) throw NetlistError(card.at(token), "transistor model " + quote(name) + " is not defined");
+    const std::string& type = model_types_.at(flat);
+    if (type != "npn" && type != "pnp")
+      throw NetlistError(card.at(token), "model " + quote(name) + " is not a transistor model (it is " + to_upper(type) + ")");
+    return flat;
+  }
+
   std::string resolve_diode_model(const Instance& in, const Card& card, std::size_t token) const {
     const std::string& name = card[token].lower;
     for (const Instance* p = &in; p; p = p->parent) {
@@ -287,6 +309,14 @@ class Elaborator {
         const Element* e = net_.find_element(p.a);
         if (!e) throw NetlistError(p.loc, "unknown element " + quote(p.a));
         if (e->kind == ElementKind::Coupling) throw NetlistError(p.loc, quote(p.a) + " has no current (it is a coupling)");
+        if (e->kind == ElementKind::Bjt)
+          throw NetlistError(p.loc, quote(p.a) + " is a transistor: probe its terminal currents ic(" + p.a +
+                                        "), ib(" + p.a + ") or ie(" + p.a + ")");
+      } else if (p.kind == Probe::Kind::TerminalCurrent) {
+        const Element* e = net_.find_element(p.a);
+        if (!e) throw NetlistError(p.loc, "unknown element " + quote(p.a));
+        if (e->kind != ElementKind::Bjt)
+          throw NetlistError(p.loc, p.name() + ": " + quote(p.a) + " is not a transistor (use i(" + p.a + "))");
       } else {
         for (const std::string* n : {&p.a, &p.b})
           if (!n->empty() && !all.count(*n)) throw NetlistError(p.loc, "unknown node " + quote(*n));

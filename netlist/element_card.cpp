@@ -52,6 +52,77 @@ struct Reader {
   }
 };
 
+bool starts_with_digit(const Token& t) {
+  return t.is_expression() || (!t.lower.empty() && ((t.lower[0] >= '0' && t.lower[0] <= '9') || t.lower[0] == '.'));
+}
+
+// Q collector base emitter [substrate] model [area] [OFF] [AREA=a] [M=m] [IC=vbe,vce] [TEMP=t]
+// The optional substrate node and the model name are told apart by which of them names a model,
+// as ngspice does.
+void parse_bjt(const Card& card, const Reader& r, const ElementScope& scope, ParsedElement& out,
+               std::vector<std::string>& warnings) {
+  Element& e = out.element;
+  e.kind = ElementKind::Bjt;
+  for (std::size_t i = 1; i <= 3; ++i) r.node(i, e);
+  if (e.nodes[0] == e.nodes[1] && e.nodes[1] == e.nodes[2])
+    throw NetlistError(card.at(1), r.name + " connects all three terminals to node " + quote(e.nodes[0]));
+  std::vector<std::size_t> positional;
+  std::size_t i = 4;
+  for (; i < card.size(); ++i) {
+    const Token& t = card[i];
+    if (t.is_word("off") || (i + 1 < card.size() && card[i + 1].is(Token::Kind::Equals))) break;
+    if (!t.is_word() && !t.is_expression()) throw NetlistError(card.at(t), "unexpected token " + quote(t.text));
+    positional.push_back(i);
+  }
+  if (positional.empty()) throw NetlistError(card.after_last(), "missing model name for " + quote(r.name));
+  auto names_model = [&](std::size_t k) { return card[k].is_word() && scope.is_model && scope.is_model(card[k].lower); };
+  std::size_t model = positional[0], area = 0;
+  if (names_model(positional[0])) {
+    if (positional.size() > 2) r.extra(positional[2]);
+    if (positional.size() == 2) area = positional[1];
+  } else if (positional.size() >= 2 && (names_model(positional[1]) || !starts_with_digit(card[positional[1]]))) {
+    model = positional[1];  // after a substrate node (not modelled)
+    if (positional.size() > 3) r.extra(positional[3]);
+    if (positional.size() == 3) area = positional[2];
+    warnings.push_back(warning_line(card.at(positional[0]), quote(r.name) + ": substrate node " +
+                                                            quote(card[positional[0]].lower) +
+                                                            " is not modelled (no substrate junction)"));
+  }
+  if (!card[model].is_word()) throw NetlistError(card.at(model), "expected a model name, got " + quote(card[model].text));
+  e.model = card[model].lower;
+  out.model_token = model;
+  e.value = 1.0;
+  if (area) {
+    e.value = r.value(area);
+    r.positive(area, e.value, "area");
+  }
+  while (i < card.size()) {
+    const Token& t = card[i];
+    if (t.is_word("off")) {
+      warnings.push_back(warning_line(card.at(t), quote(r.name) + ": OFF is ignored (op finds every operating "
+                                                  "point; .ic or .nodeset chooses one)"));
+      ++i;
+      continue;
+    }
+    if (!(t.is_word() && i + 1 < card.size() && card[i + 1].is(Token::Kind::Equals))) r.extra(i);
+    if (i + 2 >= card.size()) throw NetlistError(card.after_last(), "missing value for " + quote(t.lower));
+    std::size_t last = i + 3;  // IC=vbe,vce takes two values
+    if (t.lower == "ic") {
+      while (last + 1 < card.size() && card[last].is(Token::Kind::Comma)) last += 2;
+      warnings.push_back(warning_line(card.at(t), quote(r.name) + ": IC= is ignored (use .ic on the nodes)"));
+    } else if (t.lower == "area" || t.lower == "m") {
+      const double v = r.value(i + 2);
+      r.positive(i + 2, v, t.lower == "area" ? "area" : "multiplier m");
+      e.value *= v;
+    } else if (t.lower == "temp" || t.lower == "dtemp") {
+      warnings.push_back(warning_line(card.at(t), quote(r.name) + ": " + t.lower + "= is ignored (no temperature model)"));
+    } else {
+      r.extra(i);
+    }
+    i = last;
+  }
+}
+
 }  // namespace
 
 bool is_ground(const std::string& n) { return n == "0" || n == "gnd"; }
@@ -121,7 +192,8 @@ ParsedElement parse_element(const Card& card, const ElementScope& scope,
       break;
     }
     case 'q':
-      throw NetlistError(card.at(head), "bipolar transistors (Q cards) are not supported yet");
+      parse_bjt(card, r, scope, out, warnings);
+      break;
     case 't':
       throw NetlistError(card.at(head), "lossless transmission lines (T cards) are not supported yet");
     case 'o':

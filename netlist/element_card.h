@@ -1,4 +1,4 @@
-// Element cards R, L, C, K, V, I, D (X instances are the subcircuit expander's). Rejects Q, T, O
+// Element cards R, L, C, K, V, I, D, Q (X instances are the subcircuit expander's). Rejects T, O
 // (not supported yet) and unknown element letters. Internal to the netlist reader.
 #pragma once
 
@@ -17,11 +17,12 @@ struct ElementScope {
   const ParamScope* params = nullptr;
   std::string prefix;                                    // "" or "x1.", prepended to names
   std::function<std::string(const std::string&)> node;   // local node name -> flat node name
+  std::function<bool(const std::string&)> is_model;      // a model of this name is in scope
 };
 
 struct ParsedElement {
-  Element element;         // names and nodes flat; D: `model` still the local name as written
-  std::size_t model_token = 0;               // D: token of the model name
+  Element element;         // names and nodes flat; D, Q: `model` still the local name as written
+  std::size_t model_token = 0;               // D, Q: token of the model name
   std::size_t coupled_tokens[2] = {0, 0};    // K: tokens of the two inductor names
 };
 

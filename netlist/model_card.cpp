@@ -13,6 +13,81 @@ const char* const kIgnoredDiodeParams[] = {
     "trs", "trs1", "trs2", "tbv1", "tbv2", "tcv", "tpb", "tphp", "tcj", "tcjsw", "gap1", "gap2",
     "rsw", "isr", "nr", "vp", "bvj", "jbv", "xom", "xoi", "lm", "lp", "wm", "wp", "xm", "xp", "d"};
 
+// Gummel–Poon (ngspice level 1 BJT) parameters that lcspice accepts and does not use, and the
+// vendor extras found on manufacturers' cards (VCEO, ICRATING, MFG, ...), whose values may be words.
+const char* const kIgnoredBjtParams[] = {
+    "vaf", "va", "ikf", "ik", "ise", "ne", "var", "vb", "ikr", "isc", "nc", "rb", "irb", "rbm",
+    "re", "rc", "vje", "pe", "mje", "me", "tf", "xtf", "vtf", "itf", "ptf", "cjc", "vjc", "pc",
+    "mjc", "mc", "xcjc", "tr", "cjs", "ccs", "vjs", "ps", "mjs", "ms", "xtb", "eg", "xti", "kf",
+    "af", "fc", "tnom", "tref", "level", "subs", "iss", "ns", "nkf", "quasimod", "rco", "vo",
+    "gamma", "qco", "tlev", "tlevc", "temp", "dtemp", "vceo", "icrating", "mfg", "type", "bvcbo",
+    "bvebo", "bvceo", "iave", "vpk", "isub", "xcjc2", "vg", "cn", "d", "vbe", "vce"};
+
+template <std::size_t N>
+bool listed(const char* const (&list)[N], const std::string& key) {
+  return std::any_of(std::begin(list), std::end(list), [&](const char* p) { return key == p; });
+}
+
+void add_ignored(std::vector<std::string>& ignored, SourceLocation& first, const SourceLocation& at,
+                 const std::string& key) {
+  if (ignored.empty()) first = at;
+  if (std::find(ignored.begin(), ignored.end(), key) == ignored.end()) ignored.push_back(key);
+}
+
+void warn_ignored(const std::vector<std::string>& ignored, const SourceLocation& first, const char* what,
+                  const std::string& name, std::vector<std::string>& warnings) {
+  if (ignored.empty()) return;
+  std::string list;
+  for (const std::string& p : ignored) list += (list.empty() ? "" : ", ") + p;
+  warnings.push_back(warning_line(first, std::string(what) + " model " + quote(name) + ": parameter" +
+                                             (ignored.size() > 1 ? "s " : " ") + list + " ignored by lcspice"));
+}
+
+void read_bjt_params(const Card& card, const std::vector<Assignment>& params, const ParamScope& scope,
+                     BjtModel& q, std::vector<std::string>& warnings) {
+  SourceLocation first_ignored;
+  for (const Assignment& a : params) {
+    const Token& key = card[a.name];
+    if (listed(kIgnoredBjtParams, key.lower)) {
+      add_ignored(q.ignored, first_ignored, card.at(key), key.lower);
+      continue;
+    }
+    if (a.flag()) throw NetlistError(card.at(key), "missing '=' after " + quote(key.text));
+    const double v = value_of(card, a.value_first, a.value_last, scope);
+    const SourceLocation at_value = card.at(a.value_first);
+    auto check = [&](bool ok, const char* rule) {
+      if (!ok) throw NetlistError(at_value, "transistor parameter " + quote(key.lower) + " must " + rule);
+    };
+    const std::string& k = key.lower;
+    if (k == "bf") {
+      check(v > 0, "be positive");
+      q.bf = v;
+    } else if (k == "br") {
+      check(v >= 0, "not be negative");
+      q.br = v;
+    } else if (k == "von" || k == "vone" || k == "vonc") {
+      (k == "von" ? q.von : k == "vone" ? q.vone : q.vonc) = v;
+    } else if (k == "ron" || k == "rone" || k == "ronc") {
+      check(v >= 0, "not be negative");
+      (k == "ron" ? q.ron : k == "rone" ? q.rone : q.ronc) = v;
+    } else if (k == "is") {
+      check(v > 0, "be positive");
+      q.is = v;
+      q.has_is = true;
+    } else if (k == "nf" || k == "nr") {
+      check(v > 0, "be positive");
+      (k == "nf" ? q.nf : q.nr) = v;
+      (k == "nf" ? q.has_nf : q.has_nr) = true;
+    } else if (k == "cje") {
+      check(v >= 0, "not be negative");
+      q.cje = v;
+    } else {
+      throw NetlistError(card.at(key), "unknown transistor model parameter " + quote(key.text));
+    }
+  }
+  warn_ignored(q.ignored, first_ignored, "transistor", q.name, warnings);
+}
+
 const char* const kModelTypes[] = {"d", "npn", "pnp", "ltra"};
 
 }  // namespace
@@ -41,7 +116,14 @@ ModelCard parse_model_card(const Card& card, const ParamScope& scope, const std:
     last = close;
   }
   std::vector<Assignment> params = split_assignments(card, first, last, m.type != "d", false);
-  if (m.type != "d") return m;  // BJT and line models: read by the cards that will use them
+  if (m.type == "npn" || m.type == "pnp") {
+    m.bjt.name = prefix + m.name;
+    m.bjt.pnp = m.type == "pnp";
+    m.bjt.loc = card.at(1);
+    read_bjt_params(card, params, scope, m.bjt, warnings);
+    return m;
+  }
+  if (m.type != "d") return m;  // line models: read by the cards that will use them
 
   DiodeModel& d = m.diode;
   d.name = prefix + m.name;
@@ -71,22 +153,13 @@ ModelCard parse_model_card(const Card& card, const ParamScope& scope, const std:
       check(v >= 0, "not be negative");
       d.rs = v;
       d.has_rs = true;
-    } else if (std::any_of(std::begin(kIgnoredDiodeParams), std::end(kIgnoredDiodeParams),
-                           [&](const char* p) { return key.lower == p; })) {
-      if (d.ignored.empty()) first_ignored = card.at(key);
-      if (std::find(d.ignored.begin(), d.ignored.end(), key.lower) == d.ignored.end())
-        d.ignored.push_back(key.lower);
+    } else if (listed(kIgnoredDiodeParams, key.lower)) {
+      add_ignored(d.ignored, first_ignored, card.at(key), key.lower);
     } else {
       throw NetlistError(card.at(key), "unknown diode model parameter " + quote(key.text));
     }
   }
-  if (!d.ignored.empty()) {
-    std::string list;
-    for (const std::string& p : d.ignored) list += (list.empty() ? "" : ", ") + p;
-    warnings.push_back(warning_line(first_ignored, "diode model " + quote(d.name) + ": parameter" +
-                                                       (d.ignored.size() > 1 ? "s " : " ") + list +
-                                                       " ignored by lcspice"));
-  }
+  warn_ignored(d.ignored, first_ignored, "diode", d.name, warnings);
   return m;
 }
 

@@ -1,5 +1,6 @@
-// `.model NAME TYPE [(] params [)]`: diode models (D) with ideal and smooth parameters; NPN, PNP
-// and LTRA models are accepted for the cards that will use them and store nothing yet.
+// `.model NAME TYPE [(] params [)]`: diode models (D) and transistor models (NPN, PNP) with ideal
+// and smooth parameters; LTRA models are accepted for the cards that will use them and store
+// nothing yet.
 // Internal to the netlist reader.
 #pragma once
 
@@ -16,6 +17,7 @@ struct ModelCard {
   std::string name;   // lower-case, as written
   std::string type;   // "d", "npn", "pnp" or "ltra"
   DiodeModel diode;   // type "d": name = prefix + name
+  BjtModel bjt;       // type "npn" or "pnp": name = prefix + name
 };
 
 ModelCard parse_model_card(const Card& card, const ParamScope& scope, const std::string& prefix,

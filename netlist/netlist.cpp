@@ -11,6 +11,7 @@ const char* element_kind_name(ElementKind kind) {
     case ElementKind::VoltageSource: return "voltage source";
     case ElementKind::CurrentSource: return "current source";
     case ElementKind::Diode: return "diode";
+    case ElementKind::Bjt: return "bipolar transistor";
   }
   return "element";
 }
@@ -20,6 +21,7 @@ std::string Probe::name() const {
     case Kind::NodeVoltage: return "v(" + a + ")";
     case Kind::NodePairVoltage: return "v(" + a + "," + b + ")";
     case Kind::ElementCurrent: return "i(" + a + ")";
+    case Kind::TerminalCurrent: return std::string("i") + terminal + "(" + a + ")";
   }
   return a;
 }

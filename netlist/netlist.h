@@ -20,6 +20,7 @@ enum class ElementKind {
   VoltageSource,  // V n+ n- waveform
   CurrentSource,  // I n+ n- waveform  (current flows n+ -> through source -> n-)
   Diode,          // D anode cathode model
+  Bjt,            // Q collector base emitter [substrate] model [area]
 };
 
 const char* element_kind_name(ElementKind kind);  // "resistor", "inductor", ...
@@ -32,10 +33,10 @@ struct Element {
   // Lower-case node names; ground is always "0" ("gnd" is mapped to "0"). Nodes inside a
   // subcircuit instance that are not ports are prefixed like names ("x1.mid").
   std::vector<std::string> nodes;
-  double value = 0.0;                  // R [ohm], L [H], C [F]; K: coupling coefficient k
+  double value = 0.0;                  // R [ohm], L [H], C [F]; K: coupling coefficient k; Q: area
   std::optional<double> ic;            // IC= of L (current) and C (voltage)
   Waveform waveform;                   // V and I
-  std::string model;                   // D: model name, lower-case
+  std::string model;                   // D, Q: model name, lower-case (flat)
   std::vector<std::string> coupled;    // K: the two inductor names (lower-case, full path)
   SourceLocation loc;                  // the card (for subcircuit elements: the card inside .subckt)
 };
@@ -47,6 +48,25 @@ struct DiodeModel {
   bool has_is = false, has_n = false, has_rs = false;  // which smooth ones were written
   std::vector<std::string> ignored;    // accepted ngspice parameters unused by lcspice (cjo, tt, bv, ...)
   SourceLocation loc;
+};
+
+// `.model NAME NPN(...)` / `PNP(...)`: the full Ebers–Moll transistor (Stewart 1.3.2, 5.4.7).
+// Junction E is base–emitter, C is base–collector. Per-junction VONE/VONC and RONE/RONC override
+// VON/RON. Gummel–Poon parameters the model does not use are accepted and listed in `ignored`.
+struct BjtModel {
+  std::string name;                    // lower-case
+  bool pnp = false;
+  double bf = 100, br = 1;             // forward / reverse current gain (alpha = beta / (1 + beta))
+  std::optional<double> von, ron, vone, vonc, rone, ronc;  // ideal junction parameters as written
+  double is = 1e-16, nf = 1.0, nr = 1.0;  // smooth (Shockley) junction parameters
+  bool has_is = false, has_nf = false, has_nr = false;
+  std::optional<double> cje;           // B–E capacitance [F], the book's regularisation (bjtcap)
+  std::vector<std::string> ignored;    // accepted Gummel–Poon parameters unused by lcspice
+  SourceLocation loc;
+  // Set by smooth_netlist (the smooth method): the junctions are Shockley curves, an ideal one
+  // replaced by its smooth equivalent with this emission coefficient and saturation current.
+  struct Smooth { double emission = 0, saturation_current = 0; };
+  std::optional<Smooth> smooth;
 };
 
 struct TranSpec {
@@ -62,14 +82,16 @@ struct NodeIc {                        // one entry of `.ic v(node)=value`
 };
 
 struct Probe {
-  enum class Kind { NodeVoltage, NodePairVoltage, ElementCurrent };
+  enum class Kind { NodeVoltage, NodePairVoltage, ElementCurrent, TerminalCurrent };
   Kind kind = Kind::NodeVoltage;
   std::string a, b;                    // nodes (a, b) or element name (a); lower-case
+  char terminal = 0;                   // TerminalCurrent: 'c', 'b' or 'e' (a BJT's ic/ib/ie)
   SourceLocation loc;                  // empty file when it came from the command line
-  std::string name() const;            // canonical CSV header: "v(n)", "v(p,n)", "i(d1)"
+  std::string name() const;            // canonical CSV header: "v(n)", "v(p,n)", "i(d1)", "ic(q1)"
 };
 
-// Parses one probe as written in `.print`/`.save`/`--probe`: v(n), v(n1,n2), i(name).
+// Parses one probe as written in `.print`/`.save`/`--probe`: v(n), v(n1,n2), i(name), and a
+// transistor's terminal currents ic(q), ib(q), ie(q).
 // Throws NetlistError (with `loc` adjusted by the column offset inside `text`).
 Probe parse_probe(const std::string& text, const SourceLocation& loc);
 
@@ -78,6 +100,7 @@ struct Netlist {
   std::string title;                   // first line, as written
   std::vector<Element> elements;       // in card order, subcircuits expanded in place
   std::map<std::string, DiodeModel> diode_models;  // by lower-case name
+  std::map<std::string, BjtModel> bjt_models;      // by lower-case name
   std::optional<TranSpec> tran;
   std::vector<NodeIc> node_ics;
   std::vector<Probe> probes;           // `.print tran` and `.save`, in order, duplicates removed

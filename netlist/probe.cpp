@@ -1,4 +1,5 @@
-// Probes as written in .print/.save/--probe: v(node), v(node1,node2), i(element).
+// Probes as written in .print/.save/--probe: v(node), v(node1,node2), i(element), and the
+// terminal currents of a transistor ic(q), ib(q), ie(q).
 #include <algorithm>
 
 #include "netlist/element_card.h"
@@ -18,7 +19,7 @@ Probe parse_probe(const std::string& text, const SourceLocation& loc) {
 
   auto fail = [&]() -> Probe {
     throw NetlistError(at, "invalid probe " + parse::quote(s) +
-                               ": expected v(node), v(node1,node2) or i(element)");
+                               ": expected v(node), v(node1,node2), i(element) or ic/ib/ie(transistor)");
   };
   auto blank = [](char c) { return c == ' ' || c == '\t'; };
   auto name_char = [&](char c) { return !blank(c) && c != '(' && c != ')' && c != ',' && c != '=' &&
@@ -36,6 +37,9 @@ Probe parse_probe(const std::string& text, const SourceLocation& loc) {
   };
   if (lower.empty() || (lower[0] != 'v' && lower[0] != 'i')) return fail();
   const char kind = lower[i++];
+  char terminal = 0;
+  if (kind == 'i' && i < lower.size() && (lower[i] == 'c' || lower[i] == 'b' || lower[i] == 'e'))
+    terminal = lower[i++];
   skip();
   if (i >= lower.size() || lower[i] != '(') return fail();
   ++i;
@@ -57,7 +61,11 @@ Probe parse_probe(const std::string& text, const SourceLocation& loc) {
   Probe p;
   p.loc = at;
   auto node = [](const std::string& n) { return parse::is_ground(n) ? std::string("0") : n; };
-  if (kind == 'i') {
+  if (terminal) {
+    p.kind = Probe::Kind::TerminalCurrent;
+    p.a = a;
+    p.terminal = terminal;
+  } else if (kind == 'i') {
     p.kind = Probe::Kind::ElementCurrent;
     p.a = a;
   } else if (b2.empty()) {

@@ -52,7 +52,7 @@ TranslatedDeck translate_to_ngspice(const CircuitModel& model, const std::vector
   std::set<std::string> current_probes;
   for (const Probe& p : probes) {
     if (p.kind == Probe::Kind::ElementCurrent) current_probes.insert(p.a);
-    else deck.probes[p.name()] = {ngspice_node_vector(p.a),
+    else if (p.kind != Probe::Kind::TerminalCurrent) deck.probes[p.name()] = {ngspice_node_vector(p.a),
                                   p.kind == Probe::Kind::NodePairVoltage ? ngspice_node_vector(p.b) : ""};
   }
 

@@ -179,13 +179,13 @@ TEST(ParseDiagnostics, ControlCards) {
 TEST(ParseDiagnostics, Probes) {
   check({
       {"t\nR1 a 0 1\n.print tran v(a) x(b)\n",
-       "t.cir:3:18: error: invalid probe 'x(b)': expected v(node), v(node1,node2) or i(element)\n"
+       "t.cir:3:18: error: invalid probe 'x(b)': expected v(node), v(node1,node2), i(element) or ic/ib/ie(transistor)\n"
        ".print tran v(a) x(b)\n                 ^~~~"},
       {"t\nR1 a 0 1\n.save v(a,0,1)\n",
-       "t.cir:3:7: error: invalid probe 'v(a,0,1)': expected v(node), v(node1,node2) or i(element)\n"
+       "t.cir:3:7: error: invalid probe 'v(a,0,1)': expected v(node), v(node1,node2), i(element) or ic/ib/ie(transistor)\n"
        ".save v(a,0,1)\n      ^~~~~~~~"},
       {"t\nR1 a 0 1\n.save @r1[i]\n",
-       "t.cir:3:7: error: invalid probe '@r1[i]': expected v(node), v(node1,node2) or i(element)\n"
+       "t.cir:3:7: error: invalid probe '@r1[i]': expected v(node), v(node1,node2), i(element) or ic/ib/ie(transistor)\n"
        ".save @r1[i]\n      ^~~~~~"},
       {"t\nR1 a 0 1\n.print tran v(b)\n", "t.cir:3:13: error: unknown node 'b'\n.print tran v(b)\n            ^~~~"},
       {"t\nR1 a 0 1\n.print tran v(a,zz)\n", "t.cir:3:13: error: unknown node 'zz'\n.print tran v(a,zz)\n            ^~~~~~~"},

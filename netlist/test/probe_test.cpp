@@ -41,12 +41,22 @@ TEST(ParseProbe, FromTheCommandLineHasNoLocation) {
     parse_probe("x(l1)", SourceLocation());
     FAIL();
   } catch (const NetlistError& e) {
-    EXPECT_EQ(e.formatted(), "error: invalid probe 'x(l1)': expected v(node), v(node1,node2) or i(element)");
+    EXPECT_EQ(e.formatted(), "error: invalid probe 'x(l1)': expected v(node), v(node1,node2), i(element) or ic/ib/ie(transistor)");
+  }
+}
+
+TEST(ParseProbe, TransistorTerminalCurrents) {
+  for (char t : {'c', 'b', 'e'}) {
+    const Probe p = parse_probe(std::string("I") + t + " ( Q1 )", at(1, 1));
+    EXPECT_EQ(p.kind, Probe::Kind::TerminalCurrent);
+    EXPECT_EQ(p.a, "q1");
+    EXPECT_EQ(p.terminal, t);
+    EXPECT_EQ(p.name(), std::string("i") + t + "(q1)");
   }
 }
 
 TEST(ParseProbe, Errors) {
-  for (const char* bad : {"", "v", "v()", "v(a", "va)", "v(a,b,c)", "i(a,b)", "x(a)", "vm(a)", "v(a)b", "ic(q1)",
+  for (const char* bad : {"", "v", "v()", "v(a", "va)", "v(a,b,c)", "i(a,b)", "x(a)", "vm(a)", "v(a)b", "ix(q1)", "ic(q1,q2)", "ic()",
                           "v(a b)", "@r1[i]", "v(,a)", "v(a,)", "all"}) {
     EXPECT_THROW(parse_probe(bad, at(1, 1)), NetlistError) << bad;
   }
@@ -60,7 +70,7 @@ TEST(ParseProbe, ErrorColumnSkipsLeadingBlanks) {
     EXPECT_EQ(e.location().column, 24);
     EXPECT_EQ(e.location().length, 5);
     EXPECT_EQ(e.formatted(),
-              "p.cir:1:24: error: invalid probe 'bogus': expected v(node), v(node1,node2) or i(element)\n"
+              "p.cir:1:24: error: invalid probe 'bogus': expected v(node), v(node1,node2), i(element) or ic/ib/ie(transistor)\n"
               ".print tran   v(out)   bogus\n"
               "                       ^~~~~");
   }

@@ -99,6 +99,7 @@ struct NgspiceCards {
   std::vector<std::string> lines, models;
   std::map<std::string, ProbeSource> probes;  // by lcspice probe name ("i(d1)")
   bool ideal_diode = false;  // a diode given a threshold source + sharp Shockley junction
+  std::string witness;       // what stands in for the device, when `validate` should say so
 };
 
 class Device {
@@ -116,8 +117,13 @@ class Device {
   virtual std::vector<BranchDecl> branches() const = 0;
   virtual void stamp(const StampContext& context, Stamps& stamps) const = 0;
 
-  // SPEC §3 default probes: is this device's current among them (V, L and D elements)?
+  // SPEC §3 default probes: is this device's current among them (V, L and D elements)? Which of
+  // its terminal currents are (a transistor's ic, ib, ie)?
   virtual bool current_probed_by_default() const { return false; }
+  virtual std::vector<char> terminals_probed_by_default() const { return {}; }
+  // A multi-terminal device's current into one terminal (SPEC §3, `ic(q1)`) as a combination of
+  // its own branch currents: (local branch, coefficient). Empty: no such terminal.
+  virtual std::vector<std::pair<int, double>> terminal_current(char terminal) const { return {}; }
 
   // Devices with history: called after every accepted step (t, LCS state x, complementarity
   // variables z), and the longest step they allow. Nothing today has history.
@@ -130,12 +136,12 @@ class Device {
   // What `analyze` warns about it (parameters the ideal model ignores, fits).
   virtual std::vector<std::string> notes() const { return {}; }
 
- protected:
   // ngspice reads the element type from the first letter of the name: `r1` of instance `x1`
   // (flattened "x1.r1") is written `r_x1.r1`.
   static std::string deck_name(char letter, const std::string& name);
   static std::string number(double x);  // "%.12g"
 
+ protected:
   Element element_;
   int element_index_ = -1;
 };
@@ -143,6 +149,7 @@ class Device {
 // What model formation passes to every device it creates.
 struct DeviceOptions {
   double ifit = 10e-3;  // diode fit current (`.options ifit=`)
+  std::optional<double> bjtcap;  // base–emitter capacitance of every transistor (`.options bjtcap=`)
 };
 
 }  // namespace lcs

@@ -1,5 +1,6 @@
 #include "solver/devices/device_registry.h"
 
+#include "solver/devices/bjt.h"
 #include "solver/devices/capacitor.h"
 #include "solver/devices/coupling.h"
 #include "solver/devices/diode.h"
@@ -23,6 +24,7 @@ const std::vector<DeviceEntry>& device_registry() {
       {'i', ElementKind::CurrentSource, "current source", make<IndependentSource>},
       {'k', ElementKind::Coupling, "coupling", make<Coupling>},
       {'l', ElementKind::Inductor, "inductor", make<Inductor>},
+      {'q', ElementKind::Bjt, "bipolar transistor", make<Bjt>},
       {'r', ElementKind::Resistor, "resistor", make<Resistor>},
       {'v', ElementKind::VoltageSource, "voltage source", make<IndependentSource>},
   };

@@ -56,24 +56,30 @@ void Diode::stamp(const StampContext& context, Stamps& stamps) const {
   stamps.pairs.push_back({context.branch(0), pair});
 }
 
-// anode --[+ VON -]-- mid --|>|-- cathode: the threshold source doubles as the diode's ammeter.
+std::string ngspice_junction(const std::string& tag, const std::string& anode, const std::string& cathode,
+                             const SmoothDiodeLaw& smooth, const NgspiceDeckContext& context,
+                             NgspiceCards& cards) {
+  const std::string mid = context.fresh("lcs_" + tag + "_mid");
+  const std::string meter = context.fresh(Device::deck_name('v', "thr_" + tag));
+  const std::string model = context.fresh("lcs_m_" + tag);
+  cards.lines.push_back(meter + " " + anode + " " + mid + " DC " + Device::number(smooth.series_von));
+  cards.models.push_back(".model " + model + " D(IS=" + Device::number(smooth.is) + " N=" +
+                         Device::number(smooth.n) + " RS=" + Device::number(smooth.rs * context.ron_factor) + ")");
+  if (context.open)
+    cards.lines.push_back(Device::deck_name('r', "open_" + tag) + " " + mid + " " + cathode + " 1e15");
+  else
+    cards.lines.push_back(Device::deck_name('d', tag) + " " + mid + " " + cathode + " " + model);
+  return meter;
+}
+
 NgspiceCards Diode::ngspice(const NgspiceDeckContext& context) const {
   NgspiceCards cards;
   std::string anode = element_.nodes.at(0), cathode = element_.nodes.at(1);
   if (context.reversed) std::swap(anode, cathode);
-  const std::string mid = context.fresh("lcs_" + name() + "_mid");
-  const std::string meter = context.fresh(deck_name('v', "thr_" + name()));
-  const std::string model = context.fresh("lcs_m_" + name());
   const SmoothDiodeLaw smooth =
       smooth_equivalent(card_, law_, context.emission, context.saturation_current);
-  cards.lines.push_back(meter + " " + anode + " " + mid + " DC " + number(smooth.series_von));
-  cards.models.push_back(".model " + model + " D(IS=" + number(smooth.is) + " N=" + number(smooth.n) +
-                         " RS=" + number(smooth.rs * context.ron_factor) + ")");
+  const std::string meter = ngspice_junction(name(), anode, cathode, smooth, context, cards);
   cards.ideal_diode = !(law_.fitted || card_.has_is || card_.has_n || card_.has_rs);
-  if (context.open)
-    cards.lines.push_back(deck_name('r', "open_" + name()) + " " + mid + " " + cathode + " 1e15");
-  else
-    cards.lines.push_back(deck_name('d', name()) + " " + mid + " " + cathode + " " + model);
   cards.probes["i(" + name() + ")"] = {meter + "#branch", ""};
   return cards;
 }

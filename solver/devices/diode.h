@@ -34,6 +34,14 @@ struct SmoothDiodeLaw {
 SmoothDiodeLaw smooth_equivalent(const DiodeModel& card, const ResolvedDiodeLaw& law,
                                  double emission, double saturation_current);
 
+// The ngspice cards of one ideal junction named `tag`:
+//   anode --[meter: + VON -]-- mid --|>|-- cathode   (the Shockley diode of `smooth`)
+// The threshold source doubles as the junction's ammeter; returns its name. `context.open` puts
+// a 1e15 ohm resistor where the diode would be (a test hook of `validate`).
+std::string ngspice_junction(const std::string& tag, const std::string& anode, const std::string& cathode,
+                             const SmoothDiodeLaw& smooth, const NgspiceDeckContext& context,
+                             NgspiceCards& cards);
+
 class Diode : public Device {
  public:
   // Throws NetlistError (at the card) when its model is not defined.

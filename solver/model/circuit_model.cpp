@@ -115,7 +115,9 @@ CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& opt
   CircuitModel m;
   m.netlist_ = netlist;
   DeviceOptions device_options;
-  device_options.ifit = read_netlist_options(netlist).ifit.value_or(options.ifit);  // NetlistError
+  const NetlistOptions netlist_options = read_netlist_options(netlist);  // NetlistError
+  device_options.ifit = netlist_options.ifit.value_or(options.ifit);
+  device_options.bjtcap = netlist_options.bjtcap;
   m.devices_ = make_devices(m.netlist_, device_options);
   m.graph_ = graph_of_devices(m.devices_);
   const CircuitGraph& g = m.graph_;
@@ -462,10 +464,30 @@ std::vector<Probe> CircuitModel::default_probes() const {
   std::vector<Probe> probes;
   for (size_t node = 1; node < graph_.nodes.size(); ++node)
     probes.push_back({Probe::Kind::NodeVoltage, graph_.nodes[node], "", {}});
-  for (const Branch& b : graph_.branches)
-    if (devices_[b.element]->current_probed_by_default())
-      probes.push_back({Probe::Kind::ElementCurrent, b.name, "", {}});
+  for (const std::shared_ptr<Device>& d : devices_) {
+    if (d->current_probed_by_default()) probes.push_back({Probe::Kind::ElementCurrent, d->name(), "", {}});
+    for (char terminal : d->terminals_probed_by_default()) {
+      Probe p{Probe::Kind::TerminalCurrent, d->name(), "", {}};
+      p.terminal = terminal;
+      probes.push_back(p);
+    }
+  }
   return probes;
+}
+
+OutputRow CircuitModel::terminal_current(const Probe& p) const {
+  for (const std::shared_ptr<Device>& d : devices_) {
+    if (d->name() != p.a) continue;
+    const std::vector<std::pair<int, double>> terms = d->terminal_current(p.terminal);
+    if (terms.empty()) break;
+    int first = -1;  // the device's branches are consecutive in the graph
+    for (int b = 0; b < static_cast<int>(graph_.branches.size()) && first < 0; ++b)
+      if (graph_.branches[b].element == d->element_index()) first = b;
+    Eigen::RowVectorXd r = Eigen::RowVectorXd::Zero(branch_i_.cols());
+    for (auto [local, coeff] : terms) r += coeff * branch_i_.row(first + local);
+    return row_from_physical(r);
+  }
+  throw NetlistError(p.loc, "probe " + p.name() + ": no transistor '" + p.a + "'");
 }
 
 OutputMap CircuitModel::output_map(const std::vector<Probe>& probes) const {
@@ -493,6 +515,9 @@ OutputMap CircuitModel::output_map(const std::vector<Probe>& probes) const {
         row = {a.g - b.g, a.h - b.h, a.j - b.j, a.k - b.k};
         break;
       }
+      case Probe::Kind::TerminalCurrent:
+        row = terminal_current(p);
+        break;
       case Probe::Kind::ElementCurrent: {
         int branch = -1;
         for (int b = 0; b < static_cast<int>(graph_.branches.size()); ++b)

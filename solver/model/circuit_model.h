@@ -78,6 +78,8 @@ class CircuitModel : public LcsProblem {
 
   OutputRow branch_voltage(int branch) const;
   OutputRow branch_current(int branch) const;
+  // A multi-terminal device's terminal current (`ic(q1)`); NetlistError at the probe if none.
+  OutputRow terminal_current(const Probe& probe) const;
   OutputRow node_voltage(int node) const;
   double evaluate(const OutputRow& row, const Eigen::VectorXd& x, const Eigen::VectorXd& z,
                   double t) const;

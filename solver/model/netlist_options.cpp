@@ -12,6 +12,7 @@ namespace {
 
 const char* const kThetaMessage = ".options theta must be a number in [0, 1]";
 const char* const kIfitMessage = ".options ifit must be a positive number of amperes";
+const char* const kBjtcapMessage = ".options bjtcap must be a capacitance in farads, not negative";
 
 std::string unknown_method_message(const std::string& name) {
   return "unknown method '" + name + "' (known: " + spice_method_names() + ")";
@@ -19,6 +20,7 @@ std::string unknown_method_message(const std::string& name) {
 
 bool valid_theta(double theta) { return theta >= 0 && theta <= 1; }
 bool valid_ifit(double ifit) { return ifit > 0 && std::isfinite(ifit); }
+bool valid_bjtcap(double c) { return c >= 0 && std::isfinite(c); }
 
 [[noreturn]] void fail(const Netlist& netlist, const std::string& option, const std::string& message) {
   auto it = netlist.option_locs.find(option);
@@ -44,6 +46,7 @@ bool NetlistOptions::IsValid(std::string* why) const {
     return false;
   };
   if (ifit && !valid_ifit(*ifit)) return fail(kIfitMessage);
+  if (bjtcap && !valid_bjtcap(*bjtcap)) return fail(kBjtcapMessage);
   if (!method.empty() && !find_method(method)) return fail(unknown_method_message(method));
   if (gear && !method.empty()) return fail("method=gear leaves the method to the caller");
   if (theta && !valid_theta(*theta)) return fail(kThetaMessage);
@@ -74,6 +77,11 @@ NetlistOptions read_netlist_options(const Netlist& netlist) {
     const std::optional<double> ifit = parse::parse_number(*text);
     if (!ifit || !valid_ifit(*ifit)) fail(netlist, "ifit", kIfitMessage);
     o.ifit = *ifit;
+  }
+  if (const std::string* text = option_text(netlist, "bjtcap")) {
+    const std::optional<double> c = parse::parse_number(*text);
+    if (!c || !valid_bjtcap(*c)) fail(netlist, "bjtcap", kBjtcapMessage);
+    o.bjtcap = *c;
   }
   return o;
 }

@@ -19,6 +19,9 @@ struct NetlistOptions {
   bool gear = false;
   // `.options theta=` in [0, 1] (trap: 0.5; an explicit theta= wins); nullopt: not given.
   std::optional<double> theta;
+  // `.options bjtcap=`: a base–emitter capacitance [F] for every transistor (Stewart 5.4.7's
+  // physical regularisation), over the cards' CJE; >= 0 and finite. nullopt: not given.
+  std::optional<double> bjtcap;
 
   bool IsValid(std::string* why) const;
 };
@@ -27,6 +30,7 @@ struct NetlistOptions {
 //   "unknown method 'NAME' (known: euler, ..., trap)"
 //   ".options theta must be a number in [0, 1]"
 //   ".options ifit must be a positive number of amperes"
+//   ".options bjtcap must be a capacitance in farads, not negative"
 NetlistOptions read_netlist_options(const Netlist& netlist);
 
 }  // namespace lcs

@@ -19,6 +19,8 @@ Netlist smooth_netlist(const Netlist& netlist, const SmoothingOptions& options) 
     card.rs = s.rs;
     card.has_is = card.has_n = card.has_rs = true;
   }
+  for (auto& [name, card] : out.bjt_models)
+    card.smooth = BjtModel::Smooth{options.emission, options.saturation_current};
   return out;
 }
 

@@ -27,7 +27,7 @@ TEST(DeviceRegistry, SortedByLetterAndOneDevicePerElementKind) {
   const ElementKind kinds[] = {ElementKind::Resistor,      ElementKind::Inductor,
                                ElementKind::Capacitor,     ElementKind::Coupling,
                                ElementKind::VoltageSource, ElementKind::CurrentSource,
-                               ElementKind::Diode};
+                               ElementKind::Diode,         ElementKind::Bjt};
   for (ElementKind kind : kinds) {
     const auto n = std::count_if(table.begin(), table.end(),
                                  [&](const DeviceEntry& e) { return e.kind == kind; });
