@@ -41,9 +41,34 @@ TEST(ParseDiagnostics, SyntaxAndElements) {
   });
 }
 
+TEST(ParseDiagnostics, BipolarTransistorCards) {
+  check({
+      {"t\nQ1 c b e qmod\n", "t.cir:2:10: error: transistor model 'qmod' is not defined\nQ1 c b e qmod\n         ^~~~"},
+      {"t\nQ1 c b e qm\n.model qm zz(bf=10)\n",
+       "t.cir:3:11: error: unsupported model type 'zz'\n.model qm zz(bf=10)\n          ^~"},
+      {"t\nD1 a 0 qm\n.model qm npn(bf=10)\n",
+       "t.cir:2:8: error: model 'qm' is not a diode model (it is NPN)\nD1 a 0 qm\n       ^~"},
+      {"t\nQ1 c b e dm\n.model dm d(von=0.7)\n",
+       "t.cir:2:10: error: model 'dm' is not a transistor model (it is D)\nQ1 c b e dm\n         ^~"},
+      {"t\nQ1 c b\n", "t.cir:2:7: error: missing node for 'q1'\nQ1 c b\n      ^"},
+      {"t\nQ1 c b e\n", "t.cir:2:9: error: missing model name for 'q1'\nQ1 c b e\n        ^"},
+      {"t\nQ1 c b e qm\n.model qm npn(bf=0)\n",
+       "t.cir:3:18: error: transistor parameter 'bf' must be positive\n.model qm npn(bf=0)\n                 ^"},
+      {"t\nQ1 c b e qm\n.model qm pnp(br=-1)\n",
+       "t.cir:3:18: error: transistor parameter 'br' must not be negative\n.model qm pnp(br=-1)\n                 ^~"},
+      {"t\nQ1 c b e qm\n.model qm npn(bogus=1)\n",
+       "t.cir:3:15: error: unknown transistor model parameter 'bogus'\n.model qm npn(bogus=1)\n              ^~~~~"},
+      {"t\nQ1 c b e qm 0\n.model qm npn\n",
+       "t.cir:2:13: error: area of 'q1' must be positive\nQ1 c b e qm 0\n            ^"},
+      {"t\nQ1 c c c qm\n.model qm npn\n",
+       "t.cir:2:4: error: q1 connects all three terminals to node 'c'\nQ1 c c c qm\n   ^"},
+      {"t\nQ1 c b e qm 2 3\n.model qm npn\n",
+       "t.cir:2:15: error: unexpected extra token '3'\nQ1 c b e qm 2 3\n              ^"},
+  });
+}
+
 TEST(ParseDiagnostics, UnsupportedCards) {
   check({
-      {"t\nQ1 c b e qmod\n", "t.cir:2:1: error: bipolar transistors (Q cards) are not supported yet\nQ1 c b e qmod\n^~"},
       {"t\n  tline a 0 b 0 z0=50 td=1n\n",
        "t.cir:2:3: error: lossless transmission lines (T cards) are not supported yet\n  tline a 0 b 0 z0=50 td=1n\n  ^~~~~"},
       {"t\nO1 a 0 b 0 lmod\n", "t.cir:2:1: error: lossy transmission lines (O cards) are not supported yet\nO1 a 0 b 0 lmod\n^~"},
