@@ -58,6 +58,8 @@ int op_command(const OpArgs& args) {
     throw CliError(kExitNumerical, "lcspice: error: the operating point has no solution");
   if (!points.front().undetermined.empty())
     warn(undetermined_state_warning(points.front().undetermined));
+  if (!args.all)
+    for (const std::string& w : points.front().warnings) warn(w);
   std::printf("* operating point at t = 0: %s\n", netlist.title.c_str());
   if (args.all) std::printf("* %zu solution%s\n", points.size(), points.size() == 1 ? "" : "s");
   for (size_t k = 0; k < points.size(); ++k) {

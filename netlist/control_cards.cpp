@@ -9,7 +9,7 @@ namespace lcs::parse {
 namespace {
 
 const char* const kIgnoredCards[] = {".ac", ".dc", ".noise", ".tf", ".meas", ".measure", ".four",
-                                     ".temp", ".nodeset", ".width", ".sens", ".disto", ".pz"};
+                                     ".temp", ".width", ".sens", ".disto", ".pz"};
 const char* const kOtherAnalyses[] = {"ac", "dc", "op", "noise", "tf", "disto", "pz", "sens"};
 
 [[noreturn]] void expected_ic(const Card& card, std::size_t i) {
@@ -26,6 +26,7 @@ DotCard classify_dot_card(const std::string& k) {
   if (k == ".ends") return DotCard::Ends;
   if (k == ".tran") return DotCard::Tran;
   if (k == ".ic") return DotCard::Ic;
+  if (k == ".nodeset") return DotCard::Nodeset;
   if (k == ".print" || k == ".plot") return DotCard::Print;
   if (k == ".save") return DotCard::Save;
   if (k == ".options" || k == ".option" || k == ".opt") return DotCard::Options;

@@ -18,6 +18,7 @@ enum class DotCard {
   Ends,
   Tran,
   Ic,
+  Nodeset,   // same syntax as .ic: hints that choose among several operating points
   Print,     // .print, .plot
   Save,
   Options,   // .options, .option, .opt
@@ -34,6 +35,7 @@ DotCard classify_dot_card(const std::string& lower_keyword);
 bool allowed_in_subcircuit(DotCard kind);
 
 TranSpec parse_tran(const Card& card, const ParamScope& scope);
+// .ic and .nodeset: v(node)=value ...
 std::vector<NodeIc> parse_ic(const Card& card, const ParamScope& scope);
 // .print/.plot (`tran` or no analysis name: probes; another analysis: ignored with a warning)
 // and .save (`all` means the default probes).

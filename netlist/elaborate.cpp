@@ -128,6 +128,9 @@ class Elaborator {
       case DotCard::Ic:
         for (NodeIc& ic : parse_ic(card, *in.scope)) net_.node_ics.push_back(std::move(ic));
         return;
+      case DotCard::Nodeset:
+        for (NodeIc& ic : parse_ic(card, *in.scope)) net_.node_sets.push_back(std::move(ic));
+        return;
       case DotCard::Print:
       case DotCard::Save:
         for (Probe& p : parse_probe_card(card, net_.warnings)) net_.probes.push_back(std::move(p));
@@ -290,14 +293,16 @@ class Elaborator {
 
   void check_node_ics() {
     const std::set<std::string> all = nodes();
-    std::vector<NodeIc> unique;
-    for (NodeIc& ic : net_.node_ics) {
-      if (!all.count(ic.node)) throw NetlistError(ic.loc, "unknown node " + quote(ic.node));
-      auto same = std::find_if(unique.begin(), unique.end(), [&](const NodeIc& u) { return u.node == ic.node; });
-      if (same != unique.end()) *same = ic;  // the later one wins
-      else unique.push_back(ic);
+    for (std::vector<NodeIc>* list : {&net_.node_ics, &net_.node_sets}) {
+      std::vector<NodeIc> unique;
+      for (NodeIc& ic : *list) {
+        if (!all.count(ic.node)) throw NetlistError(ic.loc, "unknown node " + quote(ic.node));
+        auto same = std::find_if(unique.begin(), unique.end(), [&](const NodeIc& u) { return u.node == ic.node; });
+        if (same != unique.end()) *same = ic;  // the later one wins
+        else unique.push_back(ic);
+      }
+      *list = std::move(unique);
     }
-    net_.node_ics = std::move(unique);
   }
 
   void check_probes() {

@@ -103,6 +103,7 @@ struct Netlist {
   std::map<std::string, BjtModel> bjt_models;      // by lower-case name
   std::optional<TranSpec> tran;
   std::vector<NodeIc> node_ics;
+  std::vector<NodeIc> node_sets;       // `.nodeset`: choose among several operating points
   std::vector<Probe> probes;           // `.print tran` and `.save`, in order, duplicates removed
   std::map<std::string, std::string> options;  // `.options` name (lower-case) -> value text ("" for flags)
   // Set by smooth_netlist (solver/model): every diode is a Shockley junction with the card's

@@ -94,6 +94,7 @@ void Bjt::stamp(const StampContext& context, Stamps& stamps) const {
     p.law = law.law;
     p.fitted = law.fitted;
     p.smooth = {card.is, card.n};
+    p.transfer = true;
     stamps.pairs.push_back({context.branch(local), p});
   };
   pair(l.de, "be", card_e_, law_e_);

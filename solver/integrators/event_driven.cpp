@@ -290,7 +290,10 @@ Mode& EventDriven::Impl::select(double t, const Eigen::VectorXd& x, const std::s
     // final basis too ill-conditioned to pass feas_tol. Its active set is then only a first
     // guess, checked by consistent() and searched around like any other; only a ray or the
     // pivot limit (no solution found at all) ends the run.
-    if (sol.status != LcpStatus::Solved && sol.status != LcpStatus::NumericalFailure)
+    // Several solutions (transistor feedback) make Lemke's pick a first guess as well: the
+    // derivatives (consistent()) decide which mode continues the state.
+    if (sol.status != LcpStatus::Solved && sol.status != LcpStatus::NumericalFailure &&
+        sol.status != LcpStatus::NotUnique)
       throw NumericalFailure(t, std::string("no next mode: the switching LCP has no solution (Lemke: ") +
                                     lcp_status_name(sol.status) + ")");
     for (int i = 0; i < m; ++i) active[i] = sol.z(i) > 0;

@@ -52,6 +52,11 @@ struct RadauIIA::StepFactors {
   // Only the last stage row block of P is kept: x+ = X_s = Sx x + Sz Z + Su U.
   Eigen::MatrixXd Sx, Sz, Su, Qx, Qu;
   std::unique_ptr<LcpWarmSolver> lcp;
+  // Implicit Euler over the same step, w = CEx x + CEu u(t+h) + ME z: where the stage LCP has
+  // several solutions and the previous mode has ended, its choice of mode (one stable solution)
+  // is the stages' (made when first needed).
+  Eigen::MatrixXd CEx, CEu;
+  std::unique_ptr<LcpWarmSolver> euler;
 };
 
 RadauIIA::RadauIIA(const LcsProblem& model, int stages)
@@ -97,12 +102,13 @@ RadauIIA::StepFactors& RadauIIA::factors(double h) {
   f->Qx = IC * Px;
   f->Qu = IC * PU + kron(Is, s.F);
   f->lcp = std::make_unique<LcpWarmSolver>(kron(Is, s.D) + IC * PZ);
+  if (model_.has_transfer_pairs()) f->lcp->watch_multiplicity();
   ++stats_.factorisations;
   return *cache_.emplace(h, std::move(f)).first->second;
 }
 
 void RadauIIA::DoStart(double t0, double h_run, const Eigen::VectorXd& x, Eigen::VectorXd& z) {
-  z = consistent_start_z(model_, t0, h_run, x, stats_);
+  z = consistent_start_z(model_, t0, h_run, x, stats_, z, &multistability_);
 }
 
 void RadauIIA::DoStep(double t, double h, Eigen::VectorXd& x, Eigen::VectorXd& z) {
@@ -112,7 +118,11 @@ void RadauIIA::DoStep(double t, double h, Eigen::VectorXd& x, Eigen::VectorXd& z
     model_.input_values(t + tableau_.c(j) * h, U_.segment(j * k, k));  // U_j = u(t + c_j h)
   q_.noalias() = f.Qx * x;
   q_.noalias() += f.Qu * U_;
-  const LcpSolution& sol = f.lcp->solve(q_);
+  if (f.lcp->stats().solves == 0 && m > 0) f.lcp->prefer(z.replicate(stages(), 1));
+  const LcpSolution* sol_ptr = &f.lcp->solve(q_);
+  if (sol_ptr->status == LcpStatus::NotUnique) sol_ptr = &mode_from_euler(f, t, h, x, z);
+  const LcpSolution& sol = *sol_ptr;
+  multistability_.check(*f.lcp, model_, t + h, stages());
   if (sol.status != LcpStatus::Solved)
     throw NumericalFailure(t + h, std::string("the Radau IIA step's LCP has no solution (Lemke: ") +
                                       lcp_status_name(sol.status) + ")");
@@ -122,6 +132,29 @@ void RadauIIA::DoStep(double t, double h, Eigen::VectorXd& x, Eigen::VectorXd& z
   x = x_next_;
   if (m > 0) z = sol.z.tail(m);  // a tail of an empty vector points at null (UBSan)
   else z.resize(0);
+}
+
+const LcpSolution& RadauIIA::mode_from_euler(StepFactors& f, double t, double h, const Eigen::VectorXd& x,
+                                             const Eigen::VectorXd& z) {
+  const Lcs& s = model_.lcs();
+  const int n = s.states();
+  if (!f.euler) {
+    const Eigen::MatrixXd I = Eigen::MatrixXd::Identity(n, n);
+    Eigen::PartialPivLU<Eigen::MatrixXd> W(I - h * s.A);
+    const Eigen::MatrixXd Phi = n > 0 ? solve_or_empty(W, I) : Eigen::MatrixXd(0, 0);
+    const Eigen::MatrixXd Pu = n > 0 ? solve_or_empty(W, h * s.E) : Eigen::MatrixXd(0, s.inputs());
+    const Eigen::MatrixXd WB = n > 0 ? solve_or_empty(W, h * s.B) : Eigen::MatrixXd(0, s.pairs());
+    f.CEx = s.C * Phi;
+    f.CEu = s.C * Pu + s.F;
+    f.euler = std::make_unique<LcpWarmSolver>(s.D + s.C * WB);
+    f.euler->watch_multiplicity();
+  }
+  const Eigen::VectorXd u1 = model_.input_values(t + h);
+  f.euler->prefer(z, true);
+  const LcpSolution& e = f.euler->solve(f.CEx * x + f.CEu * u1);
+  multistability_.check(*f.euler, model_, t + h);  // throws when Euler cannot choose either
+  f.lcp->prefer(e.z.replicate(stages(), 1), true);
+  return f.lcp->solve(q_);
 }
 
 StepperStats RadauIIA::stats() const {

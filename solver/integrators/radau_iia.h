@@ -43,6 +43,10 @@ class RadauIIA : public TimeStepper {
  private:
   struct StepFactors;  // everything that depends only on h, prepared once per step size
   StepFactors& factors(double h);
+  // The stage LCP has several solutions and the previous mode ended: solve it again from the
+  // mode implicit Euler's step LCP chooses (its only stable solution).
+  const LcpSolution& mode_from_euler(StepFactors& f, double t, double h, const Eigen::VectorXd& x,
+                                     const Eigen::VectorXd& z);
 
   ButcherTableau tableau_;
   std::map<double, std::unique_ptr<StepFactors>> cache_;

@@ -28,7 +28,8 @@ double start_step(const Lcs& s, double h_run) {
 }  // namespace
 
 Eigen::VectorXd consistent_start_z(const LcsProblem& model, double t0, double h_run,
-                                   const Eigen::VectorXd& x, StepperStats& stats) {
+                                   const Eigen::VectorXd& x, StepperStats& stats,
+                                   const Eigen::VectorXd& prefer, MultistabilityNotes* notes) {
   // Implicit Euler: x+ = W^-1 (x + h B z + h E u+), W = I - h A, so
   // w+ = C W^-1 x + (C W^-1 h E + F) u+  +  (D + C W^-1 h B) z.
   const Lcs& s = model.lcs();
@@ -40,10 +41,14 @@ Eigen::VectorXd consistent_start_z(const LcsProblem& model, double t0, double h_
   const Eigen::MatrixXd Pu = n > 0 ? solve_or_empty(W, h * s.E) : Eigen::MatrixXd(0, s.inputs());
   const Eigen::MatrixXd WB = n > 0 ? solve_or_empty(W, h * s.B) : Eigen::MatrixXd(0, s.pairs());
   LcpWarmSolver lcp(s.D + s.C * WB);
+  if (model.has_transfer_pairs()) lcp.watch_multiplicity();
   ++stats.factorisations;
   const Eigen::VectorXd q = s.C * Phi * x + (s.C * Pu + s.F) * model.input_values(t0 + h);
+  if (prefer.size() == s.pairs() && s.pairs() > 0 && prefer.cwiseAbs().maxCoeff() > 0) lcp.prefer(prefer);
   const LcpSolution& sol = lcp.solve(q);
   stats.lcp += lcp.stats();
+  MultistabilityNotes own;
+  (notes ? *notes : own).check(lcp, model, t0);
   if (sol.status != LcpStatus::Solved)
     throw NumericalFailure(t0, std::string("no consistent initial complementarity state (Lemke: ") +
                                    lcp_status_name(sol.status) + ")");
@@ -63,7 +68,7 @@ Eigen::VectorXd consistent_start_z(const LcsProblem& model, double t0, double h_
     const bool degenerate = std::abs(sol.z(i)) <= 1e-9 * zs && std::abs(sol.w(i)) <= 1e-9 * qs;
     ambiguous = ambiguous || index_one || degenerate;
   }
-  if (ambiguous) {
+  if (ambiguous && lcp.multiplicity() != LcpWarmSolver::Multiplicity::SeveralKeptContinuous) {
     try {
       return event_mode_z(model, t0, h_run, x);
     } catch (const NumericalFailure&) {

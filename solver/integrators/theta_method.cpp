@@ -38,13 +38,14 @@ ThetaMethod::StepFactors& ThetaMethod::factors(double h) {
   f->CPu0 = s.C * f->Pu0;
   f->CPu1F = s.C * f->Pu1 + s.F;
   f->lcp = std::make_unique<LcpWarmSolver>(s.D + s.C * f->WB);
+  if (model_.has_transfer_pairs()) f->lcp->watch_multiplicity();
   ++stats_.factorisations;
   return *cache_.emplace(h, std::move(f)).first->second;
 }
 
 void ThetaMethod::DoStart(double t0, double h_run, const Eigen::VectorXd& x, Eigen::VectorXd& z) {
   // Only theta < 1 reuses z_n; for theta = 1 it is just the t0 output.
-  z = consistent_start_z(model_, t0, h_run, x, stats_);
+  z = consistent_start_z(model_, t0, h_run, x, stats_, z, &multistability_);
 }
 
 void ThetaMethod::DoStep(double t, double h, Eigen::VectorXd& x, Eigen::VectorXd& z) {
@@ -55,7 +56,9 @@ void ThetaMethod::DoStep(double t, double h, Eigen::VectorXd& x, Eigen::VectorXd
     u0_ = model_.input_values(t);
     q_ += f.CPz * z + f.CPu0 * u0_;
   }
+  f.lcp->prefer(z);  // a new step size's solver starts from the last mode
   const LcpSolution& sol = f.lcp->solve(q_);
+  multistability_.check(*f.lcp, model_, t + h);
   if (sol.status != LcpStatus::Solved)
     throw NumericalFailure(t + h, std::string("the step's LCP has no solution (Lemke: ") +
                                       lcp_status_name(sol.status) + ")");

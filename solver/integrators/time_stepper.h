@@ -6,6 +6,7 @@
 
 #include <Eigen/Dense>
 
+#include "solver/integrators/multistability.h"
 #include "solver/lcp/lcp.h"
 #include "solver/model/lcs_problem.h"
 
@@ -32,6 +33,8 @@ class TimeStepper {
   virtual ~TimeStepper() = default;
 
   // z at t0+ consistent with x at t0, for a run with step h (methods that reuse z_n need it).
+  // On entry z may hold the operating point's z (else zeros): where the start's LCP has several
+  // solutions, the one with its active set is kept.
   void Start(double t0, double h, const Eigen::VectorXd& x, Eigen::VectorXd& z) {
     DoStart(t0, h, x, z);
   }
@@ -41,12 +44,15 @@ class TimeStepper {
     ++stats_.steps;
   }
   virtual StepperStats stats() const { return stats_; }
+  // What the user is told once (several solutions of a step's LCP, kept continuous).
+  const std::vector<std::string>& notes() const { return multistability_.notes(); }
 
  protected:
   virtual void DoStart(double t0, double h, const Eigen::VectorXd& x, Eigen::VectorXd& z) = 0;
   virtual void DoStep(double t, double h, Eigen::VectorXd& x, Eigen::VectorXd& z) = 0;
   const LcsProblem& model_;
   StepperStats stats_;
+  MultistabilityNotes multistability_;
 };
 
 }  // namespace lcs

@@ -144,11 +144,19 @@ void run_adaptive(const CircuitModel& model, const OutputMap& outputs, const Tra
 // on tstop. Devices with history are told of every step, and a step longer than they allow is
 // taken as equal substeps (rows stay at the steps).
 void run_fixed_step(const CircuitModel& model, const OutputMap& outputs, const TransientOptions& options,
-                    const MethodEntry& entry, Eigen::VectorXd x, OutputSink& sink,
-                    TransientSummary& summary, double cpu0) {
+                    const MethodEntry& entry, Eigen::VectorXd x, const Eigen::VectorXd& z0,
+                    OutputSink& sink, TransientSummary& summary, double cpu0) {
   std::unique_ptr<TimeStepper> stepper = entry.make_stepper(model, options.method_options);
-  Eigen::VectorXd z(model.lcs().pairs());
-  stepper->Start(0.0, options.step, x, z);
+  Eigen::VectorXd z = z0.size() == model.lcs().pairs() ? z0 : Eigen::VectorXd::Zero(model.lcs().pairs());
+  auto notes = [&] {
+    for (const std::string& n : stepper->notes()) summary.warnings.push_back(n);
+  };
+  try {
+    stepper->Start(0.0, options.step, x, z);
+  } catch (const NumericalFailure&) {
+    notes();
+    throw;
+  }
   summary.cpu_setup = process_cpu_seconds() - cpu0;
   RowWriter writer(model, outputs, sink);
   auto emit = [&](double t) {
@@ -187,10 +195,12 @@ void run_fixed_step(const CircuitModel& model, const OutputMap& outputs, const T
   } catch (const NumericalFailure&) {
     summary.cpu_steps = process_cpu_seconds() - loop0;
     summary.stepper = stepper->stats();  // the statistics up to the failure
+    notes();
     throw;
   }
   summary.cpu_steps = process_cpu_seconds() - loop0;
   summary.stepper = stepper->stats();
+  notes();
 }
 
 }  // namespace
@@ -211,7 +221,7 @@ TransientSummary run_transient(const CircuitModel& model, const OutputMap& outpu
     if (entry.adaptive())
       run_adaptive(model, outputs, options, entry, init.x, sink, summary, cpu0);
     else
-      run_fixed_step(model, outputs, options, entry, init.x, sink, summary, cpu0);
+      run_fixed_step(model, outputs, options, entry, init.x, init.z, sink, summary, cpu0);
   } catch (const NumericalFailure&) {
     if (summary.cpu_setup == 0)  // failed before the stepping loop
       summary.cpu_setup = process_cpu_seconds() - cpu0;

@@ -15,6 +15,8 @@ enum class LcpStatus {
   RayTermination,   // Lemke ended on an unbounded ray: no solution (M copositive-plus) or M outside
                     // the classes Lemke handles
   IterationLimit,
+  NotUnique,        // LcpWarmSolver: several solutions and none continuous with the previous
+                    // one (the previous active set no longer solves it); z is Lemke's pick
   NumericalFailure, // Lemke reached a complementary basis (the artificial variable left) but the
                     // solution recomputed from it misses feas_tol: basis too ill-conditioned.
                     // z, w are the best available (residual-minimal) point; do not trust them.
@@ -57,6 +59,17 @@ double lcp_residual(const Eigen::MatrixXd& M, const Eigen::VectorXd& q, const Ei
 std::vector<Eigen::VectorXd> enumerate_lcp_solutions(const Eigen::MatrixXd& M,
                                                      const Eigen::VectorXd& q);
 
+// The index of a solution, sign(det M_JJ) over J = {z > 0} (+1 for J empty): +1 where the
+// solution is stable under the fast dynamics small charge storage adds, -1 at a saddle (a
+// flip-flop's balanced state); 0 when M_JJ is singular.
+int lcp_solution_index(const Eigen::MatrixXd& M, const Eigen::VectorXd& z);
+
+// Solutions with different w = M z + q (relative 1e-9), the first of each kept. A diode network's
+// LCP has a unique w even where z is not (a continuum of currents, e.g. a bridge at rest): only
+// different w are different states of the circuit (several operating points).
+std::vector<Eigen::VectorXd> distinct_in_w(const Eigen::MatrixXd& M, const Eigen::VectorXd& q,
+                                           const std::vector<Eigen::VectorXd>& solutions);
+
 struct LcpWarmStats {
   long solves = 0;             // calls to solve()
   long warm_hits = 0;          // answered by the previous active set (one solve + sign check)
@@ -84,8 +97,34 @@ class LcpWarmSolver {
   const LcpSolution& solve(const Eigen::VectorXd& q);
   const LcpWarmStats& stats() const { return stats_; }
   const Eigen::MatrixXd& matrix() const { return M_; }
+  // Before the first solve: the active set {z > 0} of a known previous solution (the operating
+  // point, or the last step's z when a new step size gets its own solver) is the first guess.
+  // `always`: also after solves (the next solve tries this active set first).
+  void prefer(const Eigen::VectorXd& z, bool always = false);
+
+  // M may admit several solutions (neither symmetric positive semidefinite nor M + M^T
+  // positive definite: transistor feedback). Then each solve reports what it found:
+  enum class Multiplicity {
+    Unknown,                 // not counted (not possible, or too large to enumerate)
+    One,
+    SeveralKeptContinuous,   // several; the previous active set still solves it and was kept
+    SeveralTookStable,       // several, the previous mode ended, the only index +1 one taken
+    SeveralNoneContinuous,   // several, the previous mode ended, no single stable one: NotUnique
+  };
+  bool several_possible() const { return several_possible_; }
+  // Off by default (a diode network's LCP has a unique w): turns the counting on for circuits
+  // with transistors, where M is not P by the cheap tests.
+  void watch_multiplicity();
+  Multiplicity multiplicity() const { return multiplicity_; }
+  int solutions() const { return solutions_; }                  // when several
+  const std::vector<int>& differ() const { return differ_; }    // indices on in some, off in others
 
  private:
+  const LcpSolution& solve_once(const Eigen::VectorXd& q);
+  bool several_possible_ = false, several_seen_ = false, preferred_ = false;
+  Multiplicity multiplicity_ = Multiplicity::Unknown;
+  int solutions_ = 0;
+  std::vector<int> differ_;
   struct Impl;
   Eigen::MatrixXd M_;
   LemkeOptions options_;

@@ -24,6 +24,7 @@ const char* lcp_status_name(LcpStatus s) {
     case LcpStatus::RayTermination: return "ray termination";
     case LcpStatus::IterationLimit: return "iteration limit";
     case LcpStatus::NumericalFailure: return "numerical failure";
+    case LcpStatus::NotUnique: return "several solutions, none continuous with the previous one";
   }
   return "unknown";
 }

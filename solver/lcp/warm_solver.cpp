@@ -18,6 +18,7 @@
 
 #include "solver/lcp/lcp.h"
 #include "solver/lcp/lcp_internal.h"
+#include "solver/lcp/p_matrix.h"
 
 namespace lcs {
 
@@ -77,7 +78,78 @@ LcpWarmSolver::LcpWarmSolver(Eigen::MatrixXd M, LemkeOptions options)
   last_.w = Eigen::VectorXd::Zero(M_.rows());
 }
 
+void LcpWarmSolver::watch_multiplicity() {
+  const PMatrixReport report = p_matrix_report(M_, 0);  // the cheap tests only
+  several_possible_ = !report.symmetric_psd && report.verdict != PMatrixReport::Verdict::P;
+}
+
+void LcpWarmSolver::prefer(const Eigen::VectorXd& z, bool always) {
+  const int n = static_cast<int>(M_.rows());
+  if ((stats_.solves > 0 && !always) || z.size() != n || n > kMaxWarmN) return;
+  std::uint64_t mask = 0;
+  for (int i = 0; i < n; ++i)
+    if (z(i) > 0.0) mask |= std::uint64_t{1} << i;
+  active_ = mask;
+  preferred_ = true;
+}
+
+// Several solutions (Stewart 5.4.7: transistor feedback): the warm start keeps the one
+// continuous with the previous state. Enumeration (2^n solves) tells whether others exist: on
+// warm hits only until the first time it finds them and only for n <= kMaxCountedOnWarmHit, at
+// Lemke's solves (the previous mode has ended) up to kMaxCounted. Where the previous mode has
+// ended, the solutions are told apart by their index sign(det M_JJ) (J = {z > 0}; the indices of
+// a nondegenerate LCP's solutions sum to 1): an index -1 solution is a saddle of the fast
+// dynamics any small charge storage adds (the flip-flop's balanced state), which a circuit never
+// rests in; the only index +1 solution is where a regenerative switching lands.
 const LcpSolution& LcpWarmSolver::solve(const Eigen::VectorXd& q) {
+  constexpr int kMaxCountedOnWarmHit = 8, kMaxCounted = 16;
+  const int n = static_cast<int>(M_.rows());
+  const bool had_previous = stats_.solves > 0 || preferred_;
+  const long hits = stats_.warm_hits;
+  solve_once(q);
+  multiplicity_ = Multiplicity::Unknown;
+  if (!several_possible_ || last_.status != LcpStatus::Solved) return last_;
+  const bool warm_hit = stats_.warm_hits > hits;
+  if (warm_hit && (several_seen_ || n > kMaxCountedOnWarmHit)) return last_;
+  if (!warm_hit && n > kMaxCounted) return last_;
+  const std::vector<Eigen::VectorXd> all = distinct_in_w(M_, q, enumerate_lcp_solutions(M_, q));
+  if (all.size() <= 1) {
+    multiplicity_ = Multiplicity::One;
+    return last_;
+  }
+  several_seen_ = true;
+  differ_.clear();
+  double scale = 1e-300;
+  for (const Eigen::VectorXd& z : all) scale = std::max(scale, z.cwiseAbs().maxCoeff());
+  for (int i = 0; i < n; ++i) {
+    bool on = false, off = false;
+    for (const Eigen::VectorXd& z : all) (z(i) > 1e-9 * scale ? on : off) = true;
+    if (on && off) differ_.push_back(i);
+  }
+  solutions_ = static_cast<int>(all.size());
+  if (warm_hit && had_previous) {
+    multiplicity_ = Multiplicity::SeveralKeptContinuous;
+    return last_;
+  }
+  std::vector<const Eigen::VectorXd*> stable;
+  for (const Eigen::VectorXd& z : all)
+    if (lcp_solution_index(M_, z) > 0) stable.push_back(&z);
+  if (stable.size() != 1) {
+    multiplicity_ = Multiplicity::SeveralNoneContinuous;
+    last_.status = LcpStatus::NotUnique;
+    return last_;
+  }
+  multiplicity_ = Multiplicity::SeveralTookStable;
+  last_.z = *stable.front();
+  last_.w = M_ * last_.z + q;
+  std::uint64_t mask = 0;
+  for (int i = 0; i < n && n <= kMaxWarmN; ++i)
+    if (last_.z(i) > 0.0) mask |= std::uint64_t{1} << i;
+  active_ = mask;
+  return last_;
+}
+
+const LcpSolution& LcpWarmSolver::solve_once(const Eigen::VectorXd& q) {
   const int n = static_cast<int>(M_.rows());
   lcp_detail::check_square(M_, q, "LcpWarmSolver::solve");
   ++stats_.solves;

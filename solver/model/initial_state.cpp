@@ -8,6 +8,7 @@
 #include <set>
 
 #include "solver/integrators/start_complementarity.h"
+#include "solver/lcp/p_matrix.h"
 #include "solver/model/numerical_failure.h"
 #include "solver/model/operating_point.h"
 
@@ -78,6 +79,54 @@ std::optional<std::string> winding_ics_not_held(const CircuitModel& model, int j
          start;
 }
 
+// The complementarity state at t0+ for the state x, when the instantaneous problem (states held,
+// LCP(C x + F u, D + eta C B), eta tiny: a pair with D_ii = 0 is decided by its effect on the
+// state) has several solutions (transistor feedback) and x alone does not choose: the one nearest
+// to the .ic/.nodeset node voltages, as for the operating point. Unchanged (the operating point's
+// z, or zeros) when the problem is unique, no values are given, or two are as near.
+void choose_start_mode(const CircuitModel& model, double t0, const Eigen::VectorXd& x, Eigen::VectorXd& z,
+                       std::vector<std::string>& warnings) {
+  const Lcs& s = model.lcs();
+  const int m = s.pairs();
+  if (m == 0 || m > kMaxCheckedPairs || !model.has_transfer_pairs()) return;
+  const double rate = s.A.size() > 0 ? s.A.cwiseAbs().rowwise().sum().maxCoeff() : 0.0;
+  const double eta = 1e-9 / (rate > 0 ? rate : 1.0);
+  const Eigen::MatrixXd M = s.D + eta * s.C * s.B;
+  const PMatrixReport report = p_matrix_report(M, 0);
+  if (report.symmetric_psd || report.verdict == PMatrixReport::Verdict::P) return;
+  const Eigen::VectorXd u = model.input_values(t0);
+  const Eigen::VectorXd q = s.C * x + s.F * u;
+  const std::vector<Eigen::VectorXd> all = distinct_in_w(M, q, enumerate_lcp_solutions(M, q));
+  if (all.size() < 2) return;
+  std::map<std::string, double> hints;
+  for (const NodeIc& h : model.netlist().node_sets) hints[h.node] = h.value;
+  for (const NodeIc& h : model.netlist().node_ics) hints[h.node] = h.value;
+  if (hints.empty()) return;
+  // If the operating point's mode is among them, it continues: nothing to choose.
+  for (const Eigen::VectorXd& sol : all) {
+    bool same = true;
+    for (int i = 0; i < m && same; ++i) same = (sol(i) > 0) == (z(i) > 0);
+    if (same) return;
+  }
+  std::vector<std::pair<double, int>> distance;
+  for (int k = 0; k < static_cast<int>(all.size()); ++k) {
+    double d = 0;
+    for (const auto& [node, value] : hints) {
+      const int index = model.graph().node_index(node);
+      if (index < 0) continue;
+      const double v = model.evaluate_dc(model.node_voltage(index), x, all[k], t0);
+      d += (v - value) * (v - value);
+    }
+    distance.push_back({d, k});
+  }
+  std::sort(distance.begin(), distance.end());
+  if (distance[1].first - distance[0].first <= 1e-12 * std::max(1.0, distance[0].first)) return;
+  z = all[distance[0].second];
+  warnings.push_back("the initial state admits " + std::to_string(all.size()) +
+                     " complementarity states (transistor feedback); the one nearest to the "
+                     ".ic/.nodeset values is taken");
+}
+
 }  // namespace
 
 InitialState initial_state(const CircuitModel& model, bool uic, double t0) {
@@ -85,6 +134,7 @@ InitialState initial_state(const CircuitModel& model, bool uic, double t0) {
   const CircuitGraph& g = model.graph();
   const int n = model.lcs().states();
   InitialState init;
+  std::vector<std::string> chosen_by;  // .ic nodes that chose the operating point
   Eigen::VectorXd physical = Eigen::VectorXd::Zero(n);
   Eigen::VectorXd z = Eigen::VectorXd::Zero(model.lcs().pairs());
   if (!uic) {
@@ -92,6 +142,8 @@ InitialState initial_state(const CircuitModel& model, bool uic, double t0) {
     physical = model.physical_state(op.x, t0);
     z = op.z;
     if (!op.undetermined.empty()) init.warnings.push_back(undetermined_state_warning(op.undetermined));
+    for (const std::string& w : op.warnings) init.warnings.push_back(w);
+    chosen_by = op.chosen_by;
   }
   Eigen::VectorXd x_lcs = model.lcs_state(physical, t0);
 
@@ -104,7 +156,7 @@ InitialState initial_state(const CircuitModel& model, bool uic, double t0) {
     return model.evaluate_dc(model.node_voltage(node), x_lcs, z, t0);
   };
 
-  std::set<std::string> used_node_ics;
+  std::set<std::string> used_node_ics(chosen_by.begin(), chosen_by.end());
   std::vector<int> state_of_branch(g.branches.size(), -1);  // windings: their magnetising state
   for (int j = 0; j < n; ++j) {
     state_of_branch[model.states()[j].branch] = j;
@@ -148,6 +200,8 @@ InitialState initial_state(const CircuitModel& model, bool uic, double t0) {
     }
   }
   init.x = model.lcs_state(physical, t0);
+  init.z = z;
+  choose_start_mode(model, t0, init.x, init.z, init.warnings);
   for (int j : set_by_ic)
     if (std::optional<std::string> w = winding_ics_not_held(model, j, init.x, t0)) init.warnings.push_back(*w);
   return init;

@@ -60,6 +60,12 @@ class LcsProblem {
   // accepted step and never step further than max_step(). Without such devices accept() does
   // nothing and max_step() is infinite.
   bool has_history() const { return !history_devices_.empty(); }
+  // Transistor junctions among the pairs: the LCPs may have several solutions (5.4.7).
+  bool has_transfer_pairs() const {
+    for (const PairInfo& p : pairs_)
+      if (p.transfer) return true;
+    return false;
+  }
   void accept(double t, const Eigen::VectorXd& x, const Eigen::VectorXd& z) const;
   double max_step() const;
 

@@ -2,8 +2,11 @@
 #include "solver/model/empty_safe.h"
 
 #include <algorithm>
+#include <map>
+#include <set>
 
 #include "solver/lcp/lcp.h"
+#include "solver/lcp/p_matrix.h"
 #include "solver/model/numerical_failure.h"
 
 namespace lcs {
@@ -141,16 +144,101 @@ bool polish(const CircuitModel& model, double t, OperatingPoint& op) {
   return false;
 }
 
+std::string join_names(const std::vector<std::string>& names) {
+  std::string out;
+  for (size_t k = 0; k < names.size(); ++k)
+    out += (k == 0 ? "" : k + 1 == names.size() ? " and " : ", ") + names[k];
+  return out;
+}
+
+// The elements (transistors) whose pairs are on in some solutions and off in others.
+std::vector<std::string> elements_that_differ(const CircuitModel& model, const std::vector<Eigen::VectorXd>& zs) {
+  std::vector<std::string> names;
+  const double scale = std::max(1e-300, [&] {
+    double big = 0;
+    for (const Eigen::VectorXd& z : zs) big = std::max(big, max_abs(z));
+    return big;
+  }());
+  for (int i = 0; i < static_cast<int>(model.pairs().size()); ++i) {
+    bool on = false, off = false;
+    for (const Eigen::VectorXd& z : zs) (z(i) > 1e-9 * scale ? on : off) = true;
+    if (!(on && off)) continue;
+    const std::string& name = model.netlist().elements.at(model.pairs()[i].element).name;
+    if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
+  }
+  return names;
+}
+
+// .ic and .nodeset node voltages (.ic wins where both name a node).
+std::map<std::string, double> node_hints(const Netlist& netlist) {
+  std::map<std::string, double> hints;
+  for (const NodeIc& h : netlist.node_sets) hints[h.node] = h.value;
+  for (const NodeIc& h : netlist.node_ics) hints[h.node] = h.value;
+  return hints;
+}
+
+OperatingPoint choose_among(const CircuitModel& model, const StaticProblem& p, double t,
+                            const std::vector<Eigen::VectorXd>& zs) {
+  const std::vector<std::string> differ = elements_that_differ(model, zs);
+  const std::string who = differ.empty() ? std::string("the circuit")
+                                         : (differ.size() == 1 ? "transistor " : "transistors ") + join_names(differ);
+  const std::map<std::string, double> hints = node_hints(model.netlist());
+  const std::string count = std::to_string(zs.size()) + " operating points";
+  if (hints.empty())
+    throw NumericalFailure(t, "the operating point is not unique: " + count + " (" + who +
+                                  " on in some, off in others); list them with `op --all` and choose "
+                                  "one with .ic or .nodeset node voltages (the nearest is taken)");
+  std::vector<std::pair<double, int>> distance;
+  for (int k = 0; k < static_cast<int>(zs.size()); ++k) {
+    OperatingPoint op = point_from(p, zs[k]);
+    polish(model, t, op);
+    double d = 0;
+    for (const auto& [node, value] : hints) {
+      const int index = model.graph().node_index(node);
+      if (index < 0) continue;
+      const double v = model.evaluate_dc(model.node_voltage(index), op.x, op.z, t);
+      d += (v - value) * (v - value);
+    }
+    distance.push_back({d, k});
+  }
+  std::sort(distance.begin(), distance.end());
+  if (distance[1].first - distance[0].first <= 1e-12 * std::max(1.0, distance[0].first))
+    throw NumericalFailure(t, "the operating point is not unique: " + count + " (" + who +
+                                  "), and the .ic/.nodeset values are as near to two of them; give "
+                                  "values nearer to the one wanted (`op --all` lists them)");
+  OperatingPoint op = point_from(p, zs[distance[0].second]);
+  polish(model, t, op);
+  for (const auto& [node, value] : hints)
+    if (model.graph().node_index(node) >= 0) op.chosen_by.push_back(node);
+  op.warnings.push_back("the circuit has " + count + " (" + who + "); the one nearest to the .ic/.nodeset "
+                        "values of " + join_names(op.chosen_by) + " is taken (`op --all` lists them)");
+  return op;
+}
+
 }  // namespace
 
 OperatingPoint solve_operating_point(const CircuitModel& model, double t) {
   StaticProblem p = static_problem(model, t);
+  const int m = static_cast<int>(p.M.rows());
+  std::vector<std::string> notes;
+  const PMatrixReport report = model.has_transfer_pairs() ? p_matrix_report(p.M, 0) : PMatrixReport{};
+  if (model.has_transfer_pairs() && !report.symmetric_psd && report.verdict != PMatrixReport::Verdict::P) {
+    if (m <= kMaxCheckedPairs) {
+      const std::vector<Eigen::VectorXd> zs = distinct_in_w(p.M, p.q, enumerate_lcp_solutions(p.M, p.q));
+      if (zs.size() > 1) return choose_among(model, p, t, zs);
+    } else {
+      notes.push_back("the static problem of this transistor circuit is not checked for several "
+                      "operating points (" + std::to_string(m) + " pairs, more than " +
+                      std::to_string(kMaxCheckedPairs) + "): `op` reports the one Lemke's method finds");
+    }
+  }
   LcpSolution sol = solve_lemke(p.M, p.q);
   if (sol.status != LcpStatus::Solved)
     throw NumericalFailure(t, std::string("the operating point has no solution (Lemke: ") +
                                   lcp_status_name(sol.status) + ")");
   OperatingPoint op = point_from(p, sol.z);
   op.pivots = sol.pivots;
+  op.warnings = notes;
   polish(model, t, op);
   return op;
 }

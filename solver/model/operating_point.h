@@ -19,9 +19,22 @@ struct OperatingPoint {
   // States DC leaves free (a loop of inductors, capacitors with no DC path, not even through a
   // conducting diode): they take the values of least stored energy. Labels listed.
   std::vector<std::string> undetermined;
+  // Nodes whose .ic/.nodeset value chose this point among several (multistable circuits).
+  std::vector<std::string> chosen_by;
+  // Said once to the user: several operating points, one chosen by .ic/.nodeset; or uniqueness
+  // that could not be checked (a transistor circuit with more than kMaxCheckedPairs pairs).
+  std::vector<std::string> warnings;
 };
 
-// Throws NumericalFailure when the static LCP has no solution.
+// Transistor circuits (a non-symmetric static LCP) are checked for several operating points by
+// enumerating active sets up to this many complementarity pairs.
+constexpr int kMaxCheckedPairs = 16;
+
+// Throws NumericalFailure when the static LCP has no solution, and when it has several (a
+// multistable transistor circuit, Stewart 5.4.7) and no .ic/.nodeset value chooses one: the
+// message names the transistors, the number of solutions and the ways to choose. With values
+// given, the solution nearest to them (least squares over the given nodes) is taken, as ngspice's
+// .nodeset does.
 OperatingPoint solve_operating_point(const CircuitModel& model, double t = 0.0);
 
 // Every solution of the static LCP (multistable circuits; diode-only circuits have one).

@@ -24,6 +24,9 @@ struct PairLaw {
   IdealDiodeLaw law;    // VON [V], RON [ohm]
   bool fitted = false;  // VON/RON fitted to the card's Shockley curve
   SmoothJunction smooth;
+  // A transistor junction: its current drives a transfer source, which couples the pairs
+  // non-symmetrically; only such circuits can have several operating points (5.4.7).
+  bool transfer = false;
 };
 
 }  // namespace lcs

@@ -1,0 +1,54 @@
+#include "solver/integrators/multistability.h"
+
+#include <algorithm>
+#include <cstdio>
+
+#include "solver/model/numerical_failure.h"
+
+namespace lcs {
+
+std::string pair_owners(const LcsProblem& model, const std::vector<int>& pairs) {
+  std::vector<std::string> owners;
+  bool transistors = true;
+  for (int i : pairs) {
+    const std::string& name = model.pairs().at(i).name;
+    const std::size_t colon = name.find(':');
+    if (colon == std::string::npos) transistors = false;
+    const std::string owner = name.substr(0, colon);
+    if (std::find(owners.begin(), owners.end(), owner) == owners.end()) owners.push_back(owner);
+  }
+  std::string out = owners.size() == 1 ? (transistors ? "transistor " : "element ")
+                                       : (transistors ? "transistors " : "elements ");
+  for (size_t k = 0; k < owners.size(); ++k)
+    out += (k == 0 ? "" : k + 1 == owners.size() ? " and " : ", ") + owners[k];
+  return out;
+}
+
+void MultistabilityNotes::check(const LcpWarmSolver& lcp, const LcsProblem& model, double t, int blocks) {
+  using M = LcpWarmSolver::Multiplicity;
+  if (lcp.multiplicity() != M::SeveralKeptContinuous && lcp.multiplicity() != M::SeveralNoneContinuous &&
+      lcp.multiplicity() != M::SeveralTookStable)
+    return;
+  const int m = model.lcs().pairs();
+  std::vector<int> pairs;
+  for (int i : lcp.differ())
+    if (std::find(pairs.begin(), pairs.end(), i % m) == pairs.end()) pairs.push_back(i % m);
+  std::sort(pairs.begin(), pairs.end());
+  const std::string who = pair_owners(model, pairs);
+  const std::string count = std::to_string(lcp.solutions()) + " solutions";
+  if (lcp.multiplicity() == M::SeveralNoneContinuous)
+    throw NumericalFailure(t, "the step's complementarity problem has " + count + " (" + who +
+                                  " on in some, off in others), none continues the previous state "
+                                  "and more than one is stable: the circuit's next state is not "
+                                  "determined (choose the start with .ic or .nodeset values)");
+  if (said_) return;
+  said_ = true;
+  char at[48];
+  std::snprintf(at, sizeof at, "%.9g s", t);
+  notes_.push_back(std::string("at t = ") + at + " the step's complementarity problem has " + count +
+                   " (" + who + " on in some, off in others): the run keeps the one continuous "
+                   "with the previous state, as the circuit's hysteresis does, and where that "
+                   "state ends takes the only stable one (a regenerative switching)");
+}
+
+}  // namespace lcs
