@@ -208,8 +208,16 @@ ProbeComparison compare(const std::string& name, const std::vector<double>& time
 // capacitors), or a sub-circuit whose potential is not unique while no diode conducts. In the
 // last two the two simulators would pick different, equally valid, starts.
 std::string reason_to_share_the_start(const CircuitModel& model, bool uic) {
-  if (uic) return "";
   const Netlist& netlist = model.netlist();
+  // A transistor's base-emitter capacitance (CJE, .options bjtcap) sits between the inner nodes
+  // of its ngspice cards, which ngspice's .ic cannot reach: with UIC it would start at 0 V.
+  if (uic) {
+    const CircuitGraph& g = model.graph();
+    const bool inner_capacitor = std::any_of(g.branches.begin(), g.branches.end(), [&](const Branch& b) {
+      return b.cls == BranchClass::Capacitor && netlist.elements.at(b.element).kind == ElementKind::Bjt;
+    });
+    return inner_capacitor ? "a transistor's base-emitter capacitance, which .ic cannot reach in ngspice" : "";
+  }
   if (std::any_of(netlist.elements.begin(), netlist.elements.end(),
                   [](const Element& el) { return el.ic.has_value(); }))
     return "IC= without UIC";
@@ -288,16 +296,23 @@ std::string why_not_judged(const CircuitModel& model, const Probe& probe) {
            "voltage across the sub-circuit, v(a,b), instead)";
   const CircuitGraph& g = model.graph();
   const int node = g.node_index(probe.a);
-  bool inductor = false, diode = false, other = false;
+  // A transistor's junctions and the transfer currents they drive count as diodes: while its
+  // junctions are off they carry nothing either (a switch's collector on an inductor).
+  bool inductor = false, diode = false, transistor = false, other = false;
   for (const Branch& b : g.branches) {
     if (b.from != node && b.to != node) continue;
+    const bool of_transistor = model.netlist().elements.at(b.element).kind == ElementKind::Bjt;
     if (b.cls == BranchClass::Inductor) inductor = true;
-    else if (b.cls == BranchClass::Diode) diode = true;
+    else if (b.cls == BranchClass::Diode) diode = true, transistor = transistor || of_transistor;
+    else if (b.cls == BranchClass::CurrentSource && of_transistor) transistor = true;
     else other = true;
   }
-  if (inductor && diode && !other)
+  if (inductor && diode && !other && !transistor)
     return "the node joins only inductors and diodes: while they are off the witness (no junction "
            "capacitance) spikes there (compare the inductor's current instead)";
+  if (inductor && diode && !other)
+    return "the node joins only inductors, diodes and transistor junctions: while they are off the "
+           "witness (no junction capacitance) spikes there (compare the inductor's current instead)";
   return "";
 }
 
@@ -352,14 +367,16 @@ int validate_with_faults(const ValidateArgs& args, const NgspiceDeckFaults& faul
     file_only.file = netlist.file;
     throw CliError(kExitNetlist, format_diagnostic(file_only, "error", "nothing to compare: the circuit has no probes"));
   }
-  // The comparison needs every diode's current (its gap) and voltage (how far the gap moves
-  // its turn-on) too.
+  // The comparison needs every junction's current (its gap) and voltage (how far the gap moves
+  // its turn-on) too: each pair's own branch, a diode's or one junction of a transistor
+  // ("q1:be", between the base and the emitter, anode first).
   std::vector<Probe> all = probes;
+  const CircuitGraph& graph = model.graph();
   for (const PairInfo& p : model.pairs())
-    all.push_back({Probe::Kind::ElementCurrent, netlist.elements[p.element].name, "", {}});
+    all.push_back({Probe::Kind::ElementCurrent, graph.branches.at(p.branch).name, "", 0, {}});
   for (const PairInfo& p : model.pairs()) {
-    const Element& el = netlist.elements[p.element];
-    all.push_back({Probe::Kind::NodePairVoltage, el.nodes.at(0), el.nodes.at(1), {}});
+    const Branch& b = graph.branches.at(p.branch);
+    all.push_back({Probe::Kind::NodePairVoltage, graph.nodes.at(b.from), graph.nodes.at(b.to), 0, {}});
   }
   OutputMap outputs = output_map_or_exit(ours_model, all);
 
@@ -374,7 +391,7 @@ int validate_with_faults(const ValidateArgs& args, const NgspiceDeckFaults& faul
     // ngspice starts (UIC) from lcspice's initial state: every capacitor voltage and inductor current.
     try {
       const CircuitModel& m = ours_model;
-      const InitialState init = initial_state(m, false, 0.0);
+      const InitialState init = initial_state(m, run.uic, 0.0);
       const Eigen::VectorXd z0 = Eigen::VectorXd::Zero(m.lcs().pairs());
       const CircuitGraph& g = m.graph();
       for (size_t b = 0; b < g.branches.size(); ++b) {
@@ -407,7 +424,7 @@ int validate_with_faults(const ValidateArgs& args, const NgspiceDeckFaults& faul
       const std::vector<double> id = column(ours, probes.size() + k);
       const double g = model_gap(*std::max_element(id.begin(), id.end()), args.emission, topt.saturation_current);
       if (g <= 0) continue;
-      gaps.push_back({name, g});
+      gaps.push_back({model.pairs()[k].name, g});  // the junction: "d1", or "q1:be" of a transistor
       const double shift = turn_on_shift(ours.times, column(ours, probes.size() + npairs + k), id, g);
       dt = std::max(dt, std::min(shift, (run.tstop - run.tstart) / 100));
     }
@@ -431,11 +448,19 @@ int validate_with_faults(const ValidateArgs& args, const NgspiceDeckFaults& faul
 
   const NgspiceResult theirs = run_witness(deck.lines, args.timeout);
   const std::vector<std::vector<double>> interpolated = witness_on(ours, theirs, deck, outputs, probes.size());
+  // `.ic` without UIC: ngspice's t = 0 row is its operating point with those nodes held by
+  // sources (its .ic meaning), whose currents are not the circuit's: for a junction held at the
+  // ideal threshold, which a Shockley junction needs its gap more to conduct at, the whole base
+  // current comes from the holding source. The verdict starts at the first step.
+  const bool held_start = !run.uic && !netlist.node_ics.empty() && shared_start.empty();
+  const size_t from = held_start && ours.times.size() > 1 ? 1 : 0;
+  auto tail = [from](const std::vector<double>& v) { return std::vector<double>(v.begin() + from, v.end()); };
   std::vector<ProbeComparison> rows;
   for (size_t p = 0; p < probes.size(); ++p) {
     const std::vector<double> mine = column(ours, p);
     ProbeComparison c = compare(outputs.names[p], ours.times, mine, interpolated[p]);
-    c.tube = tube_distance(ours.times, mine, far_wall ? column(*far_wall, p) : mine, interpolated[p], dt);
+    c.tube = tube_distance(tail(ours.times), tail(mine), tail(far_wall ? column(*far_wall, p) : mine),
+                           tail(interpolated[p]), dt);
     c.not_judged = why_not_judged(model, probes[p]);
     rows.push_back(c);
   }
@@ -449,6 +474,9 @@ int validate_with_faults(const ValidateArgs& args, const NgspiceDeckFaults& faul
                 find_method(run.method)->fixed_step() ? "h =" : "output every", run.step, ours.times.size());
   std::printf("  ngspice: %zu time points, %.3f s CPU%s\n", theirs.time.size(), theirs.analysis_cpu_seconds,
               shared_start.empty() ? "" : (", started from lcspice's initial state (" + shared_start + ")").c_str());
+  if (from > 0)
+    std::printf("  .ic without UIC: ngspice's t = 0 row holds the .ic nodes with sources (not the circuit's\n"
+                "  currents); judged from the first step on\n");
   if (smooth)
     std::printf("  both integrate the same Shockley diodes (ideal ones as VON sources + N = %g, IS = %g A):\n"
                 "  expected model gap 0; what differs is the two integrators' error\n",
@@ -464,7 +492,12 @@ int validate_with_faults(const ValidateArgs& args, const NgspiceDeckFaults& faul
     if (gaps.empty()) std::printf(" none conducts");
     std::printf("\n");
   }
-  if (!smooth && deck.ideal_diodes.size() < model.pairs().size())
+  for (const std::string& w : deck.witnesses) std::printf("  %s\n", w.c_str());
+  const size_t ideal_pairs = std::count_if(model.pairs().begin(), model.pairs().end(), [&](const PairInfo& p) {
+    const std::string& name = netlist.elements[p.element].name;
+    return std::find(deck.ideal_diodes.begin(), deck.ideal_diodes.end(), name) != deck.ideal_diodes.end();
+  });
+  if (!smooth && ideal_pairs < model.pairs().size())
     std::printf("  diodes with their own IS/N/RS: compared as the card gives them (the gap is the "
                 "card's Shockley curve against lcspice's VON/RON)\n");
   std::printf("  tube: ngspice within %g of each probe's range of lcspice's answers at VON and at\n"

@@ -14,17 +14,34 @@ double model_gap(double peak, double emission, double saturation_current) {
 Netlist netlist_with_shifted_thresholds(const CircuitModel& model,
                                         const std::vector<std::pair<std::string, double>>& gaps) {
   Netlist shifted = model.netlist();
-  for (const auto& [diode, gap] : gaps) {
+  for (const auto& [junction, gap] : gaps) {
     for (const PairInfo& p : model.pairs()) {
+      if (p.name != junction) continue;
       Element& el = shifted.elements.at(p.element);
-      if (el.name != diode || el.kind != ElementKind::Diode) continue;
-      DiodeModel card;
-      card.name = "lcs_gap_" + el.name;
-      card.von = p.law.von + gap;
-      card.ron = p.law.ron;
-      card.loc = shifted.diode_models.count(el.model) ? shifted.diode_models.at(el.model).loc : el.loc;
-      shifted.diode_models[card.name] = card;
-      el.model = card.name;
+      if (el.kind == ElementKind::Diode) {
+        DiodeModel card;
+        card.name = "lcs_gap_" + el.name;
+        card.von = p.law.von + gap;
+        card.ron = p.law.ron;
+        card.loc = shifted.diode_models.count(el.model) ? shifted.diode_models.at(el.model).loc : el.loc;
+        shifted.diode_models[card.name] = card;
+        el.model = card.name;
+      } else if (el.kind == ElementKind::Bjt) {
+        // A card of its own per transistor, both junctions written out: VONE/RONE for "q1:be",
+        // VONC/RONC for "q1:bc" (RON as the card gives it: the device divides it by the area).
+        const std::string own = "lcs_gap_" + el.name;
+        if (el.model != own) {
+          BjtModel card = shifted.bjt_models.at(el.model);
+          card.name = own;
+          shifted.bjt_models[own] = card;
+          el.model = own;
+        }
+        BjtModel& card = shifted.bjt_models.at(own);
+        const double area = el.value > 0 ? el.value : 1.0;
+        const bool emitter = p.name.size() >= 3 && p.name.compare(p.name.size() - 3, 3, ":be") == 0;
+        (emitter ? card.vone : card.vonc) = p.law.von + gap;
+        (emitter ? card.rone : card.ronc) = p.law.ron * area;
+      }
     }
   }
   return shifted;
@@ -51,10 +68,13 @@ TubeDistance tube_distance(const std::vector<double>& times, const std::vector<d
                            double dt) {
   TubeDistance out;
   const size_t n = times.size();
-  size_t first = 0, last = 0;  // the samples within [t_k - dt, t_k + dt]
+  // The samples within [t_k - dt, t_k + dt], the ends included whatever the rounding of the
+  // output times (dt is often exactly one output interval: both neighbours belong in).
+  const double reach = dt * (1 + 1e-9);
+  size_t first = 0, last = 0;
   for (size_t k = 0; k < n; ++k) {
-    while (times[first] < times[k] - dt) ++first;
-    while (last + 1 < n && times[last + 1] <= times[k] + dt) ++last;
+    while (times[first] < times[k] - reach) ++first;
+    while (last + 1 < n && times[last + 1] <= times[k] + reach) ++last;
     double lo = INFINITY, hi = -INFINITY;
     for (size_t j = first; j <= last; ++j) {
       lo = std::min({lo, nominal[j], shifted[j]});

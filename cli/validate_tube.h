@@ -19,8 +19,9 @@ namespace lcs {
 // than IS): the extra voltage a Shockley diode (N, IS) needs over the ideal threshold.
 double model_gap(double peak, double emission, double saturation_current);
 
-// The netlist with every named diode's threshold raised by its gap: an ideal diode with
-// VON + gap and the RON it had (`model` gives the laws lcspice used, fits included).
+// The netlist with every named junction's threshold raised by its gap: an ideal diode with
+// VON + gap and the RON it had, a transistor junction ("q1:be", "q1:bc") likewise on a card of
+// the transistor's own (`model` gives the laws lcspice used, fits included).
 Netlist netlist_with_shifted_thresholds(const CircuitModel& model,
                                         const std::vector<std::pair<std::string, double>>& gaps);
 

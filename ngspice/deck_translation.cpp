@@ -70,15 +70,22 @@ TranslatedDeck translate_to_ngspice(const CircuitModel& model, const std::vector
     context.open = options.open_diodes.count(device->name()) > 0;
     auto factor = options.ron_factor.find(device->name());
     context.ron_factor = factor != options.ron_factor.end() ? factor->second : 1.0;
-    auto given = options.initial_conditions.find(device->name());
+    // By element name, or by the name of the device's capacitor branch (a transistor's "q1:cbe").
     context.initial_value.reset();
+    auto given = options.initial_conditions.find(device->name());
     if (given != options.initial_conditions.end()) context.initial_value = given->second;
+    for (const BranchDecl& b : device->branches()) {
+      auto inner = options.initial_conditions.find(b.name);
+      if (b.name != device->name() && b.cls == BranchClass::Capacitor && inner != options.initial_conditions.end())
+        context.initial_value = inner->second;
+    }
     NgspiceCards cards = device->ngspice(context);
     std::vector<std::string>& into = device->branches().empty() ? after : deck.lines;
     into.insert(into.end(), cards.lines.begin(), cards.lines.end());
     models.insert(models.end(), cards.models.begin(), cards.models.end());
     for (auto& [probe, source] : cards.probes) deck.probes[probe] = source;
     if (cards.ideal_diode) deck.ideal_diodes.push_back(device->name());
+    if (!cards.witness.empty()) deck.witnesses.push_back(cards.witness);
   }
   deck.lines.insert(deck.lines.end(), after.begin(), after.end());
   for (const std::string& m : models) deck.lines.push_back(m);

@@ -55,7 +55,8 @@ struct TranslationOptions {
 struct TranslatedDeck {
   std::vector<std::string> lines;            // title first, `.end` last
   std::map<std::string, ProbeSource> probes; // by lcspice probe name ("v(a)", "i(d1)")
-  std::vector<std::string> ideal_diodes;     // diodes given a threshold source + sharp Shockley
+  std::vector<std::string> ideal_diodes;     // devices whose junctions are threshold source + sharp Shockley
+  std::vector<std::string> witnesses;        // what stands in for a device, where it says (transistors)
 };
 
 // `model` supplies the diode laws and the probes' elements; `probes` are the lcspice probes the

@@ -144,6 +144,29 @@ TEST(ValidationCanFail, AWrongRonOrAMissingDiodeExitsFour) {
   EXPECT_NE(out.find("FAIL: every probe within 0.02"), std::string::npos) << out;
 }
 
+// The same for transistors: one wired backwards only in the ngspice deck (collector and emitter
+// swapped: it runs in reverse, gain BR = 1 where the circuit needs BF = 100) fails, and so do a
+// PNP whose junction resistances are ten times too large (1 ohm -> 10 ohm at 0.14 A) and a PNP
+// left out (its junctions open), while the right decks pass.
+TEST(ValidationCanFail, ATransistorWiredBackwardsOrWithAWrongRonOrMissingExitsFour) {
+  ValidateArgs ramp;
+  ramp.netlist = source_path("circuits/bjt_switch_ramp.cir").string();
+  std::string out;
+  EXPECT_EQ(validate_quietly(ramp, {}, out), kExitOk) << out;
+  EXPECT_NE(out.find("q1: Ebers-Moll of threshold sources, Shockley junctions and F sources"), std::string::npos)
+      << out;
+  EXPECT_EQ(validate_quietly(ramp, NgspiceDeckFaults{{"q1"}, {}, {}}, out), kExitValidate) << out;
+  EXPECT_NE(out.find("OUTSIDE"), std::string::npos) << out;
+
+  ValidateArgs pnp;
+  pnp.netlist = source_path("circuits/bjt_pnp_high_side.cir").string();
+  pnp.max_step = 1e-7;  // circuits/validation.tsv
+  EXPECT_EQ(validate_quietly(pnp, {}, out), kExitOk) << out;
+  EXPECT_EQ(validate_quietly(pnp, NgspiceDeckFaults{{}, {}, {{"q2", 10.0}}}, out), kExitValidate) << out;
+  EXPECT_NE(out.find("FAIL: every probe within 0.02"), std::string::npos) << out;
+  EXPECT_EQ(validate_quietly(pnp, NgspiceDeckFaults{{}, {"q2"}, {}}, out), kExitValidate) << out;
+}
+
 // Probes the witness cannot judge are reported with the reason and left out of the verdict: a
 // node joining only an inductor and a diode (the half-wave rectifier's n1), the absolute
 // potential of a bridge's floating load side.

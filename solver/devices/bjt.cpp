@@ -109,21 +109,24 @@ void Bjt::stamp(const StampContext& context, Stamps& stamps) const {
   }
 }
 
-// Into the terminal, NPN: i_C = aF i_DE - i_DC, i_B = (1 - aF) i_DE + (1 - aR) i_DC,
-// i_E = aR i_DC - i_DE; PNP: the negatives. A left-out junction carries nothing.
+// Into the terminal, NPN: i_C = aF i_DE - i_DC, i_B = (1 - aF) i_DE + (1 - aR) i_DC + i_CBE,
+// i_E = aR i_DC - i_DE - i_CBE (the base-emitter capacitance is part of the device: its current
+// enters at the base and leaves at the emitter, as in ngspice's BJT); PNP: the negatives. A
+// left-out junction carries nothing.
 std::vector<std::pair<int, double>> Bjt::terminal_current(char terminal) const {
   const Layout l = layout();
   const double s = card_.pnp ? -1.0 : 1.0;
-  double de = 0, dc = 0;
+  double de = 0, dc = 0, cbe = 0;
   switch (terminal) {
     case 'c': de = alpha_f_, dc = -1; break;
-    case 'b': de = 1 - alpha_f_, dc = 1 - alpha_r_; break;
-    case 'e': de = -1, dc = alpha_r_; break;
+    case 'b': de = 1 - alpha_f_, dc = 1 - alpha_r_, cbe = 1; break;
+    case 'e': de = -1, dc = alpha_r_, cbe = -1; break;
     default: return {};
   }
   std::vector<std::pair<int, double>> out;
   if (l.de >= 0 && de != 0) out.push_back({l.de, s * de});
   if (l.dc >= 0 && dc != 0) out.push_back({l.dc, s * dc});
+  if (l.cbe >= 0 && cbe != 0) out.push_back({l.cbe, s * cbe});
   return out;
 }
 
