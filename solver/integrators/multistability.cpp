@@ -27,7 +27,7 @@ std::string pair_owners(const LcsProblem& model, const std::vector<int>& pairs) 
 void MultistabilityNotes::check(const LcpWarmSolver& lcp, const LcsProblem& model, double t, int blocks) {
   using M = LcpWarmSolver::Multiplicity;
   if (lcp.multiplicity() != M::SeveralKeptContinuous && lcp.multiplicity() != M::SeveralNoneContinuous &&
-      lcp.multiplicity() != M::SeveralTookStable)
+      lcp.multiplicity() != M::SeveralTookStable && lcp.multiplicity() != M::SeveralTookLemke)
     return;
   const int m = model.lcs().pairs();
   std::vector<int> pairs;
@@ -38,9 +38,9 @@ void MultistabilityNotes::check(const LcpWarmSolver& lcp, const LcsProblem& mode
   const std::string count = std::to_string(lcp.solutions()) + " solutions";
   if (lcp.multiplicity() == M::SeveralNoneContinuous)
     throw NumericalFailure(t, "the step's complementarity problem has " + count + " (" + who +
-                                  " on in some, off in others), none continues the previous state "
-                                  "and more than one is stable: the circuit's next state is not "
-                                  "determined (choose the start with .ic or .nodeset values)");
+                                  " on in some, off in others), no previous state to continue "
+                                  "and more than one is stable: the circuit's state is not "
+                                  "determined (choose it with .ic or .nodeset values)");
   if (said_) return;
   said_ = true;
   char at[48];
@@ -48,7 +48,7 @@ void MultistabilityNotes::check(const LcpWarmSolver& lcp, const LcsProblem& mode
   notes_.push_back(std::string("at t = ") + at + " the step's complementarity problem has " + count +
                    " (" + who + " on in some, off in others): the run keeps the one continuous "
                    "with the previous state, as the circuit's hysteresis does, and where that "
-                   "state ends takes the only stable one (a regenerative switching)");
+                   "state ends the one Lemke's method reaches (a regenerative switching)");
 }
 
 }  // namespace lcs

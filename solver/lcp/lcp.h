@@ -15,8 +15,8 @@ enum class LcpStatus {
   RayTermination,   // Lemke ended on an unbounded ray: no solution (M copositive-plus) or M outside
                     // the classes Lemke handles
   IterationLimit,
-  NotUnique,        // LcpWarmSolver: several solutions and none continuous with the previous
-                    // one (the previous active set no longer solves it); z is Lemke's pick
+  NotUnique,        // LcpWarmSolver: several solutions, no previous one to continue and no single
+                    // stable one (index +1); z is Lemke's pick
   NumericalFailure, // Lemke reached a complementary basis (the artificial variable left) but the
                     // solution recomputed from it misses feas_tol: basis too ill-conditioned.
                     // z, w are the best available (residual-minimal) point; do not trust them.
@@ -108,8 +108,9 @@ class LcpWarmSolver {
     Unknown,                 // not counted (not possible, or too large to enumerate)
     One,
     SeveralKeptContinuous,   // several; the previous active set still solves it and was kept
-    SeveralTookStable,       // several, the previous mode ended, the only index +1 one taken
-    SeveralNoneContinuous,   // several, the previous mode ended, no single stable one: NotUnique
+    SeveralTookLemke,        // several, the previous mode ended: Lemke's solution taken
+    SeveralTookStable,       // several, no previous state, the only index +1 one taken
+    SeveralNoneContinuous,   // several, no previous state, no single stable one: NotUnique
   };
   bool several_possible() const { return several_possible_; }
   // Off by default (a diode network's LCP has a unique w): turns the counting on for circuits

@@ -97,15 +97,21 @@ void LcpWarmSolver::prefer(const Eigen::VectorXd& z, bool always) {
 // continuous with the previous state. Enumeration (2^n solves) tells whether others exist: on
 // warm hits only until the first time it finds them and only for n <= kMaxCountedOnWarmHit, at
 // Lemke's solves (the previous mode has ended) up to kMaxCounted. Where the previous mode has
-// ended, the solutions are told apart by their index sign(det M_JJ) (J = {z > 0}; the indices of
-// a nondegenerate LCP's solutions sum to 1): an index -1 solution is a saddle of the fast
-// dynamics any small charge storage adds (the flip-flop's balanced state), which a circuit never
-// rests in; the only index +1 solution is where a regenerative switching lands.
+// ended, Lemke's solution is taken: at the regenerative switchings of an astable or a Schmitt
+// trigger the step's LCP has several solutions (the switched state, and states that keep the
+// other transistor half on), and the end of Lemke's complementary path from the ray is the
+// switched one, checked against the event method and ngspice (tests/bjt_circuits_test.cpp); the
+// nearest mode would keep both on. With no previous state at all (a start without .ic/.nodeset
+// choosing) the solutions are told apart by their index sign(det M_JJ) (J = {z > 0}; the indices
+// of a nondegenerate LCP's solutions sum to 1): an index -1 solution is a saddle of the fast
+// dynamics any small charge storage adds (a flip-flop's balanced state); a single index +1
+// solution is taken, several are the run's exit 3.
 const LcpSolution& LcpWarmSolver::solve(const Eigen::VectorXd& q) {
   constexpr int kMaxCountedOnWarmHit = 8, kMaxCounted = 16;
   const int n = static_cast<int>(M_.rows());
   const bool had_previous = stats_.solves > 0 || preferred_;
   const long hits = stats_.warm_hits;
+  const std::uint64_t previous = active_;
   solve_once(q);
   multiplicity_ = Multiplicity::Unknown;
   if (!several_possible_ || last_.status != LcpStatus::Solved) return last_;
@@ -129,6 +135,10 @@ const LcpSolution& LcpWarmSolver::solve(const Eigen::VectorXd& q) {
   solutions_ = static_cast<int>(all.size());
   if (warm_hit && had_previous) {
     multiplicity_ = Multiplicity::SeveralKeptContinuous;
+    return last_;
+  }
+  if (had_previous) {  // the previous mode has ended: Lemke's solution, as without transistors
+    multiplicity_ = Multiplicity::SeveralTookLemke;
     return last_;
   }
   std::vector<const Eigen::VectorXd*> stable;
