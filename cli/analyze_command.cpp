@@ -6,6 +6,7 @@
 #include "cli/commands.h"
 #include "cli/exit_codes.h"
 #include "cli/load_circuit.h"
+#include "cli/uniqueness_report.h"
 #include "graph/components.h"
 #include "graph/diode_classes.h"
 #include "solver/devices/device.h"
@@ -48,6 +49,7 @@ struct Report {
   std::vector<DiodeClass> classes;
   LcsIndex index;
   std::vector<std::string> warnings;
+  std::vector<UniquenessEntry> uniqueness;
 };
 
 std::string class_of(const Report& r, int branch) {
@@ -125,6 +127,9 @@ void print_text(const Report& r) {
   }
   if (r.index.index >= 0) std::printf("  index: %d\n", r.index.index);
   else std::printf("  index: undefined (G(s) singular for large s)\n");
+  std::printf("\nuniqueness (LCP(q, M) has one solution for every q iff M is a P-matrix, 2.2):\n");
+  for (const UniquenessEntry& e : r.uniqueness)
+    std::printf("  %s, m = %d: %s\n", e.what.c_str(), e.size, e.verdict().c_str());
   for (const std::string& w : r.warnings) std::printf("warning: %s\n", w.c_str());
 }
 
@@ -159,7 +164,15 @@ void print_json(const Report& r) {
   o << "\n  ],\n  \"lcs\": {\"states\": " << s.states() << ", \"pairs\": " << s.pairs()
     << ", \"inputs\": " << s.inputs() << ", \"index\": " << r.index.index << ", \"state_labels\": [";
   for (size_t k = 0; k < m.states().size(); ++k) o << (k ? ", " : "") << json_string(m.states()[k].label);
-  o << "]},\n  \"warnings\": [";
+  o << "]},\n  \"uniqueness\": [";
+  for (size_t k = 0; k < r.uniqueness.size(); ++k) {
+    const UniquenessEntry& e = r.uniqueness[k];
+    o << (k ? ",\n" : "\n") << "    {\"matrix\": " << json_string(e.what) << ", \"verdict\": "
+      << json_string(e.json_verdict()) << ", \"failing_pairs\": [";
+    for (size_t j = 0; j < e.failing_pairs.size(); ++j) o << (j ? ", " : "") << json_string(e.failing_pairs[j]);
+    o << "]}";
+  }
+  o << "\n  ],\n  \"warnings\": [";
   for (size_t k = 0; k < r.warnings.size(); ++k) o << (k ? ", " : "") << json_string(r.warnings[k]);
   o << "]\n}\n";
   std::fputs(o.str().c_str(), stdout);
@@ -175,6 +188,7 @@ int analyze_command(const AnalyzeArgs& args) {
   for (const std::string& w : floating_potential_warnings(model)) r.warnings.push_back(w);
   for (const std::shared_ptr<Device>& d : model.devices())
     for (const std::string& note : d->notes()) r.warnings.push_back(note);
+  r.uniqueness = uniqueness_report(model, netlist.tran ? netlist.tran->tstep : 0.0);
   if (args.json) print_json(r);
   else print_text(r);
   return kExitOk;

@@ -8,6 +8,8 @@
 #include "cli/exit_codes.h"
 #include "cli/load_circuit.h"
 #include "solver/model/numerical_failure.h"
+#include "solver/devices/device.h"
+#include "solver/lcp/lcp.h"
 #include "solver/model/operating_point.h"
 
 namespace lcs {
@@ -29,11 +31,21 @@ void print_point(const CircuitModel& model, const OperatingPoint& op) {
   }
   // A diode conducts when its current stands out of the rounding of the solve.
   const double on_threshold = std::max(1e-9 * largest, 1e-15);
+  // A transistor shows its junctions (on/off) and its terminal currents, not its transfer sources.
+  const std::vector<std::shared_ptr<Device>>& devices = model.devices();
   for (size_t b = 0; b < g.branches.size(); ++b) {
+    const bool terminals = !devices[g.branches[b].element]->terminals_probed_by_default().empty();
+    if (terminals && g.branches[b].cls != BranchClass::Diode) continue;
     const char* note = "";
     if (g.branches[b].cls == BranchClass::Diode) note = current[b] > on_threshold ? "   (on)" : "   (off)";
     line("i(" + g.branches[b].name + ")", current[b], note);
   }
+  for (const std::shared_ptr<Device>& d : devices)
+    for (char terminal : d->terminals_probed_by_default()) {
+      Probe p{Probe::Kind::TerminalCurrent, d->name(), "", {}};
+      p.terminal = terminal;
+      line(p.name(), model.evaluate_dc(model.terminal_current(p), op.x, op.z, 0.0));
+    }
 }
 
 }  // namespace
@@ -62,8 +74,17 @@ int op_command(const OpArgs& args) {
     for (const std::string& w : points.front().warnings) warn(w);
   std::printf("* operating point at t = 0: %s\n", netlist.title.c_str());
   if (args.all) std::printf("* %zu solution%s\n", points.size(), points.size() == 1 ? "" : "s");
+  // Stability of a static solution: its index sign(det M_JJ) (lcp_solution_index). Index -1 is a
+  // saddle of the fast dynamics any small charge storage adds (a flip-flop's balanced state).
+  const Eigen::MatrixXd M = args.all && points.size() > 1 ? static_lcp_matrix(model) : Eigen::MatrixXd();
   for (size_t k = 0; k < points.size(); ++k) {
-    if (args.all) std::printf("solution %zu:\n", k + 1);
+    if (args.all && points.size() > 1) {
+      const int index = lcp_solution_index(M, points[k].z);
+      std::printf("solution %zu (%s):\n", k + 1,
+                  index > 0 ? "stable" : index < 0 ? "unstable: a saddle, index -1" : "stability undetermined");
+    } else if (args.all) {
+      std::printf("solution %zu:\n", k + 1);
+    }
     print_point(model, points[k]);
   }
   return kExitOk;

@@ -33,6 +33,9 @@ struct LcpSolution {
   LcpStatus status = LcpStatus::Solved;
   Eigen::VectorXd z, w;        // w = M z + q
   int pivots = 0;              // Lemke pivots spent (0 for the warm path)
+  // RayTermination: the pairs whose z grows along the unbounded ray (the certificate's support:
+  // what the data drives against its constraints). Empty otherwise.
+  std::vector<int> ray;
 };
 
 // Lemke's complementary pivoting with covering vector d = (1,...,1) and lexicographic

@@ -66,6 +66,7 @@ class LemkeEngine {
   Eigen::VectorXd qt_, y_, y2_, v_;
   Eigen::RowVectorXd prow_;     // pivot row scratch
   std::vector<int> basis_;      // variable in each row: w_i = i, z_i = n + i, s = 2n
+  std::vector<int> ray_;        // at a ray termination: the z_i growing along the ray
   std::vector<int> keep_, keep2_;
   int since_refactor_ = 0;
 };

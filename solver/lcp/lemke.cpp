@@ -243,7 +243,14 @@ LcpStatus LemkeEngine::pivot_to_end(const LemkeOptions& options, int& pivots) {
     const int entering = leaving < n_ ? leaving + n_ : leaving - n_;
     entering_column(entering);
     r = lexicographic_leaving_row(options.pivot_tol);
-    if (r < 0) return LcpStatus::RayTermination;
+    if (r < 0) {
+      ray_.clear();
+      if (entering >= n_ && entering < 2 * n_) ray_.push_back(entering - n_);
+      for (int i = 0; i < n_; ++i)
+        if (basis_[i] >= n_ && basis_[i] < 2 * n_ && a_(i) < -options.pivot_tol) ray_.push_back(basis_[i] - n_);
+      std::sort(ray_.begin(), ray_.end());
+      return LcpStatus::RayTermination;
+    }
     leaving = basis_[r];
     pivot(r, entering);
     ++pivots;
@@ -279,6 +286,8 @@ void LemkeEngine::solve(const Eigen::MatrixXd& M, const Eigen::VectorXd& q,
     if (status == LcpStatus::Solved) b_.noalias() = Binv_ * qt_;
   }
   out.status = status;
+  out.ray.clear();
+  if (status == LcpStatus::RayTermination) out.ray = ray_;
   finish(M, q, qn, options, status == LcpStatus::Solved, out);
 }
 

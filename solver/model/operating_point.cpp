@@ -144,12 +144,6 @@ bool polish(const CircuitModel& model, double t, OperatingPoint& op) {
   return false;
 }
 
-std::string join_names(const std::vector<std::string>& names) {
-  std::string out;
-  for (size_t k = 0; k < names.size(); ++k)
-    out += (k == 0 ? "" : k + 1 == names.size() ? " and " : ", ") + names[k];
-  return out;
-}
 
 // The elements (transistors) whose pairs are on in some solutions and off in others.
 std::vector<std::string> elements_that_differ(const CircuitModel& model, const std::vector<Eigen::VectorXd>& zs) {
@@ -233,15 +227,27 @@ OperatingPoint solve_operating_point(const CircuitModel& model, double t) {
     }
   }
   LcpSolution sol = solve_lemke(p.M, p.q);
-  if (sol.status != LcpStatus::Solved)
+  if (sol.status != LcpStatus::Solved) {
+    // At a ray termination the pairs growing along the ray are the ones no current through them
+    // can satisfy: the elements the sources drive against (a current source into a reverse
+    // junction, 5.4.7).
+    std::vector<std::string> names;
+    for (int i : sol.ray) {
+      const std::string& name = model.netlist().elements.at(model.pairs()[i].element).name;
+      if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
+    }
     throw NumericalFailure(t, std::string("the operating point has no solution (Lemke: ") +
-                                  lcp_status_name(sol.status) + ")");
+                                  lcp_status_name(sol.status) + ")" +
+                                  (names.empty() ? "" : "; the sources drive current against " + join_names(names)));
+  }
   OperatingPoint op = point_from(p, sol.z);
   op.pivots = sol.pivots;
   op.warnings = notes;
   polish(model, t, op);
   return op;
 }
+
+Eigen::MatrixXd static_lcp_matrix(const CircuitModel& model, double t) { return static_problem(model, t).M; }
 
 std::string undetermined_state_warning(const std::vector<std::string>& labels) {
   std::string list;

@@ -40,6 +40,9 @@ OperatingPoint solve_operating_point(const CircuitModel& model, double t = 0.0);
 // Every solution of the static LCP (multistable circuits; diode-only circuits have one).
 std::vector<OperatingPoint> enumerate_operating_points(const CircuitModel& model, double t = 0.0);
 
+// The static problem's matrix D - C A^-1 B (A regularised where singular), for `analyze`.
+Eigen::MatrixXd static_lcp_matrix(const CircuitModel& model, double t = 0.0);
+
 // The warning `op` and `run` print for OperatingPoint::undetermined.
 std::string undetermined_state_warning(const std::vector<std::string>& labels);
 

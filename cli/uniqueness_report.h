@@ -1,0 +1,29 @@
+// `analyze`'s answer to "is the solution unique?" (issue 10): whether the LCP matrices lcspice
+// solves are P-matrices -- one solution for every q (Stewart 2.2) -- and, where not, which
+// transistors make them fail (5.4.7: feedback between transistors; alone, alpha < 1 keeps each
+// one's block P). Two matrices: the operating point's D - C A^-1 B, and implicit Euler's step
+// matrix D + h C (I - h A)^-1 B at h = TSTEP.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "solver/lcp/p_matrix.h"
+#include "solver/model/circuit_model.h"
+
+namespace lcs {
+
+struct UniquenessEntry {
+  std::string what;          // "operating point (D - C A^-1 B)"
+  int size = 0;              // m
+  PMatrixReport report;
+  std::vector<std::string> failing_pairs;  // names of the pairs of the failing minor
+  std::string owners;        // "transistors q1 and q2"
+  std::string verdict() const;  // one line of text
+  std::string json_verdict() const;  // "P", "not P", "semidefinite", "unchecked", "empty"
+};
+
+// tstep <= 0: the step matrix is left out (no .tran).
+std::vector<UniquenessEntry> uniqueness_report(const CircuitModel& model, double tstep);
+
+}  // namespace lcs

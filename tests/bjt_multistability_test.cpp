@@ -1,0 +1,140 @@
+// Several solutions, reported and never guessed (issue 10; Stewart 5.4.7): the flip-flop of
+// Figure 5.10 without storage has three operating points. `op` and `run` refuse to pick one
+// without .ic/.nodeset, take the nearest one with them, `op --all` marks the balanced one
+// unstable, a transient keeps the state it starts in (hysteresis), `analyze` names the
+// transistors that make the LCP matrices fail to be P-matrices, and a source driving current
+// against a junction is an error naming it.
+#include <fstream>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "tests/cli_support.h"
+
+namespace lcs::cli_testing {
+namespace {
+
+// Vs = 5 V, R1 = R2 = 1k to the collectors, R3/R4 = 10k collector -> other base, R5 = R6 = 10k
+// base -> ground; ideal junctions VON = 0.7 V, RON = 0. With Q1 on: v(b1) = VON, Q2 off, so
+// v(c2) = Vs - R2 (Vs - VON)/(R2 + R4) and Q1 saturates with v(c1) = v(b1) - VON(B-C) = 0.
+const char* kFlipFlop =
+    "flip-flop without storage\n"
+    "vs vs 0 5\nr1 vs c1 1k\nr2 vs c2 1k\nr3 c1 b2 10k\nr4 c2 b1 10k\nr5 b1 0 10k\nr6 b2 0 10k\n"
+    "q1 c1 b1 0 qn\nq2 c2 b2 0 qn\n.model qn npn(bf=100 von=0.7)\n";
+const double kHigh = 5 - 1e3 * (5 - 0.7) / 11e3;  // the off collector, 4.60909... V
+
+fs::path write(const std::string& name, const std::string& text) {
+  const fs::path dir = scratch_dir("bjt_multi_" + name);
+  std::ofstream(dir / (name + ".cir")) << text;
+  return dir / (name + ".cir");
+}
+
+double value_of(const std::string& out, const std::string& probe) {
+  const size_t at = out.find("  " + probe + " ");
+  EXPECT_NE(at, std::string::npos) << probe << " not in\n" << out;
+  if (at == std::string::npos) return 0;
+  return std::stod(out.substr(out.find('=', at) + 1));
+}
+
+TEST(BjtMultistability, OpAndRunWithoutAHintExitThreeNamingTheTransistors) {
+  const fs::path f = write("nohint", std::string(kFlipFlop) + ".tran 1u 10u\n.end\n");
+  const std::string why =
+      "the operating point is not unique: 3 operating points (transistors q1 and q2 on in some, off in "
+      "others); list them with `op --all` and choose one with .ic or .nodeset node voltages (the nearest "
+      "is taken)";
+  const Result op = run_lcspice("op '" + f.string() + "'", f.parent_path());
+  EXPECT_EQ(op.code, 3);
+  EXPECT_EQ(op.err_line(0), "lcspice: error: at t = 0 s: " + why);
+  const fs::path csv = f.parent_path() / "out.csv";
+  const Result run = run_lcspice("run '" + f.string() + "' -o '" + csv.string() + "'", f.parent_path());
+  EXPECT_EQ(run.code, 3);
+  EXPECT_NE(run.err.find(why), std::string::npos) << run.err;
+  EXPECT_EQ(read_file(csv).find('\n') + 1, read_file(csv).size()) << "header only";
+}
+
+TEST(BjtMultistability, OpAllListsTheThreeSolutionsAndMarksTheBalancedOneUnstable) {
+  const fs::path f = write("all", std::string(kFlipFlop) + ".tran 1u 10u\n.end\n");
+  const Result r = run_lcspice("op --all '" + f.string() + "'", f.parent_path());
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("* 3 solutions\n"), std::string::npos);
+  // Sorted by z: Q2 on, both active, Q1 on.
+  const size_t s1 = r.out.find("solution 1 (stable):"), s2 = r.out.find("solution 2 (unstable: a saddle, index -1):"),
+               s3 = r.out.find("solution 3 (stable):");
+  ASSERT_NE(s1, std::string::npos);
+  ASSERT_NE(s2, std::string::npos);
+  ASSERT_NE(s3, std::string::npos);
+  EXPECT_NEAR(value_of(r.out.substr(s1, s2 - s1), "v(c1)"), kHigh, 1e-12);
+  EXPECT_NEAR(value_of(r.out.substr(s1, s2 - s1), "v(c2)"), 0.0, 1e-12);
+  // Both active, symmetric: v(b) = VON, i(R4) = (v(c) - VON)/R4, i_B = i(R4) - VON/R5,
+  // v(c) = Vs - R1 (BF i_B + i(R3)) -> v(c) = (Vs + R1 (BF + 1) VON/R4 + R1 BF VON/R5) / (1 + R1 (BF + 1)/R4).
+  const double bf = 100, vc = (5 + 1e3 * (bf + 1) * 0.7 / 1e4 + 1e3 * bf * 0.7 / 1e4) / (1 + 1e3 * (bf + 1) / 1e4);
+  EXPECT_NEAR(value_of(r.out.substr(s2, s3 - s2), "v(c1)"), vc, 1e-12);
+  EXPECT_NEAR(value_of(r.out.substr(s2, s3 - s2), "v(c2)"), vc, 1e-12);
+  EXPECT_NEAR(value_of(r.out.substr(s3), "v(c1)"), 0.0, 1e-12);
+  EXPECT_NEAR(value_of(r.out.substr(s3), "v(c2)"), kHigh, 1e-12);
+}
+
+TEST(BjtMultistability, NodesetChoosesTheNearestAndATransientHoldsIt) {
+  const fs::path f = write("nodeset", std::string(kFlipFlop) + ".nodeset v(c1)=5\n.tran 1u 10u\n.end\n");
+  const Result op = run_lcspice("op '" + f.string() + "'", f.parent_path());
+  ASSERT_EQ(op.code, 0) << op.err;
+  EXPECT_EQ(op.err_line(0),
+            "lcspice: warning: the circuit has 3 operating points (transistors q1 and q2); the one nearest to "
+            "the .ic/.nodeset values of c1 is taken (`op --all` lists them)");
+  EXPECT_NEAR(value_of(op.out, "v(c1)"), kHigh, 1e-12);
+  EXPECT_NEAR(value_of(op.out, "v(c2)"), 0.0, 1e-12);
+  for (const char* method : {"euler", "theta", "radau3", "radau5", "event"}) {
+    const fs::path csv_path = f.parent_path() / (std::string(method) + ".csv");
+    const Result r = run_lcspice("run '" + f.string() + "' --method " + method + " -o '" + csv_path.string() + "'",
+                                 f.parent_path());
+    ASSERT_EQ(r.code, 0) << method << ": " << r.err;
+    const Csv csv = parse_csv(read_file(csv_path));
+    const int c1 = csv.column("v(c1)"), c2 = csv.column("v(c2)");
+    ASSERT_GE(c1, 0);
+    ASSERT_EQ(csv.rows.size(), 11u) << method;
+    for (const std::vector<double>& row : csv.rows) {  // no spontaneous flip
+      EXPECT_NEAR(row[c1], kHigh, 1e-12) << method << " t = " << row[0];
+      EXPECT_NEAR(row[c2], 0.0, 1e-12) << method << " t = " << row[0];
+    }
+    if (std::string(method) != "event")
+      EXPECT_NE(r.err.find("at t = 0 s the step's complementarity problem has 3 solutions (transistors q1 and q2 "
+                           "on in some, off in others): the run keeps the one continuous with the previous state"),
+                std::string::npos)
+          << method << ": " << r.err;
+  }
+}
+
+TEST(BjtMultistability, AnalyzeNamesTheTransistorsThatBreakThePProperty) {
+  const fs::path f = write("analyze", std::string(kFlipFlop) + ".tran 1u 10u\n.end\n");
+  const Result r = run_lcspice("analyze '" + f.string() + "'", f.parent_path());
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("  operating point (D - C A^-1 B), m = 4: not a P-matrix: the principal minor of "
+                       "{q1:be, q2:be} is"),
+            std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("(transistors q1 and q2): several solutions are possible"), std::string::npos);
+  // One transistor alone: alpha < 1 keeps it a P-matrix (5.4.7).
+  const fs::path one = write("analyze_one",
+                             "switch\nvcc vcc 0 5\nvin in 0 1\nrb in b 10k\nrc vcc c 1k\nq1 c b 0 qn\n"
+                             ".model qn npn(bf=100 von=0.7)\n.tran 1u 10u\n.end\n");
+  const Result s = run_lcspice("analyze '" + one.string() + "'", one.parent_path());
+  ASSERT_EQ(s.code, 0) << s.err;
+  EXPECT_NE(s.out.find("  operating point (D - C A^-1 B), m = 2: a P-matrix: one solution for every q"),
+            std::string::npos)
+      << s.out;
+}
+
+TEST(BjtMultistability, ACurrentSourceAgainstAJunctionIsAnErrorNamingIt) {
+  // 1 mA into the emitter of an NPN whose base is grounded and whose collector has only its own
+  // junction: i_E(in) = -(1 - aF aR) i_DE would need i_DE < 0.
+  const fs::path f = write("nosolution",
+                           "current into an emitter\nI1 0 e 1m\nq1 c 0 e qn\nrc c 0 1meg\n"
+                           ".model qn npn(bf=100 von=0.7)\n.tran 1u 10u\n.end\n");
+  const Result r = run_lcspice("op '" + f.string() + "'", f.parent_path());
+  EXPECT_EQ(r.code, 3);
+  EXPECT_EQ(r.err_line(0), "lcspice: error: at t = 0 s: the operating point has no solution (Lemke: ray "
+                           "termination); the sources drive current against q1");
+}
+
+}  // namespace
+}  // namespace lcs::cli_testing
