@@ -111,7 +111,6 @@ const LcpSolution& LcpWarmSolver::solve(const Eigen::VectorXd& q) {
   const int n = static_cast<int>(M_.rows());
   const bool had_previous = stats_.solves > 0 || preferred_;
   const long hits = stats_.warm_hits;
-  const std::uint64_t previous = active_;
   solve_once(q);
   multiplicity_ = Multiplicity::Unknown;
   if (!several_possible_ || last_.status != LcpStatus::Solved) return last_;
