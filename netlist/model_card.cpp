@@ -20,7 +20,7 @@ const char* const kIgnoredBjtParams[] = {
     "re", "rc", "vje", "pe", "mje", "me", "tf", "xtf", "vtf", "itf", "ptf", "cjc", "vjc", "pc",
     "mjc", "mc", "xcjc", "tr", "cjs", "ccs", "vjs", "ps", "mjs", "ms", "xtb", "eg", "xti", "kf",
     "af", "fc", "tnom", "tref", "level", "subs", "iss", "ns", "nkf", "quasimod", "rco", "vo",
-    "gamma", "qco", "tlev", "tlevc", "temp", "dtemp", "vceo", "icrating", "mfg", "type", "bvcbo",
+    "gamma", "qco", "tlev", "tlevc", "temp", "dtemp", "vceo", "icrating", "icrate", "mfg", "type", "bvcbo",
     "bvebo", "bvceo", "iave", "vpk", "isub", "xcjc2", "vg", "cn", "d", "vbe", "vce"};
 
 template <std::size_t N>
