@@ -373,10 +373,10 @@ int validate_with_faults(const ValidateArgs& args, const NgspiceDeckFaults& faul
   std::vector<Probe> all = probes;
   const CircuitGraph& graph = model.graph();
   for (const PairInfo& p : model.pairs())
-    all.push_back({Probe::Kind::ElementCurrent, graph.branches.at(p.branch).name, "", 0, {}});
+    all.push_back({Probe::Kind::ElementCurrent, graph.branches.at(p.branch).name, "", {}});
   for (const PairInfo& p : model.pairs()) {
     const Branch& b = graph.branches.at(p.branch);
-    all.push_back({Probe::Kind::NodePairVoltage, graph.nodes.at(b.from), graph.nodes.at(b.to), 0, {}});
+    all.push_back({Probe::Kind::NodePairVoltage, graph.nodes.at(b.from), graph.nodes.at(b.to), {}});
   }
   OutputMap outputs = output_map_or_exit(ours_model, all);
 

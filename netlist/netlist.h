@@ -85,8 +85,8 @@ struct Probe {
   enum class Kind { NodeVoltage, NodePairVoltage, ElementCurrent, TerminalCurrent };
   Kind kind = Kind::NodeVoltage;
   std::string a, b;                    // nodes (a, b) or element name (a); lower-case
-  char terminal = 0;                   // TerminalCurrent: 'c', 'b' or 'e' (a BJT's ic/ib/ie)
   SourceLocation loc;                  // empty file when it came from the command line
+  char terminal = 0;                   // TerminalCurrent: 'c', 'b' or 'e' (a BJT's ic/ib/ie)
   std::string name() const;            // canonical CSV header: "v(n)", "v(p,n)", "i(d1)", "ic(q1)"
 };
 
