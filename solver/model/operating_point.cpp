@@ -98,8 +98,10 @@ bool polish(const CircuitModel& model, double t, OperatingPoint& op) {
   K.topLeftCorner(n, n) = s.A;
   rhs.head(n) = -s.E * u;
   for (int a = 0; a < k; ++a) {
-    K.block(0, n + a, n, 1) = s.B.col(J[a]);
-    K.block(n + a, 0, 1, n) = s.C.row(J[a]);
+    if (n > 0) {  // a row or column block of an empty matrix points past null (UBSan)
+      K.block(0, n + a, n, 1) = s.B.col(J[a]);
+      K.block(n + a, 0, 1, n) = s.C.row(J[a]);
+    }
     for (int c = 0; c < k; ++c) K(n + a, n + c) = s.D(J[a], J[c]);
     rhs(n + a) = -s.F.row(J[a]).dot(u);
   }
