@@ -646,6 +646,43 @@ TEST(BjtPnpHighSide, OnAndOffStatesAreTheClosedFormInEveryMethod) {
   }
 }
 
+// The smooth method (Shockley junctions, no states: one Newton solve of the four pairs per row
+// and per root-finding iterate) through the ramp that saturates the NPN (issue 10). It used to
+// stop at 100.55 us, "no diode currents consistent with the state": the damped Newton iteration
+// on the junction parameters compared the next simplified correction, weighed at the trial
+// point, with the correction weighed at the current one, and a conducting junction's weight
+// (its margin's sensitivity, N Vt / |s|) grows as the step shrinks its current, so no damping
+// factor passed. Both now use the current point's weights (Deuflhard's natural monotonicity
+// test). Measured on: v(out) 11.7768 V (11.7227 V at N = 1) against the ideal 11.7795 V.
+TEST(BjtPnpHighSide, SmoothMethodPassesThroughTheSwitchingAndKeepsKcl) {
+  const HighSide h;
+  for (const std::string extra : {"", "--emission 1"}) {
+    SCOPED_TRACE("smooth " + extra);
+    const Csv csv = run_csv(circuit("bjt_pnp_high_side"), "smooth", extra);
+    const auto t = column(csv, "time");
+    ASSERT_FALSE(t.empty());
+    EXPECT_NEAR(t.back(), 1e-3, 1e-15);
+    std::map<std::string, std::vector<double>> y;
+    for (const char* p : {"v(nd)", "v(bp)", "v(out)", "ic(q1)", "ic(q2)"}) y[p] = column(csv, p);
+    int on = 0, off = 0;
+    for (size_t k = 0; k < t.size(); ++k) {
+      // Ohm's law in R2 and RL on every row, the switching included.
+      EXPECT_NEAR(y["ic(q1)"][k], (y["v(bp)"][k] - y["v(nd)"][k]) / h.r2, 1e-9 * 0.13) << t[k];
+      EXPECT_NEAR(y["v(out)"][k], -h.rl * y["ic(q2)"][k], 1e-9 * h.vcc) << t[k];
+      if (t[k] >= 110e-6 && t[k] <= 500e-6) {
+        ++on;
+        EXPECT_NEAR(y["v(out)"][k], h.vout(), 0.1) << t[k];  // the Shockley junctions' gap
+        EXPECT_LT(y["v(nd)"][k], 0.5) << t[k];               // the NPN saturated
+      } else if (t[k] < 100e-6 || t[k] > 503e-6) {
+        ++off;
+        EXPECT_NEAR(y["v(out)"][k], 0.0, 1e-6) << t[k];
+      }
+    }
+    EXPECT_GT(on, 300);
+    EXPECT_GT(off, 500);
+  }
+}
+
 // ---------------------------------------------------------------------------------------------
 // Emitter-coupled Schmitt trigger (circuits/bjt_schmitt.cir): VCC 10, RC1 2k, R1 5k, R2 10k,
 // RC2 800, RE 1k, BF 100, VON 0.7 on both junctions. Q2's base sees VTH = VCC R2/(RC1 + R1 + R2)
