@@ -646,6 +646,28 @@ TEST(BjtPnpHighSide, OnAndOffStatesAreTheClosedFormInEveryMethod) {
   }
 }
 
+// The RC-load switch saturating at --rtol 1e-4 (issue 10): at the end of the bracket the load
+// capacitor is a little below VCESAT, where a mode with the base-emitter junction open and the
+// base-collector one closed has its base-emitter w 3.7e-6 V above zero. Taken as positive it
+// lasted 6 ps, and the switch alternated between it and saturation 13000 times. The modes are
+// now checked at the crossing estimated inside the bracket: one event per switching, as at the
+// default tolerance, and the same rows.
+TEST(BjtSwitchRcLoad, EventMethodAtCoarseTolerancesSwitchesOncePerEdge) {
+  const Csv ref = run_csv(circuit("bjt_switch_rc_load"), "event");
+  const size_t ref_events = ref.rows.size() - grid_rows(ref, 0.1e-6).size();
+  EXPECT_EQ(ref_events, 8u);
+  for (double rtol : {1e-3, 1e-4}) {
+    char arg[32];
+    std::snprintf(arg, sizeof arg, "--rtol %g", rtol);
+    SCOPED_TRACE(arg);
+    const Csv csv = run_csv(circuit("bjt_switch_rc_load"), "event", arg);
+    ASSERT_FALSE(csv.rows.empty());
+    EXPECT_NEAR(csv.rows.back()[0], 200e-6, 1e-15);
+    EXPECT_EQ(csv.rows.size() - grid_rows(csv, 0.1e-6).size(), ref_events);
+    for (const char* v : {"v(b)", "v(c)"}) EXPECT_LE(worst_on_grid(csv, ref, v, 0.1e-6), 10.0 * rtol) << v;
+  }
+}
+
 // The smooth method (Shockley junctions, no states: one Newton solve of the four pairs per row
 // and per root-finding iterate) through the ramp that saturates the NPN (issue 10). It used to
 // stop at 100.55 us, "no diode currents consistent with the state": the damped Newton iteration

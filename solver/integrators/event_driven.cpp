@@ -86,6 +86,8 @@ struct EventDriven::Impl {
   double h0 = 0;
   int stop_level = 43;
   double bracket = 0;  // 2 h0 / 2^stop_level: twice the length events are located to
+  Eigen::VectorXd event_left;  // after bisect(): the bracket's left end (X is its right end)
+  double event_width = 0;      // and its length in seconds
   int n = 0, m = 0;
   bool step_levels = true;  // modes get their step level (an eigenvalue problem); not to select one
 
@@ -113,7 +115,7 @@ struct EventDriven::Impl {
   const Eigen::MatrixXd& exponential(Mode& md, int j);
   void prepare(double tstep, double tstop);
   bool consistent(Mode& md, const Eigen::VectorXd& X, std::vector<int>* near_zero,
-                  const Eigen::VectorXd* overshoot) const;
+                  const Eigen::MatrixXd* error) const;
   Mode& select(double t, const Eigen::VectorXd& x, const Eigen::VectorXd& sigma,
                const std::string& signature, const Mode* previous, bool event = false);
   bool apply_impulse(Eigen::VectorXd& x, const Eigen::VectorXd& u);
@@ -200,6 +202,7 @@ void EventDriven::Impl::prepare(double tstep, double tstop) {
   stop_level = 1;
   while (stop_level < 62 && std::ldexp(1.0, -stop_level) > options.rtol) ++stop_level;
   bracket = std::ldexp(h0, 1 - stop_level);
+  event_left.resize(0);
 
   // The selection step: tiny against the output step and the circuit's fastest rate (as for
   // the start of time-stepping), so its solution is the rational complementarity problem's.
@@ -236,12 +239,13 @@ void EventDriven::Impl::prepare(double tstep, double tstop) {
 }
 
 // The mode fits the state if, for every pair, the first of (g, g', g'') that is not zero within
-// tolerance is positive (8.3.3), and its index-one constraints hold. `overshoot` (after an event,
-// else null): how far the mode that ran into the event moves [x; sigma] in one bracket; the
-// state is past the event by at most that, and so the index-one constraints off by as much.
+// tolerance is positive (8.3.3), and its index-one constraints hold. After an event the state
+// checked is the crossing estimated inside the final bisection bracket, and `error` (columns
+// over [x; sigma]: the sum over them of |row . column| bounds how far that row's value at the
+// estimate can be from its value at the crossing) widens every tolerance for "at zero".
 bool EventDriven::Impl::consistent(Mode& md, const Eigen::VectorXd& Xs,
                                    std::vector<int>* near_zero,
-                                   const Eigen::VectorXd* overshoot) const {
+                                   const Eigen::MatrixXd* error) const {
   if (!md.dyn.well_posed) return false;
   const Eigen::VectorXd g = md.G * Xs, d = md.GM * Xs, dd = md.GMM * Xs;
   const double xn = W.cwiseProduct(Xs).norm();
@@ -251,13 +255,23 @@ bool EventDriven::Impl::consistent(Mode& md, const Eigen::VectorXd& Xs,
   row_scales(md.GMMabs, md.GMMnorm, Xs, xn, sdd);
   bool ok = true;
   for (int i = 0; i < m; ++i) {
-    // A value within one bisection bracket of its slope below zero counts as zero: an event
-    // leaves the constraint that caused it up to |g'| * bracket past zero.
-    const double t0 = kZeroTol * sg(i), below = t0 + std::abs(d(i)) * bracket;
+    // Without an event: a value within one bisection bracket of its slope counts as zero.
+    // After one, the values are taken at the estimated crossing and known to its error. (The
+    // new mode's slope times the bracket, used before, has nothing to do with where the event
+    // was located and can be far larger: the astable's Q2 collector, 4.8 V falling at 4.9e10
+    // V/s and saturating 98 ps later, counted as zero with a negative slope against a 122 ps
+    // bracket at --rtol 1e-4, and the only right mode was refused. And past the crossing, the
+    // boost's diode with RON CSW = 5 ps already had a current relaxing downwards.)
+    double t0 = kZeroTol * sg(i);
+    if (error) {
+      for (Eigen::Index c = 0; c < error->cols(); ++c) t0 += std::abs(md.G.row(i).dot(error->col(c)));
+    } else {
+      t0 += std::abs(d(i)) * bracket;
+    }
     const double t1 = kZeroTol * sd(i), t2 = kZeroTol * sdd(i);
     if (g(i) > t0) continue;
-    if (near_zero && g(i) >= -below) near_zero->push_back(i);
-    if (g(i) < -below) {
+    if (near_zero && g(i) >= -t0) near_zero->push_back(i);
+    if (g(i) < -t0) {
       ok = false;
     } else if (d(i) < -t1 || (d(i) <= t1 && dd(i) < -t2)) {
       ok = false;
@@ -268,11 +282,12 @@ bool EventDriven::Impl::consistent(Mode& md, const Eigen::VectorXd& Xs,
     Eigen::VectorXd sr;
     row_scales(md.Pc.cwiseAbs(), md.Pcnorm, Xs, xn, sr);
     // A constraint that holds in the new mode but not in the one that ran into the event (the
-    // junction that just closed: its w is what the bisection located) is left up to its rate
-    // times the bracket past zero, as a pair's g is; project() then puts the state on it.
-    // (Rounding alone, 1e-9 of its terms, was too tight: a 9e3 V/s base voltage crossing VON
-    // stopped up to 1.7e-8 V past it at --rtol 1e-6, and no mode of the astable passed.)
-    if (overshoot) sr += (md.Pc * *overshoot).cwiseAbs() / kZeroTol;
+    // junction that just closed) is checked at the estimated crossing too, to its error;
+    // project() then puts the state, past the crossing, on it. (At the bracket's end, to
+    // rounding, it failed: a 9e3 V/s base voltage crossing VON stopped up to 1.7e-8 V past it at
+    // --rtol 1e-6, and no mode of the astable passed.)
+    if (error)
+      for (Eigen::Index c = 0; c < error->cols(); ++c) sr += (md.Pc * error->col(c)).cwiseAbs() / kZeroTol;
     for (int i = 0; i < r.size(); ++i)
       if (std::abs(r(i)) > kZeroTol * sr(i) + 1e-300) ok = false;
   }
@@ -284,13 +299,42 @@ Mode& EventDriven::Impl::select(double t, const Eigen::VectorXd& x, const Eigen:
                                 const std::string& signature, const Mode* previous, bool event) {
   Eigen::VectorXd Xs(n + sigma.size());
   Xs << x, sigma;
-  // After an event: the state's move along the mode that ran into it over one bracket.
-  Eigen::VectorXd overshoot_storage;
-  const Eigen::VectorXd* overshoot = nullptr;
+  // After an event the modes are checked at the crossing, estimated inside the final bracket
+  // [event_left, X] (length L) by linear interpolation of the constraint of the mode that ran
+  // into it that crossed first (unless an impulse was taken, see below). Its error:
+  // the interpolation's, L^2/8 times the second derivative M^2 X, and the crossing time's,
+  // |g''| L^2 / (8 |g'|) of that constraint, times the first derivative M X.
+  Eigen::VectorXd Xc;
+  Eigen::MatrixXd error_storage;
+  const Eigen::MatrixXd* error = nullptr;
+  const Eigen::VectorXd* Xt = &Xs;
   if (event && previous && previous->dyn.well_posed && previous->signature == signature &&
-      previous->q == Xs.size()) {
-    overshoot_storage = bracket * (previous->M * Xs);
-    overshoot = &overshoot_storage;
+      previous->q == Xs.size() && event_left.size() == Xs.size() && X.size() == Xs.size()) {
+    const Eigen::VectorXd gl = previous->G * event_left, gr = previous->G * X;
+    const Eigen::VectorXd v1 = previous->M * X, v2 = previous->M * v1;
+    const double L = event_width;
+    double theta = 1, dt = 0;
+    for (int i = 0; i < m; ++i) {
+      if (!(gr(i) < 0 && gl(i) >= 0 && gl(i) > gr(i))) continue;
+      const double th = gl(i) / (gl(i) - gr(i));
+      if (th > theta) continue;
+      theta = th;
+      const double slope = std::abs(previous->GM.row(i).dot(X));
+      dt = slope > 0 ? std::min(L, std::abs(previous->GMM.row(i).dot(X)) * L * L / (8 * slope)) : L;
+    }
+    error_storage.resize(Xs.size(), 2);
+    if (Xs.head(n) == X.head(n)) {
+      Xc = Xs - (1 - theta) * (X - event_left);
+      Xt = &Xc;
+      error_storage << v2 * (L * L / 8), v1 * dt;
+    } else {
+      // An impulse has already put the constraints that were past zero back on it (from the
+      // bracket's end; moved back to the crossing, they would be off by the overshoot, and the
+      // astable's closing base-emitter junction refused its mode): the end is checked, known
+      // to what the bracket changes.
+      error_storage << v2 * (L * L / 2), v1 * L;
+    }
+    error = &error_storage;
   }
   // A ramp moves u by at most its slope times the time to the next reset (grid time or corner).
   const std::vector<double>& bp = sources->breakpoints();
@@ -323,7 +367,7 @@ Mode& EventDriven::Impl::select(double t, const Eigen::VectorXd& x, const Eigen:
   }
   std::vector<int> near_zero;
   Mode& first = mode(active, signature);
-  if (consistent(first, Xs, &near_zero, overshoot)) return first;
+  if (consistent(first, *Xt, &near_zero, error)) return first;
   // The LCP's own ambiguous pairs (the mode it names may not even be well posed: a node left
   // floating when every diode at it is off), then ...
   for (int i : degenerate)
@@ -353,7 +397,7 @@ Mode& EventDriven::Impl::select(double t, const Eigen::VectorXd& x, const Eigen:
         for (int a = 0; a < k; ++a)
           if (pick[a]) trial[candidates[a]] = !trial[candidates[a]];
         Mode& md = mode(trial, signature);
-        if (consistent(md, Xs, nullptr, overshoot)) return &md;
+        if (consistent(md, *Xt, nullptr, error)) return &md;
       } while (std::prev_permutation(pick.begin(), pick.end()));
     }
     return nullptr;
@@ -487,6 +531,8 @@ void EventDriven::Impl::bisect(int j) {
   }
   X.swap(right);
   pos = pos.plus(j);
+  event_left = right;  // the left end, swapped out of X
+  event_width = std::ldexp(h0, -j);
 }
 
 bool EventDriven::Impl::advance_to(const DyadicTime& target, const Progress& progress) {
