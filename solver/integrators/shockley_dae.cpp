@@ -213,7 +213,7 @@ bool ShockleyDae::solve_pairs(double t, const Eigen::VectorXd& x, Eigen::VectorX
     bool accepted = false;
     for (double lambda = 1.0; lambda > 1e-10 && !accepted; lambda *= 0.5) {
       s_try = sk + lambda * ds;
-      accepted = evaluate(s_try, false) && norm(lu.solve(-r), s_try) <= (1 - lambda / 4) * ds_norm;
+      accepted = evaluate(s_try, false) && norm(lu.solve(-r), sk) <= (1 - lambda / 4) * ds_norm;
     }
     if (!accepted) return false;
     sk = s_try;
