@@ -110,8 +110,9 @@ TEST(BjtSwitchRamp, TransferCurveIsTheClosedFormInCutoffActiveAndSaturationInEve
       EXPECT_NEAR(ib[k], s.ib(vin[k]), 1e-9 * s.ib(s.vcc));
       // ic/ib = BF in the active region (well inside it: the rows next to its ends divide small
       // numbers or sit on the corner).
-      if (region == RampSwitch::Active && vin[k] > s.vone + 0.05 && s.active(vin[k]) > s.vone - s.vonc + 0.05)
+      if (region == RampSwitch::Active && vin[k] > s.vone + 0.05 && s.active(vin[k]) > s.vone - s.vonc + 0.05) {
         EXPECT_NEAR(ic[k] / ib[k], s.bf, 1e-9 * s.bf) << "v(in) = " << vin[k];
+      }
     }
     // The ramp crosses all three regions, each over many rows.
     EXPECT_GT(rows[RampSwitch::Cutoff], 100);
@@ -251,7 +252,9 @@ TEST(BjtSwitchRcLoad, ExponentialsAndSwitchingInstantsAreTheClosedFormWithEvent)
       case RcLoadSwitch::Cutoff: EXPECT_NEAR(ic[k], 0.0, 1e-12) << "t = " << t[k]; break;
       case RcLoadSwitch::Active:
         EXPECT_NEAR(ic[k], s.bf * (vin - s.vone) / s.rb, 1e-9 * 0.0215) << "t = " << t[k];
-        if (ib[k] > 1e-6) EXPECT_NEAR(ic[k] / ib[k], s.bf, 1e-9 * s.bf) << "t = " << t[k];
+        if (ib[k] > 1e-6) {
+          EXPECT_NEAR(ic[k] / ib[k], s.bf, 1e-9 * s.bf) << "t = " << t[k];
+        }
         break;
       case RcLoadSwitch::Saturated:
         EXPECT_NEAR(ic[k], s.icsat(), 1e-9 * 0.0215) << "t = " << t[k];
@@ -334,7 +337,7 @@ TEST(BjtFlipFlop, OpAllFindsExactlyTheThreeClosedFormSolutions) {
 TEST(BjtFlipFlop, HoldsTheSideItsIcChoseAndFlipsWhenTheOffBaseIsPulsed) {
   const FlipFlop f;
   const auto q1_on = f.on(1), q2_on = f.on(2);
-  for (const std::string& method : {"event", "euler", "radau3", "radau5"}) {
+  for (const char* method : {"event", "euler", "radau3", "radau5"}) {
     SCOPED_TRACE(method);
     const Csv csv = run_csv(circuit("bjt_flip_flop"), method);
     const auto t = column(csv, "time");
@@ -358,7 +361,7 @@ TEST(BjtFlipFlop, HoldsTheSideItsIcChoseAndFlipsWhenTheOffBaseIsPulsed) {
 // The base-emitter capacitance (CJE) is part of the transistor: its current enters at the base.
 // KCL at each base node, every row: ib(q1) = i(r4) - i(r5), ib(q2) = i(r3) - i(r6) + i(ip).
 TEST(BjtFlipFlop, BaseCurrentIncludesTheBaseEmitterCapacitanceKclAtEveryBase) {
-  for (const std::string& method : {"event", "euler", "radau5"}) {
+  for (const char* method : {"event", "euler", "radau5"}) {
     SCOPED_TRACE(method);
     const Csv csv = run_csv(circuit("bjt_flip_flop"), method,
                             "--probe 'ib(q1),ie(q1),i(r4),i(r5),ib(q2),ie(q2),ic(q2),i(r3),i(r6),i(ip)'");
@@ -769,7 +772,7 @@ TEST(BjtSchmitt, ThresholdsAndStatesAreTheClosedForms) {
   }
   // Time-stepping methods keep the state they are in between the thresholds and switch at the
   // first step past one (hysteresis), up while rising, down while falling.
-  for (const std::string& method : {"euler", "radau5"}) {
+  for (const char* method : {"euler", "radau5"}) {
     SCOPED_TRACE(method);
     const Csv csv = run_csv(bare, method);
     const auto vin = column(csv, "v(in)");
