@@ -155,12 +155,15 @@ Mode& EventDriven::Impl::mode(const std::vector<bool>& active, const std::string
     md->Z = Eigen::MatrixXd::Zero(m, md->q);
     for (size_t r = 0; r < d.active.size(); ++r) {
       const int i = d.active[r];
-      md->G.row(i) << d.Kx.row(r), d.Ku.row(r) * P + d.Kd.row(r) * P * S;
+      // Blocks of the no-column Kx/Wx of a circuit without states point past null (UBSan).
+      if (n > 0) md->G.block(i, 0, 1, n) = d.Kx.row(r);
+      if (p > 0) md->G.block(i, n, 1, p) = d.Ku.row(r) * P + d.Kd.row(r) * P * S;
       md->Z.row(i) = md->G.row(i);
     }
     for (size_t r = 0; r < d.inactive.size(); ++r) {
       const int i = d.inactive[r];
-      md->G.row(i) << d.Wx.row(r), d.Wu.row(r) * P + d.Wd.row(r) * P * S;
+      if (n > 0) md->G.block(i, 0, 1, n) = d.Wx.row(r);
+      if (p > 0) md->G.block(i, n, 1, p) = d.Wu.row(r) * P + d.Wd.row(r) * P * S;
     }
     md->GM = md->G * md->M;
     md->GMM = md->GM * md->M;

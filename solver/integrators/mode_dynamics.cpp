@@ -6,14 +6,18 @@ namespace lcs {
 
 namespace {
 
+// A row (column) block of a matrix with no columns (rows) points past null (UBSan): C of a
+// circuit without states. Nothing to copy then.
 Eigen::MatrixXd rows(const Eigen::MatrixXd& M, const std::vector<int>& idx) {
   Eigen::MatrixXd out(idx.size(), M.cols());
+  if (M.cols() == 0) return out;
   for (size_t k = 0; k < idx.size(); ++k) out.row(k) = M.row(idx[k]);
   return out;
 }
 
 Eigen::MatrixXd cols(const Eigen::MatrixXd& M, const std::vector<int>& idx) {
   Eigen::MatrixXd out(M.rows(), idx.size());
+  if (M.rows() == 0) return out;
   for (size_t k = 0; k < idx.size(); ++k) out.col(k) = M.col(idx[k]);
   return out;
 }
@@ -44,7 +48,7 @@ ModeDynamics ModeDynamics::build(const Lcs& s, const std::vector<bool>& is_activ
   //   U^T (C_α x + D_αα z_α + F_α u) = 0,   N^T C_α (A x + B_α z_α + E u) + N^T F_α u' = 0.
   Eigen::MatrixXd Q(a, a), Rx(a, n), Ru(a, nu), Rd(a, nu);
   Q << U.transpose() * Daa, N.transpose() * Ca * Ba;
-  Rx << U.transpose() * Ca, N.transpose() * Ca * s.A;
+  if (n > 0) Rx << U.transpose() * Ca, N.transpose() * Ca * s.A;  // no states: nothing (UBSan)
   Ru << U.transpose() * Fa, N.transpose() * Ca * s.E;
   Rd << Eigen::MatrixXd::Zero(a - k, nu), N.transpose() * Fa;
   m.Cc = N.transpose() * Ca;
