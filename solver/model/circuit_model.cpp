@@ -58,6 +58,7 @@ std::string join_names(const std::vector<std::string>& names) {
 Eigen::VectorXd uncancelled_diagonal(const Eigen::MatrixXd& Tc, const Eigen::VectorXd& Cd,
                                      const Eigen::MatrixXd& Tl, const Eigen::MatrixXd& Lf) {
   Eigen::VectorXd out = Eigen::VectorXd::Zero(Tc.cols());
+  if (Tc.cols() == 0) return out;  // no states: rows of the no-column Tc/Tl point past null (UBSan)
   for (int k = 0; k < Tc.rows(); ++k) out += Cd(k) * Tc.row(k).cwiseAbs2().transpose();
   for (int k = 0; k < Lf.rows(); ++k)
     for (int l = 0; l < Lf.cols(); ++l)
@@ -396,7 +397,8 @@ CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& opt
     if (role[b] != Role::Forced) continue;
     if (g.branches[b].cls == BranchClass::Capacitor) {
       const int k = cap_index[b];
-      P.row(b) = Cd(k) * (Tc.row(k) * Xdot + Tcu.row(k) * du_sel);
+      P.row(b) = Cd(k) * (Tcu.row(k) * du_sel);
+      if (n > 0) P.row(b) += Cd(k) * (Tc.row(k) * Xdot);  // no states: Tc has no columns (UBSan)
     } else {
       const int k = ind_index[b];
       P.row(b) = Lf.row(k) * (Tl * Xdot + Tlu * du_sel);
