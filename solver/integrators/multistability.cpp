@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "graph/topology.h"
 #include "solver/model/numerical_failure.h"
 
 namespace lcs {
@@ -17,11 +18,9 @@ std::string pair_owners(const LcsProblem& model, const std::vector<int>& pairs) 
     const std::string owner = name.substr(0, colon);
     if (std::find(owners.begin(), owners.end(), owner) == owners.end()) owners.push_back(owner);
   }
-  std::string out = owners.size() == 1 ? (transistors ? "transistor " : "element ")
-                                       : (transistors ? "transistors " : "elements ");
-  for (size_t k = 0; k < owners.size(); ++k)
-    out += (k == 0 ? "" : k + 1 == owners.size() ? " and " : ", ") + owners[k];
-  return out;
+  return (owners.size() == 1 ? (transistors ? "transistor " : "element ")
+                              : (transistors ? "transistors " : "elements ")) +
+         join_names(owners);
 }
 
 void MultistabilityNotes::check(const LcpWarmSolver& lcp, const LcsProblem& model, double t, int blocks) {

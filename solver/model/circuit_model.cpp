@@ -6,6 +6,7 @@
 #include <set>
 #include <stdexcept>
 
+#include "graph/topology.h"
 #include "solver/devices/device_registry.h"
 #include "solver/model/netlist_options.h"
 #include "solver/model/perfect_coupling.h"
@@ -51,15 +52,6 @@ void check_finite_inputs(const Netlist& netlist, const InputProvider& inputs, do
                              " at t = " + at + " is not a finite number");
     }
   }
-}
-
-std::string join_names(const std::vector<std::string>& names) {
-  std::string out;
-  for (size_t k = 0; k < names.size(); ++k) {
-    if (k > 0) out += k + 1 == names.size() ? " and " : ", ";
-    out += names[k];
-  }
-  return out;
 }
 
 // Mdyn's diagonal without cancellation, |Tc|^T C |Tc| + |Tl|^T |Lf| |Tl| (diagonal only): what

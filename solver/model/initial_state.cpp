@@ -98,9 +98,7 @@ void choose_start_mode(const CircuitModel& model, double t0, const Eigen::Vector
   const Eigen::VectorXd q = s.C * x + s.F * u;
   const std::vector<Eigen::VectorXd> all = distinct_in_w(M, q, enumerate_lcp_solutions(M, q));
   if (all.size() < 2) return;
-  std::map<std::string, double> hints;
-  for (const NodeIc& h : model.netlist().node_sets) hints[h.node] = h.value;
-  for (const NodeIc& h : model.netlist().node_ics) hints[h.node] = h.value;
+  const std::map<std::string, double> hints = node_hints(model.netlist());
   if (hints.empty()) return;
   // If the operating point's mode is among them, it continues: nothing to choose.
   for (const Eigen::VectorXd& sol : all) {
@@ -109,16 +107,8 @@ void choose_start_mode(const CircuitModel& model, double t0, const Eigen::Vector
     if (same) return;
   }
   std::vector<std::pair<double, int>> distance;
-  for (int k = 0; k < static_cast<int>(all.size()); ++k) {
-    double d = 0;
-    for (const auto& [node, value] : hints) {
-      const int index = model.graph().node_index(node);
-      if (index < 0) continue;
-      const double v = model.evaluate_dc(model.node_voltage(index), x, all[k], t0);
-      d += (v - value) * (v - value);
-    }
-    distance.push_back({d, k});
-  }
+  for (int k = 0; k < static_cast<int>(all.size()); ++k)
+    distance.push_back({hint_distance(model, hints, x, all[k], t0), k});
   std::sort(distance.begin(), distance.end());
   if (distance[1].first - distance[0].first <= 1e-12 * std::max(1.0, distance[0].first)) return;
   z = all[distance[0].second];

@@ -165,14 +165,6 @@ std::vector<std::string> elements_that_differ(const CircuitModel& model, const s
   return names;
 }
 
-// .ic and .nodeset node voltages (.ic wins where both name a node).
-std::map<std::string, double> node_hints(const Netlist& netlist) {
-  std::map<std::string, double> hints;
-  for (const NodeIc& h : netlist.node_sets) hints[h.node] = h.value;
-  for (const NodeIc& h : netlist.node_ics) hints[h.node] = h.value;
-  return hints;
-}
-
 OperatingPoint choose_among(const CircuitModel& model, const StaticProblem& p, double t,
                             const std::vector<Eigen::VectorXd>& zs) {
   const std::vector<std::string> differ = elements_that_differ(model, zs);
@@ -188,14 +180,7 @@ OperatingPoint choose_among(const CircuitModel& model, const StaticProblem& p, d
   for (int k = 0; k < static_cast<int>(zs.size()); ++k) {
     OperatingPoint op = point_from(p, zs[k]);
     polish(model, t, op);
-    double d = 0;
-    for (const auto& [node, value] : hints) {
-      const int index = model.graph().node_index(node);
-      if (index < 0) continue;
-      const double v = model.evaluate_dc(model.node_voltage(index), op.x, op.z, t);
-      d += (v - value) * (v - value);
-    }
-    distance.push_back({d, k});
+    distance.push_back({hint_distance(model, hints, op.x, op.z, t), k});
   }
   std::sort(distance.begin(), distance.end());
   if (distance[1].first - distance[0].first <= 1e-12 * std::max(1.0, distance[0].first))
@@ -247,6 +232,25 @@ OperatingPoint solve_operating_point(const CircuitModel& model, double t) {
   op.warnings = notes;
   polish(model, t, op);
   return op;
+}
+
+std::map<std::string, double> node_hints(const Netlist& netlist) {
+  std::map<std::string, double> hints;
+  for (const NodeIc& h : netlist.node_sets) hints[h.node] = h.value;
+  for (const NodeIc& h : netlist.node_ics) hints[h.node] = h.value;
+  return hints;
+}
+
+double hint_distance(const CircuitModel& model, const std::map<std::string, double>& hints,
+                     const Eigen::VectorXd& x, const Eigen::VectorXd& z, double t) {
+  double d = 0;
+  for (const auto& [node, value] : hints) {
+    const int index = model.graph().node_index(node);
+    if (index < 0) continue;
+    const double v = model.evaluate_dc(model.node_voltage(index), x, z, t);
+    d += (v - value) * (v - value);
+  }
+  return d;
 }
 
 Eigen::MatrixXd static_lcp_matrix(const CircuitModel& model, double t) { return static_problem(model, t).M; }

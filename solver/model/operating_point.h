@@ -3,6 +3,7 @@
 // i.e. LCP(q, D - C A^-1 B) with q = (F - C A^-1 E) u.
 #pragma once
 
+#include <map>
 #include <string>
 #include <vector>
 
@@ -39,6 +40,12 @@ OperatingPoint solve_operating_point(const CircuitModel& model, double t = 0.0);
 
 // Every solution of the static LCP (multistable circuits; diode-only circuits have one).
 std::vector<OperatingPoint> enumerate_operating_points(const CircuitModel& model, double t = 0.0);
+
+// .ic and .nodeset node voltages (.ic wins where both name a node): what chooses among several
+// solutions, and the squared distance of a solution's node voltages from them.
+std::map<std::string, double> node_hints(const Netlist& netlist);
+double hint_distance(const CircuitModel& model, const std::map<std::string, double>& hints,
+                     const Eigen::VectorXd& x, const Eigen::VectorXd& z, double t);
 
 // The static problem's matrix D - C A^-1 B (A regularised where singular), for `analyze`.
 Eigen::MatrixXd static_lcp_matrix(const CircuitModel& model, double t = 0.0);
