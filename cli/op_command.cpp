@@ -18,11 +18,16 @@ namespace {
 
 void print_point(const CircuitModel& model, const OperatingPoint& op) {
   const CircuitGraph& g = model.graph();
+  model.begin_history(op.history);  // lines: their DC waves are this point's
   auto line = [](const std::string& name, double value, const char* note = "") {
     std::printf("  %-16s = %22.14e%s\n", name.c_str(), value, note);
   };
+  // Nodes and branches inside a device ("o1#y1_0": a lossy line's states) are not printed; a
+  // line's port 2 ("t1#2") is printed as i2(t1).
+  auto internal = [](const std::string& name) { return name.find('#') != std::string::npos; };
   for (size_t n = 1; n < g.nodes.size(); ++n)
-    line("v(" + g.nodes[n] + ")", model.evaluate_dc(model.node_voltage(n), op.x, op.z, 0.0));
+    if (!internal(g.nodes[n]))
+      line("v(" + g.nodes[n] + ")", model.evaluate_dc(model.node_voltage(n), op.x, op.z, 0.0));
   std::vector<double> current(g.branches.size());
   double largest = 0;
   for (size_t b = 0; b < g.branches.size(); ++b) {
@@ -36,6 +41,12 @@ void print_point(const CircuitModel& model, const OperatingPoint& op) {
   for (size_t b = 0; b < g.branches.size(); ++b) {
     const bool terminals = !devices[g.branches[b].element]->terminals_probed_by_default().empty();
     if (terminals && g.branches[b].cls != BranchClass::Diode) continue;
+    const std::string& name = g.branches[b].name;
+    if (internal(name)) {
+      if (name.size() > 2 && name.compare(name.size() - 2, 2, "#2") == 0)
+        line("i2(" + name.substr(0, name.size() - 2) + ")", current[b]);
+      continue;
+    }
     const char* note = "";
     if (g.branches[b].cls == BranchClass::Diode) note = current[b] > on_threshold ? "   (on)" : "   (off)";
     line("i(" + g.branches[b].name + ")", current[b], note);

@@ -162,6 +162,7 @@ class Elaborator {
     in.models[m.name] = flat;
     if (m.type == "d") net_.diode_models[flat] = std::move(m.diode);
     if (m.type == "npn" || m.type == "pnp") net_.bjt_models[flat] = std::move(m.bjt);
+    if (m.type == "ltra") net_.line_models[flat] = std::move(m.line);
   }
 
   void add_element(const Card& card, Instance& in) {
@@ -175,6 +176,8 @@ class Elaborator {
     const std::size_t index = net_.elements.size();
     if (pe.element.kind == ElementKind::Diode) pe.element.model = resolve_diode_model(in, card, pe.model_token);
     if (pe.element.kind == ElementKind::Bjt) pe.element.model = resolve_bjt_model(in, card, pe.model_token);
+    if (pe.element.kind == ElementKind::LossyLine)
+      pe.element.model = resolve_line_model(in, card, pe.model_token);
     if (pe.element.kind == ElementKind::Coupling)
       coupling_refs_.push_back({index, {card.at(pe.coupled_tokens[0]), card.at(pe.coupled_tokens[1])}});
     net_.elements.push_back(std::move(pe.element));
@@ -252,6 +255,16 @@ class Elaborator {
     return flat;
   }
 
+  std::string resolve_line_model(const Instance& in, const Card& card, std::size_t token) const {
+    const std::string& name = card[token].lower;
+    const std::string flat = find_model(in, name);
+    if (flat.empty()) throw NetlistError(card.at(token), "line model " + quote(name) + " is not defined");
+    const std::string& type = model_types_.at(flat);
+    if (type != "ltra")
+      throw NetlistError(card.at(token), "model " + quote(name) + " is not a line model (it is " + to_upper(type) + ")");
+    return flat;
+  }
+
   std::string resolve_diode_model(const Instance& in, const Card& card, std::size_t token) const {
     const std::string& name = card[token].lower;
     for (const Instance* p = &in; p; p = p->parent) {
@@ -320,8 +333,12 @@ class Elaborator {
       } else if (p.kind == Probe::Kind::TerminalCurrent) {
         const Element* e = net_.find_element(p.a);
         if (!e) throw NetlistError(p.loc, "unknown element " + quote(p.a));
-        if (e->kind != ElementKind::Bjt)
+        if (p.terminal == '2') {
+          if (e->kind != ElementKind::Line && e->kind != ElementKind::LossyLine)
+            throw NetlistError(p.loc, p.name() + ": " + quote(p.a) + " is not a transmission line (use i(" + p.a + "))");
+        } else if (e->kind != ElementKind::Bjt) {
           throw NetlistError(p.loc, p.name() + ": " + quote(p.a) + " is not a transistor (use i(" + p.a + "))");
+        }
       } else {
         for (const std::string* n : {&p.a, &p.b})
           if (!n->empty() && !all.count(*n)) throw NetlistError(p.loc, "unknown node " + quote(*n));

@@ -2,6 +2,9 @@
 
 #include "netlist/source_card.h"
 
+#include <cmath>
+#include <optional>
+
 namespace lcs::parse {
 namespace {
 
@@ -123,6 +126,102 @@ void parse_bjt(const Card& card, const Reader& r, const ElementScope& scope, Par
   }
 }
 
+// The four port nodes of a T or O card; a port whose two nodes are one node is shorted.
+void line_ports(const Card& card, const Reader& r, Element& e) {
+  for (std::size_t i = 1; i <= 4; ++i) r.node(i, e);
+  for (std::size_t port = 0; port < 2; ++port)
+    if (e.nodes[2 * port] == e.nodes[2 * port + 1])
+      throw NetlistError(card.at(2 * port + 2), "port " + std::to_string(port + 1) + " of " + quote(r.name) +
+                                                    " connects node " + quote(e.nodes[2 * port]) + " to itself");
+}
+
+// IC=v1,i1,v2,i2: four numbers.
+std::size_t line_ic(const Card& card, const Reader& r, std::size_t i, Element& e) {
+  std::size_t k = i + 2;
+  e.line_ic.clear();
+  while (true) {
+    e.line_ic.push_back(r.value(k));
+    if (k + 1 < card.size() && card[k + 1].is(Token::Kind::Comma)) {
+      k += 2;
+      continue;
+    }
+    break;
+  }
+  if (e.line_ic.size() != 4)
+    throw NetlistError(card.at(i), "IC= of " + quote(r.name) + " takes four values v1,i1,v2,i2");
+  return k + 1;
+}
+
+// T p1+ p1- p2+ p2- Z0=z (TD=t | F=f [NL=nl]) [IC=v1,i1,v2,i2]   (ngspice's lossless line)
+void parse_lossless_line(const Card& card, const Reader& r, Element& e) {
+  e.kind = ElementKind::Line;
+  line_ports(card, r, e);
+  std::optional<double> z0, td, f, nl;
+  std::size_t z0_at = 0, td_at = 0, f_at = 0, nl_at = 0;
+  std::size_t i = 5;
+  while (i < card.size()) {
+    const Token& t = card[i];
+    if (!(t.is_word() && i + 1 < card.size() && card[i + 1].is(Token::Kind::Equals))) r.extra(i);
+    if (i + 2 >= card.size()) throw NetlistError(card.after_last(), "missing value for " + quote(t.lower));
+    if (t.lower == "ic") {
+      i = line_ic(card, r, i, e);
+      continue;
+    }
+    const double v = r.value(i + 2);
+    if (t.lower == "z0" || t.lower == "zo") {
+      z0 = v, z0_at = i + 2;
+    } else if (t.lower == "td") {
+      td = v, td_at = i + 2;
+    } else if (t.lower == "f") {
+      f = v, f_at = i + 2;
+    } else if (t.lower == "nl") {
+      nl = v, nl_at = i + 2;
+    } else {
+      r.extra(i);
+    }
+    i += 3;
+  }
+  if (!z0) throw NetlistError(card.after_last(), "missing Z0= for " + quote(r.name));
+  if (!(*z0 > 0) || !std::isfinite(*z0))
+    throw NetlistError(card.at(z0_at), "Z0 of " + quote(r.name) + " must be positive");
+  e.value = *z0;
+  if (td) {
+    if (!(*td > 0) || !std::isfinite(*td))
+      throw NetlistError(card.at(td_at), "TD of " + quote(r.name) + " must be positive");
+    e.delay = *td;
+  } else if (f) {
+    if (!(*f > 0) || !std::isfinite(*f))
+      throw NetlistError(card.at(f_at), "F of " + quote(r.name) + " must be positive");
+    const double length = nl.value_or(0.25);
+    if (!(length > 0) || !std::isfinite(length))
+      throw NetlistError(card.at(nl_at), "NL of " + quote(r.name) + " must be positive");
+    e.delay = length / *f;
+  } else {
+    throw NetlistError(card.after_last(), "missing TD= (or F= [NL=]) for " + quote(r.name));
+  }
+  if (!(e.delay > 0) || !std::isfinite(e.delay))
+    throw NetlistError(card.at(f_at ? f_at : td_at), "the delay of " + quote(r.name) + " must be positive");
+}
+
+// O p1+ p1- p2+ p2- model [IC=v1,i1,v2,i2]   (ngspice's LTRA line)
+void parse_lossy_line(const Card& card, const Reader& r, ParsedElement& out) {
+  Element& e = out.element;
+  e.kind = ElementKind::LossyLine;
+  line_ports(card, r, e);
+  if (card.size() <= 5) throw NetlistError(card.after_last(), "missing model name for " + quote(r.name));
+  if (!card[5].is_word()) throw NetlistError(card.at(5), "expected a model name, got " + quote(card[5].text));
+  e.model = card[5].lower;
+  out.model_token = 5;
+  std::size_t i = 6;
+  while (i < card.size()) {
+    if (card[i].is_word("ic") && i + 2 < card.size() && card[i + 1].is(Token::Kind::Equals)) {
+      i = line_ic(card, r, i, e);
+      continue;
+    }
+    r.extra(i);
+  }
+}
+
 }  // namespace
 
 bool is_ground(const std::string& n) { return n == "0" || n == "gnd"; }
@@ -195,9 +294,11 @@ ParsedElement parse_element(const Card& card, const ElementScope& scope,
       parse_bjt(card, r, scope, out, warnings);
       break;
     case 't':
-      throw NetlistError(card.at(head), "lossless transmission lines (T cards) are not supported yet");
+      parse_lossless_line(card, r, e);
+      break;
     case 'o':
-      throw NetlistError(card.at(head), "lossy transmission lines (O cards) are not supported yet");
+      parse_lossy_line(card, r, out);
+      break;
     default:
       throw NetlistError(card.at(head), "unknown element type " + quote(std::string(1, letter)));
   }

@@ -1,5 +1,5 @@
-// Element cards R, L, C, K, V, I, D, Q (X instances are the subcircuit expander's). Rejects T, O
-// (not supported yet) and unknown element letters. Internal to the netlist reader.
+// Element cards R, L, C, K, V, I, D, Q, T, O (X instances are the subcircuit expander's). Rejects
+// unknown element letters. Internal to the netlist reader.
 #pragma once
 
 #include <functional>
@@ -21,8 +21,8 @@ struct ElementScope {
 };
 
 struct ParsedElement {
-  Element element;         // names and nodes flat; D, Q: `model` still the local name as written
-  std::size_t model_token = 0;               // D, Q: token of the model name
+  Element element;         // names and nodes flat; D, Q, O: `model` still the local name as written
+  std::size_t model_token = 0;               // D, Q, O: token of the model name
   std::size_t coupled_tokens[2] = {0, 0};    // K: tokens of the two inductor names
 };
 

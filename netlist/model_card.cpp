@@ -1,6 +1,7 @@
 #include "netlist/model_card.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace lcs::parse {
 namespace {
@@ -90,6 +91,58 @@ void read_bjt_params(const Card& card, const std::vector<Assignment>& params, co
 
 const char* const kModelTypes[] = {"d", "npn", "pnp", "ltra"};
 
+// ngspice LTRA controls (step and interpolation choices of its own convolution); lcspice's
+// recursive convolution has none of them.
+const char* const kIgnoredLineParams[] = {"rel", "abs", "nosteplimit", "nocontrol", "lininterp",
+                                          "mixedinterp", "compactrel", "compactabs", "truncnr",
+                                          "truncdontcut", "steplimit", "quadinterp"};
+
+// .model NAME LTRA(R= L= G= C= LEN=): per-unit-length R, L, G, C and the length.
+void read_line_params(const Card& card, const std::vector<Assignment>& params, const ParamScope& scope,
+                      LineModel& line, std::vector<std::string>& warnings) {
+  SourceLocation first_ignored;
+  bool has_l = false, has_c = false, has_len = false;
+  for (const Assignment& a : params) {
+    const Token& key = card[a.name];
+    if (listed(kIgnoredLineParams, key.lower)) {
+      add_ignored(line.ignored, first_ignored, card.at(key), key.lower);
+      continue;
+    }
+    if (a.flag()) throw NetlistError(card.at(key), "missing value for line parameter " + quote(key.text));
+    const double v = value_of(card, a.value_first, a.value_last, scope);
+    const SourceLocation at_value = card.at(a.value_first);
+    auto check = [&](bool ok, const char* rule) {
+      if (!ok) throw NetlistError(at_value, "line parameter " + quote(key.lower) + " must " + rule);
+    };
+    if (key.lower == "r") {
+      check(v >= 0 && std::isfinite(v), "not be negative");
+      line.r = v;
+    } else if (key.lower == "g") {
+      check(v >= 0 && std::isfinite(v), "not be negative");
+      line.g = v;
+    } else if (key.lower == "l") {
+      check(v > 0 && std::isfinite(v), "be positive (an RC line, L = 0, is not modelled)");
+      line.l = v;
+      has_l = true;
+    } else if (key.lower == "c") {
+      check(v > 0 && std::isfinite(v), "be positive");
+      line.c = v;
+      has_c = true;
+    } else if (key.lower == "len") {
+      check(v > 0 && std::isfinite(v), "be positive");
+      line.len = v;
+      has_len = true;
+    } else {
+      throw NetlistError(card.at(key), "unknown LTRA model parameter " + quote(key.text));
+    }
+  }
+  const char* missing = !has_l ? "L" : !has_c ? "C" : !has_len ? "LEN" : nullptr;
+  if (missing)
+    throw NetlistError(card.at(1), std::string("LTRA model ") + quote(line.name) + " needs " + missing +
+                                       " (per-unit-length L and C and the length LEN are required)");
+  warn_ignored(line.ignored, first_ignored, "line", line.name, warnings);
+}
+
 }  // namespace
 
 ModelCard parse_model_card(const Card& card, const ParamScope& scope, const std::string& prefix,
@@ -123,7 +176,12 @@ ModelCard parse_model_card(const Card& card, const ParamScope& scope, const std:
     read_bjt_params(card, params, scope, m.bjt, warnings);
     return m;
   }
-  if (m.type != "d") return m;  // line models: read by the cards that will use them
+  if (m.type == "ltra") {
+    m.line.name = prefix + m.name;
+    m.line.loc = card.at(1);
+    read_line_params(card, params, scope, m.line, warnings);
+    return m;
+  }
 
   DiodeModel& d = m.diode;
   d.name = prefix + m.name;

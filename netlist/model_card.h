@@ -18,6 +18,7 @@ struct ModelCard {
   std::string type;   // "d", "npn", "pnp" or "ltra"
   DiodeModel diode;   // type "d": name = prefix + name
   BjtModel bjt;       // type "npn" or "pnp": name = prefix + name
+  LineModel line;     // type "ltra": name = prefix + name
 };
 
 ModelCard parse_model_card(const Card& card, const ParamScope& scope, const std::string& prefix,

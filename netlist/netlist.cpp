@@ -12,6 +12,8 @@ const char* element_kind_name(ElementKind kind) {
     case ElementKind::CurrentSource: return "current source";
     case ElementKind::Diode: return "diode";
     case ElementKind::Bjt: return "bipolar transistor";
+    case ElementKind::Line: return "transmission line";
+    case ElementKind::LossyLine: return "lossy transmission line";
   }
   return "element";
 }

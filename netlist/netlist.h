@@ -21,6 +21,8 @@ enum class ElementKind {
   CurrentSource,  // I n+ n- waveform  (current flows n+ -> through source -> n-)
   Diode,          // D anode cathode model
   Bjt,            // Q collector base emitter [substrate] model [area]
+  Line,           // T p1+ p1- p2+ p2- Z0= TD= [IC=v1,i1,v2,i2]   (lossless)
+  LossyLine,      // O p1+ p1- p2+ p2- model [IC=...]              (LTRA)
 };
 
 const char* element_kind_name(ElementKind kind);  // "resistor", "inductor", ...
@@ -38,6 +40,10 @@ struct Element {
   Waveform waveform;                   // V and I
   std::string model;                   // D, Q: model name, lower-case (flat)
   std::vector<std::string> coupled;    // K: the two inductor names (lower-case, full path)
+  // T: characteristic impedance Z0 [ohm] (in `value`) and delay TD [s]; O: `model` names its
+  // LTRA card. IC=v1,i1,v2,i2 (T and O): the port values the line holds before t = 0 with UIC.
+  double delay = 0;
+  std::vector<double> line_ic;
   SourceLocation loc;                  // the card (for subcircuit elements: the card inside .subckt)
 };
 
@@ -69,6 +75,16 @@ struct BjtModel {
   std::optional<Smooth> smooth;
 };
 
+// `.model NAME LTRA(R= L= G= C= LEN=)`: a lossy (Heaviside RLCG) line, per-unit-length values
+// (Stewart 1.3.3, (1.11)-(1.12)). L, C and LEN are required (an RC line, L = 0, has no
+// wavefront and is not modelled); R and G default to 0.
+struct LineModel {
+  std::string name;                    // lower-case
+  double r = 0, l = 0, g = 0, c = 0, len = 0;
+  std::vector<std::string> ignored;    // accepted ngspice LTRA parameters unused by lcspice
+  SourceLocation loc;
+};
+
 struct TranSpec {
   double tstep = 0, tstop = 0, tstart = 0, tmax = 0;  // tmax 0: not given
   bool uic = false;
@@ -86,7 +102,7 @@ struct Probe {
   Kind kind = Kind::NodeVoltage;
   std::string a, b;                    // nodes (a, b) or element name (a); lower-case
   SourceLocation loc;                  // empty file when it came from the command line
-  char terminal = 0;                   // TerminalCurrent: 'c', 'b' or 'e' (a BJT's ic/ib/ie)
+  char terminal = 0;                   // TerminalCurrent: 'c', 'b', 'e' (a BJT's ic/ib/ie), '2' (i2(t1))
   std::string name() const;            // canonical CSV header: "v(n)", "v(p,n)", "i(d1)", "ic(q1)"
 };
 
@@ -101,6 +117,7 @@ struct Netlist {
   std::vector<Element> elements;       // in card order, subcircuits expanded in place
   std::map<std::string, DiodeModel> diode_models;  // by lower-case name
   std::map<std::string, BjtModel> bjt_models;      // by lower-case name
+  std::map<std::string, LineModel> line_models;    // LTRA, by lower-case name
   std::optional<TranSpec> tran;
   std::vector<NodeIc> node_ics;
   std::vector<NodeIc> node_sets;       // `.nodeset`: choose among several operating points

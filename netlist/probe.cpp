@@ -1,5 +1,5 @@
 // Probes as written in .print/.save/--probe: v(node), v(node1,node2), i(element), and the
-// terminal currents of a transistor ic(q), ib(q), ie(q).
+// terminal currents of a transistor ic(q), ib(q), ie(q), and a line's port-2 current i2(t).
 #include <algorithm>
 
 #include "netlist/element_card.h"
@@ -19,7 +19,7 @@ Probe parse_probe(const std::string& text, const SourceLocation& loc) {
 
   auto fail = [&]() -> Probe {
     throw NetlistError(at, "invalid probe " + parse::quote(s) +
-                               ": expected v(node), v(node1,node2), i(element) or ic/ib/ie(transistor)");
+                               ": expected v(node), v(node1,node2), i(element), ic/ib/ie(transistor) or i2(line)");
   };
   auto blank = [](char c) { return c == ' ' || c == '\t'; };
   auto name_char = [&](char c) { return !blank(c) && c != '(' && c != ')' && c != ',' && c != '=' &&
@@ -38,7 +38,8 @@ Probe parse_probe(const std::string& text, const SourceLocation& loc) {
   if (lower.empty() || (lower[0] != 'v' && lower[0] != 'i')) return fail();
   const char kind = lower[i++];
   char terminal = 0;
-  if (kind == 'i' && i < lower.size() && (lower[i] == 'c' || lower[i] == 'b' || lower[i] == 'e'))
+  if (kind == 'i' && i < lower.size() &&
+      (lower[i] == 'c' || lower[i] == 'b' || lower[i] == 'e' || lower[i] == '1' || lower[i] == '2'))
     terminal = lower[i++];
   skip();
   if (i >= lower.size() || lower[i] != '(') return fail();
@@ -61,7 +62,10 @@ Probe parse_probe(const std::string& text, const SourceLocation& loc) {
   Probe p;
   p.loc = at;
   auto node = [](const std::string& n) { return parse::is_ground(n) ? std::string("0") : n; };
-  if (terminal) {
+  if (terminal == '1') {  // i1(t1) is i(t1): a line's port-1 current
+    p.kind = Probe::Kind::ElementCurrent;
+    p.a = a;
+  } else if (terminal) {
     p.kind = Probe::Kind::TerminalCurrent;
     p.a = a;
     p.terminal = terminal;

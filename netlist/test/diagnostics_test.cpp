@@ -69,9 +69,15 @@ TEST(ParseDiagnostics, BipolarTransistorCards) {
 
 TEST(ParseDiagnostics, UnsupportedCards) {
   check({
-      {"t\n  tline a 0 b 0 z0=50 td=1n\n",
-       "t.cir:2:3: error: lossless transmission lines (T cards) are not supported yet\n  tline a 0 b 0 z0=50 td=1n\n  ^~~~~"},
-      {"t\nO1 a 0 b 0 lmod\n", "t.cir:2:1: error: lossy transmission lines (O cards) are not supported yet\nO1 a 0 b 0 lmod\n^~"},
+      {"t\n  tline a 0 b 0 z0=50\n", "t.cir:2:23: error: missing TD= (or F= [NL=]) for 'tline'\n  tline a 0 b 0 z0=50\n                      ^"},
+      {"t\n  tline a 0 b 0 z0=-50 td=1n\n",
+       "t.cir:2:21: error: Z0 of 'tline' must be positive\n  tline a 0 b 0 z0=-50 td=1n\n                    ^~"},
+      {"t\nT1 a a b 0 z0=50 td=1n\n", "t.cir:2:4: error: port 1 of 't1' connects node 'a' to itself\nT1 a a b 0 z0=50 td=1n\n   ^"},
+      {"t\nT1 a 0 b 0 z0=50 td=1n ic=1,2\n",
+       "t.cir:2:24: error: IC= of 't1' takes four values v1,i1,v2,i2\nT1 a 0 b 0 z0=50 td=1n ic=1,2\n                       ^~"},
+      {"t\nO1 a 0 b 0 lmod\n", "t.cir:2:12: error: line model 'lmod' is not defined\nO1 a 0 b 0 lmod\n           ^~~~"},
+      {"t\n.model lm ltra(l=1u c=1p len=-1)\n",
+       "t.cir:2:29: error: line parameter 'len' must be positive\n.model lm ltra(l=1u c=1p len=-1)\n                            ^"},
       {"t\n.lib foo.lib\n", "t.cir:2:1: error: unknown control card '.lib'\n.lib foo.lib\n^~~~"},
       {"t\n.endc\n", "t.cir:2:1: error: '.endc' without '.control'\n.endc\n^~~~~"},
   });
@@ -204,13 +210,13 @@ TEST(ParseDiagnostics, ControlCards) {
 TEST(ParseDiagnostics, Probes) {
   check({
       {"t\nR1 a 0 1\n.print tran v(a) x(b)\n",
-       "t.cir:3:18: error: invalid probe 'x(b)': expected v(node), v(node1,node2), i(element) or ic/ib/ie(transistor)\n"
+       "t.cir:3:18: error: invalid probe 'x(b)': expected v(node), v(node1,node2), i(element), ic/ib/ie(transistor) or i2(line)\n"
        ".print tran v(a) x(b)\n                 ^~~~"},
       {"t\nR1 a 0 1\n.save v(a,0,1)\n",
-       "t.cir:3:7: error: invalid probe 'v(a,0,1)': expected v(node), v(node1,node2), i(element) or ic/ib/ie(transistor)\n"
+       "t.cir:3:7: error: invalid probe 'v(a,0,1)': expected v(node), v(node1,node2), i(element), ic/ib/ie(transistor) or i2(line)\n"
        ".save v(a,0,1)\n      ^~~~~~~~"},
       {"t\nR1 a 0 1\n.save @r1[i]\n",
-       "t.cir:3:7: error: invalid probe '@r1[i]': expected v(node), v(node1,node2), i(element) or ic/ib/ie(transistor)\n"
+       "t.cir:3:7: error: invalid probe '@r1[i]': expected v(node), v(node1,node2), i(element), ic/ib/ie(transistor) or i2(line)\n"
        ".save @r1[i]\n      ^~~~~~"},
       {"t\nR1 a 0 1\n.print tran v(b)\n", "t.cir:3:13: error: unknown node 'b'\n.print tran v(b)\n            ^~~~"},
       {"t\nR1 a 0 1\n.print tran v(a,zz)\n", "t.cir:3:13: error: unknown node 'zz'\n.print tran v(a,zz)\n            ^~~~~~~"},

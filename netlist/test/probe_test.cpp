@@ -41,7 +41,7 @@ TEST(ParseProbe, FromTheCommandLineHasNoLocation) {
     parse_probe("x(l1)", SourceLocation());
     FAIL();
   } catch (const NetlistError& e) {
-    EXPECT_EQ(e.formatted(), "error: invalid probe 'x(l1)': expected v(node), v(node1,node2), i(element) or ic/ib/ie(transistor)");
+    EXPECT_EQ(e.formatted(), "error: invalid probe 'x(l1)': expected v(node), v(node1,node2), i(element), ic/ib/ie(transistor) or i2(line)");
   }
 }
 
@@ -70,7 +70,7 @@ TEST(ParseProbe, ErrorColumnSkipsLeadingBlanks) {
     EXPECT_EQ(e.location().column, 24);
     EXPECT_EQ(e.location().length, 5);
     EXPECT_EQ(e.formatted(),
-              "p.cir:1:24: error: invalid probe 'bogus': expected v(node), v(node1,node2), i(element) or ic/ib/ie(transistor)\n"
+              "p.cir:1:24: error: invalid probe 'bogus': expected v(node), v(node1,node2), i(element), ic/ib/ie(transistor) or i2(line)\n"
               ".print tran   v(out)   bogus\n"
               "                       ^~~~~");
   }

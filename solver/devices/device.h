@@ -9,8 +9,10 @@
 //     i_b and inputs u_k (so dense or sparse assembly is the assembler's choice); its
 //     energy-storing branches with their initial values; its complementarity pairs with their
 //     ideal law and smooth curve; its inputs (independent sources now, history sources later).
-//  3. accept() / max_step(): hooks for devices with history (transmission lines); the
-//     integrators call them through LcsProblem.
+//  3. delayed inputs and max_step(): a device with history (a transmission line) stamps inputs
+//     whose value is a combination of its branch quantities `delay` earlier (Stamps::Delayed);
+//     the model keeps their past (DelayHistory) as the integrators accept steps, and no step is
+//     longer than max_step().
 //  4. ngspice(): its cards in the deck `validate` runs; notes(): what `analyze` says about it.
 #pragma once
 
@@ -58,6 +60,15 @@ struct Stamps {
   std::vector<Coupling> couplings;
   std::vector<Pair> pairs;
   std::vector<InputSignal> inputs;  // u_1, u_2, ... (u_0 = 1 carries the thresholds VON)
+  // History inputs (Stewart 1.3.3, the method of characteristics): u_input(t) is the sum of
+  // `wave` (over branch voltages, currents and inputs) at t - delay; `before` its value before
+  // the run when it starts from rest (UIC), as the device's IC= says.
+  struct Delayed { int input; double delay; std::vector<Term> wave; double before = 0; };
+  std::vector<Delayed> delayed;
+  // What a device with history is at DC, one relation (sum of terms = 0) per history input: the
+  // operating point solves these instead of the waves' delays (a lossless line: v1 = v2,
+  // i1 = -i2; a lossy one: its DC two-port).
+  std::vector<std::vector<Term>> dc_relations;
 
   // Adds an input and returns its index k (u_k).
   int input(InputSignal signal) {
@@ -125,10 +136,9 @@ class Device {
   // its own branch currents: (local branch, coefficient). Empty: no such terminal.
   virtual std::vector<std::pair<int, double>> terminal_current(char terminal) const { return {}; }
 
-  // Devices with history: called after every accepted step (t, LCS state x, complementarity
-  // variables z), and the longest step they allow. Nothing today has history.
+  // Devices with history (lines): the longest step they allow (their shortest delay: a step
+  // that ends at t reads the past at t - delay, which must already be known).
   virtual bool has_history() const { return false; }
-  virtual void accept(double t, const Eigen::VectorXd& x, const Eigen::VectorXd& z) {}
   virtual double max_step() const { return std::numeric_limits<double>::infinity(); }
 
   // Cards for the ngspice deck of `validate` (deck_translation.h says what the deck is).
@@ -150,6 +160,10 @@ class Device {
 struct DeviceOptions {
   double ifit = 10e-3;  // diode fit current (`.options ifit=`)
   std::optional<double> bjtcap;  // base–emitter capacitance of every transistor (`.options bjtcap=`)
+  // The run's time scales (a lossy line's kernel is fitted over the band they span; 0: unknown)
+  // and the target relative error of that fit.
+  double tstop = 0, tstep = 0;
+  double line_fit_tolerance = 1e-4;
 };
 
 }  // namespace lcs

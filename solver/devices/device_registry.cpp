@@ -7,6 +7,7 @@
 #include "solver/devices/independent_source.h"
 #include "solver/devices/inductor.h"
 #include "solver/devices/resistor.h"
+#include "solver/devices/transmission_line.h"
 
 namespace lcs {
 
@@ -24,8 +25,10 @@ const std::vector<DeviceEntry>& device_registry() {
       {'i', ElementKind::CurrentSource, "current source", make<IndependentSource>},
       {'k', ElementKind::Coupling, "coupling", make<Coupling>},
       {'l', ElementKind::Inductor, "inductor", make<Inductor>},
+      {'o', ElementKind::LossyLine, "lossy transmission line", make<TransmissionLine>},
       {'q', ElementKind::Bjt, "bipolar transistor", make<Bjt>},
       {'r', ElementKind::Resistor, "resistor", make<Resistor>},
+      {'t', ElementKind::Line, "transmission line", make<TransmissionLine>},
       {'v', ElementKind::VoltageSource, "voltage source", make<IndependentSource>},
   };
   return table;

@@ -51,14 +51,19 @@ std::vector<MethodEntry> make_table() {
         return std::make_unique<EventDriven>(m, e);
       });
   event.exact_reference = true;
+  event.history_degree = 4;
   table.push_back(event);
 
-  table.push_back(fixed_step(
+  MethodEntry radau3 = fixed_step(
       "radau3", "Radau IIA, 2 stages (order 3), fixed step, one LCP of size 2m per step",
-      [](const LcsProblem& m, const MethodOptions&) { return std::make_unique<RadauIIA>(m, 2); }));
-  table.push_back(fixed_step(
+      [](const LcsProblem& m, const MethodOptions&) { return std::make_unique<RadauIIA>(m, 2); });
+  radau3.history_degree = 2;
+  table.push_back(radau3);
+  MethodEntry radau5 = fixed_step(
       "radau5", "Radau IIA, 3 stages (order 5), fixed step, one LCP of size 3m per step",
-      [](const LcsProblem& m, const MethodOptions&) { return std::make_unique<RadauIIA>(m, 3); }));
+      [](const LcsProblem& m, const MethodOptions&) { return std::make_unique<RadauIIA>(m, 3); });
+  radau5.history_degree = 4;
+  table.push_back(radau5);
 
   MethodEntry smooth = adaptive(
       "smooth",
@@ -66,6 +71,7 @@ std::vector<MethodEntry> make_table() {
       "--rtol/--atol",
       [](const LcsProblem& m, const MethodOptions& o) { return std::make_unique<SmoothMethod>(m, o); });
   smooth.smooth_model = true;
+  smooth.history_degree = 4;  // IDA's BDF runs up to order 5
   smooth.smooth_reference = true;
   table.push_back(smooth);
 

@@ -39,6 +39,10 @@ struct MethodEntry {
   bool exact_reference = false;  // bench's reference for the ideal circuit (exact: event)
   bool smooth_reference = false; // bench's reference for the smoothed circuit
   bool is_default = false;       // the method when none is given (`run`, `validate`)
+  // Degree of the polynomial through recorded steps that reads a line's past between them
+  // (DelayHistory): the method's order less one, at least linear, so the history is as
+  // accurate as the steps. (The event method reads its exact past instead.)
+  int history_degree = 1;
 
   bool adaptive() const { return static_cast<bool>(make_continuous); }
   bool fixed_step() const { return static_cast<bool>(make_stepper); }

@@ -216,7 +216,8 @@ TransientSummary run_transient(const CircuitModel& model, const OutputMap& outpu
   const MethodEntry& entry = *find_method(options.method);
   sink.begin(outputs.names);  // a failure from here on still leaves a (header-only) file
   try {
-    InitialState init = initial_state(model, options.uic, 0.0);
+    InitialState init = initial_state(model, options.uic, 0.0);  // also the lines' past
+    if (model.has_history()) model.history().set_degree(entry.history_degree);
     summary.warnings = init.warnings;
     if (entry.adaptive())
       run_adaptive(model, outputs, options, entry, init.x, sink, summary, cpu0);

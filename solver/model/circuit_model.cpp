@@ -29,6 +29,7 @@ namespace {
 void check_finite_inputs(const Netlist& netlist, const InputProvider& inputs, double t1) {
   for (int k = 1; k < inputs.size(); ++k) {
     const InputSignal& s = inputs[k];
+    if (s.history >= 0) continue;  // a line's wave: the circuit's own values, checked as they come
     // A PULSE train repeats its corners and stays within its levels: its first and last
     // thousandth of [0, t1] are the evidence (all 1e7 corners of a .tran of 1e7 periods made
     // this check cost seconds; found by operating_point_fuzz).
@@ -120,6 +121,8 @@ CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& opt
   const NetlistOptions netlist_options = read_netlist_options(netlist);  // NetlistError
   device_options.ifit = netlist_options.ifit.value_or(options.ifit);
   device_options.bjtcap = netlist_options.bjtcap;
+  device_options.tstop = options.t1;
+  device_options.tstep = netlist.tran ? netlist.tran->tstep : 0;
   m.devices_ = make_devices(m.netlist_, device_options);
   m.graph_ = graph_of_devices(m.devices_);
   const CircuitGraph& g = m.graph_;
@@ -166,10 +169,18 @@ CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& opt
     const Term::Of primary = t.in_tree[r.branch] ? Term::Of::Voltage : Term::Of::Current;
     if (own.of == primary && own.index == r.branch && own.coeff == 1.0) input_of[r.branch] = r.terms[1].index;
   }
+  // History inputs (lines): wave i of the DelayHistory feeds input stamps.delayed[i].input.
+  std::vector<double> delays;
+  for (size_t i = 0; i < stamps.delayed.size(); ++i) {
+    InputSignal& in = stamps.inputs.at(stamps.delayed[i].input - 1);
+    in.quantity = InputSignal::Quantity::History;
+    in.history = static_cast<int>(i);
+    delays.push_back(stamps.delayed[i].delay);
+  }
   m.inputs_ = InputProvider(stamps.inputs);
+  m.inputs_.attach_history(std::make_shared<DelayHistory>(delays));
   check_finite_inputs(netlist, m.inputs_, options.t1);
-  for (const std::shared_ptr<Device>& d : m.devices_)
-    if (d->has_history()) m.history_devices_.push_back(d);
+  for (const std::shared_ptr<Device>& d : m.devices_) m.max_step_ = std::min(m.max_step_, d->max_step());
 
   // Roles and state numbering (in branch order): storage branches are states where the normal
   // tree lets them be (tree capacitors, link inductors), forced otherwise; the rest are static.
@@ -425,6 +436,29 @@ CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& opt
   // The shift x_lcs = x_phys - Gamma u: x_lcs' = A x_lcs + B z + (E + A Gamma) u.
   s.E += s.A * s.Gamma;
   s.F += s.C * s.Gamma;
+
+  // The waves the line ports send, and the lines' DC relations, as rows like the probes'.
+  auto row_of = [&](const std::vector<Term>& terms) {
+    Eigen::RowVectorXd r = Eigen::RowVectorXd::Zero(ncol);
+    for (const Term& term : terms) {
+      switch (term.of) {
+        case Term::Of::Voltage: r += term.coeff * m.branch_v_.row(term.index); break;
+        case Term::Of::Current: r += term.coeff * m.branch_i_.row(term.index); break;
+        case Term::Of::Input: r(col_u(term.index)) += term.coeff; break;
+      }
+    }
+    return m.row_from_physical(r);
+  };
+  for (const Stamps::Delayed& d : stamps.delayed) {
+    const OutputRow row = row_of(d.wave);
+    m.delayed_.push_back({d.input, d.delay, row.g, row.h, row.j, d.before});
+  }
+  for (const std::vector<Term>& terms : stamps.dc_relations) {
+    const OutputRow row = row_of(terms);
+    m.dc_relations_.push_back({-1, 0, row.g, row.h, row.j, 0});
+  }
+  if (m.dc_relations_.size() != m.delayed_.size())
+    throw std::logic_error("circuit model: devices with history owe one DC relation per history input");
   return m;
 }
 
@@ -465,8 +499,10 @@ double CircuitModel::evaluate_dc(const OutputRow& row, const Eigen::VectorXd& x,
 
 std::vector<Probe> CircuitModel::default_probes() const {
   std::vector<Probe> probes;
+  // Nodes inside a device (a lossy line's state nodes, "o1#y1_0") are not the circuit's.
   for (size_t node = 1; node < graph_.nodes.size(); ++node)
-    probes.push_back({Probe::Kind::NodeVoltage, graph_.nodes[node], "", {}});
+    if (graph_.nodes[node].find('#') == std::string::npos)
+      probes.push_back({Probe::Kind::NodeVoltage, graph_.nodes[node], "", {}});
   for (const std::shared_ptr<Device>& d : devices_) {
     if (d->current_probed_by_default()) probes.push_back({Probe::Kind::ElementCurrent, d->name(), "", {}});
     for (char terminal : d->terminals_probed_by_default()) {

@@ -134,6 +134,11 @@ InitialState initial_state(const CircuitModel& model, bool uic, double t0) {
     if (!op.undetermined.empty()) init.warnings.push_back(undetermined_state_warning(op.undetermined));
     for (const std::string& w : op.warnings) init.warnings.push_back(w);
     chosen_by = op.chosen_by;
+  } else {
+    // From rest, lines carry the waves of their IC= port values (zero without).
+    std::vector<double> before;
+    for (const DelayedWave& w : model.delayed()) before.push_back(w.before);
+    model.begin_history(before);
   }
   Eigen::VectorXd x_lcs = model.lcs_state(physical, t0);
 

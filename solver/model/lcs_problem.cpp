@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <limits>
 
-#include "solver/devices/device.h"
 
 namespace lcs {
 
@@ -15,14 +14,28 @@ Eigen::VectorXd LcsProblem::lcs_state(const Eigen::VectorXd& physical, double t)
   return physical - lcs_.Gamma * input_values(t);
 }
 
-void LcsProblem::accept(double t, const Eigen::VectorXd& x, const Eigen::VectorXd& z) const {
-  for (const std::shared_ptr<Device>& d : history_devices_) d->accept(t, x, z);
+std::vector<double> LcsProblem::waves(double t, const Eigen::VectorXd& x, const Eigen::VectorXd& z) const {
+  const Eigen::VectorXd u = input_values(t);
+  std::vector<double> out(delayed_.size());
+  for (size_t k = 0; k < delayed_.size(); ++k) {
+    const DelayedWave& w = delayed_[k];
+    out[k] = w.j.dot(u);
+    if (x.size() > 0) out[k] += w.g.dot(x);
+    if (z.size() > 0) out[k] += w.h.dot(z);
+  }
+  return out;
 }
 
-double LcsProblem::max_step() const {
-  double h = std::numeric_limits<double>::infinity();
-  for (const std::shared_ptr<Device>& d : history_devices_) h = std::min(h, d->max_step());
-  return h;
+void LcsProblem::accept(double t, const Eigen::VectorXd& x, const Eigen::VectorXd& z) const {
+  if (delayed_.empty()) return;
+  history().record(t, waves(t, x, z));
 }
+
+void LcsProblem::begin_history(const std::vector<double>& before) const {
+  if (delayed_.empty()) return;
+  history().reset(before);
+}
+
+double LcsProblem::max_step() const { return max_step_; }
 
 }  // namespace lcs

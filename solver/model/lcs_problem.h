@@ -5,6 +5,7 @@
 //   dx/dt = A x + B z + E u(t),   w = C x + D z + F u(t),   0 <= w ⟂ z >= 0
 #pragma once
 
+#include <limits>
 #include <memory>
 #include <string>
 #include <utility>
@@ -38,6 +39,15 @@ struct StateInfo {
   std::vector<std::pair<int, double>> windings;  // (inductor branch, ratio)
 };
 
+// A wave a line port sends down the line (DelayHistory): a = g x + h z + j u, read back as the
+// history input `input` of the LCS `delay` seconds later.
+struct DelayedWave {
+  int input = -1;
+  double delay = 0;
+  Eigen::RowVectorXd g, h, j;
+  double before = 0;  // its value before a run from rest (UIC): the line's IC=
+};
+
 struct PairInfo : PairLaw {
   int branch = -1;
   bool voltage_type = false;  // tree diode: z is the reverse-voltage margin, w the current
@@ -57,9 +67,16 @@ class LcsProblem {
   Eigen::VectorXd lcs_state(const Eigen::VectorXd& physical, double t) const;
 
   // Devices with history (transmission lines): the integrators call accept() after every
-  // accepted step and never step further than max_step(). Without such devices accept() does
-  // nothing and max_step() is infinite.
-  bool has_history() const { return !history_devices_.empty(); }
+  // accepted step (it records the waves the line ports send) and never step further than
+  // max_step() (the shortest delay). Without lines accept() does nothing and max_step() is
+  // infinite. begin_history() sets the waves' past before a run (their values before t0).
+  bool has_history() const { return !delayed_.empty(); }
+  const std::vector<DelayedWave>& delayed() const { return delayed_; }
+  const std::vector<DelayedWave>& dc_relations() const { return dc_relations_; }
+  DelayHistory& history() const { return *inputs_.history(); }
+  void begin_history(const std::vector<double>& before) const;
+  // The waves' values at (t, x, z).
+  std::vector<double> waves(double t, const Eigen::VectorXd& x, const Eigen::VectorXd& z) const;
   // Transistor junctions among the pairs: the LCPs may have several solutions (5.4.7).
   bool has_transfer_pairs() const {
     for (const PairInfo& p : pairs_)
@@ -74,8 +91,9 @@ class LcsProblem {
   std::vector<StateInfo> states_;
   std::vector<PairInfo> pairs_;
   InputProvider inputs_;
-  // Shared with the model that owns the devices; accept() changes their history, not the LCS.
-  std::vector<std::shared_ptr<Device>> history_devices_;
+  std::vector<DelayedWave> delayed_;  // one per history input, in DelayHistory order
+  std::vector<DelayedWave> dc_relations_;  // as many: rows that vanish at DC (g, h, j; input unused)
+  double max_step_ = std::numeric_limits<double>::infinity();
 };
 
 }  // namespace lcs

@@ -23,31 +23,94 @@ struct StaticProblem {
   std::vector<std::string> undetermined;
 };
 
-StaticProblem static_problem(const CircuitModel& model, double t) {
+// The DC form of the LCS. A line at DC carries constant waves; its history inputs u_h join the
+// states as unknowns of the static problem, fixed by the line's DC relations (rows Rx x + Rz z +
+// Ru u = 0: the through connection v1 = v2, i1 = -i2 of a lossless line, the DC two-port of a
+// lossy one). (The waves' own delay equations u_h = a(x, z, u) say the same for a lossless
+// line but are degenerate for a lossy one with G = 0: its fitted kernel knows the DC resistance
+// only as a limit.)
+//   [A  E_h; Rx  Ru_h] [x; u_h] + [B; Rz] z + [E_o u_o; Ru_o u_o] = 0,   w = [C F_h][x; u_h] + D z + F_o u_o
+// with the other inputs u_o at their value at t.
+struct DcForm {
+  Eigen::MatrixXd A, B, C, D;
+  Eigen::VectorXd e, f;  // the inputs' part of the state rows and of w
+  int n = 0;             // LCS states; the unknowns are the n states, then the history inputs
+};
+
+DcForm dc_form(const CircuitModel& model, double t) {
   const Lcs& s = model.lcs();
-  const int n = s.states();
+  const int n = s.states(), m = s.pairs();
+  const std::vector<DelayedWave>& waves = model.delayed();
+  const int nh = static_cast<int>(waves.size());
+  Eigen::VectorXd u = model.input_values(t);
+  for (const DelayedWave& w : waves) u(w.input) = 0;  // u_o: the history inputs are unknowns
+  DcForm f;
+  f.n = n;
+  f.A = Eigen::MatrixXd::Zero(n + nh, n + nh);
+  f.B = Eigen::MatrixXd::Zero(n + nh, m);
+  f.C = Eigen::MatrixXd::Zero(m, n + nh);
+  f.D = s.D;
+  f.e = Eigen::VectorXd::Zero(n + nh);
+  f.f = s.F * u;
+  if (n > 0) {  // blocks of empty matrices point past null (UBSan)
+    f.A.topLeftCorner(n, n) = s.A;
+    if (m > 0) f.B.topRows(n) = s.B;
+    if (m > 0) f.C.leftCols(n) = s.C;
+    f.e.head(n) = s.E * u;
+  }
+  for (int k = 0; k < nh; ++k) {
+    const DelayedWave& w = waves[k];
+    if (n > 0) f.A.block(0, n + k, n, 1) = s.E.col(w.input);
+    if (m > 0) f.C.col(n + k) = s.F.col(w.input);
+    const DelayedWave& r = model.dc_relations()[k];
+    if (n > 0) f.A.block(n + k, 0, 1, n) = r.g;
+    for (int j = 0; j < nh; ++j) f.A(n + k, n + j) = r.j(waves[j].input);
+    if (m > 0) f.B.row(n + k) = r.h;
+    f.e(n + k) = r.j.dot(u);
+  }
+  return f;
+}
+
+std::string unknown_label(const CircuitModel& model, int j) {
+  const int n = model.lcs().states();
+  if (j < n) return model.states()[j].label;
+  return "the DC wave " + model.inputs()[model.delayed()[j - n].input].label;
+}
+
+StaticProblem static_problem(const CircuitModel& model, double t) {
+  const DcForm f = dc_form(model, t);
+  const int n = static_cast<int>(f.A.rows());
   StaticProblem p;
-  const Eigen::VectorXd u = model.input_values(t);
-  Eigen::MatrixXd A = s.A;
+  Eigen::MatrixXd A = f.A;
   if (n > 0) {
     Eigen::FullPivLU<Eigen::MatrixXd> lu(A);
     if (!lu.isInvertible()) {
       Eigen::MatrixXd kernel = lu.kernel();
       for (int j = 0; j < n; ++j)
-        if (kernel.row(j).cwiseAbs().maxCoeff() > 1e-9) p.undetermined.push_back(model.states()[j].label);
+        if (kernel.row(j).cwiseAbs().maxCoeff() > 1e-9) p.undetermined.push_back(unknown_label(model, j));
       const double scale = A.size() > 0 ? A.cwiseAbs().maxCoeff() : 0.0;
       A -= (scale > 0 ? 1e-9 * scale : 1e-9) * Eigen::MatrixXd::Identity(n, n);
     }
     Eigen::PartialPivLU<Eigen::MatrixXd> lu_reg(A);
-    p.XofZ = -solve_or_empty(lu_reg, s.B);
-    p.x0 = -solve_or_empty(lu_reg, s.E * u);
+    p.XofZ = -solve_or_empty(lu_reg, f.B);
+    p.x0 = -solve_or_empty(lu_reg, Eigen::MatrixXd(f.e));
   } else {
-    p.XofZ = Eigen::MatrixXd::Zero(0, s.pairs());
+    p.XofZ = Eigen::MatrixXd::Zero(0, f.D.rows());
     p.x0 = Eigen::VectorXd::Zero(0);
   }
-  p.M = s.D + s.C * p.XofZ;
-  p.q = s.F * u + s.C * p.x0;
+  p.M = f.D + f.C * p.XofZ;
+  p.q = f.f + f.C * p.x0;
   return p;
+}
+
+// Splits the unknowns [x; u_h] of a polished point into the LCS state and the lines' DC waves,
+// and makes those the lines' past (history inputs read at t are then this point's).
+void finish(const CircuitModel& model, OperatingPoint& op) {
+  const int n = model.lcs().states();
+  if (op.x.size() == n) return;
+  op.history.assign(op.x.data() + n, op.x.data() + op.x.size());
+  op.x = Eigen::VectorXd(op.x.head(n));
+  model.begin_history(op.history);
 }
 
 OperatingPoint point_from(const StaticProblem& p, const Eigen::VectorXd& z) {
@@ -85,25 +148,24 @@ Eigen::VectorXd least_energy(const CircuitModel& model, const Eigen::VectorXd& u
 // through a diode). States the system leaves free take the values of least stored energy
 // (least_energy). Returns false when the result is not complementary.
 bool polish(const CircuitModel& model, double t, OperatingPoint& op) {
-  const Lcs& s = model.lcs();
-  const int n = s.states(), m = s.pairs();
+  const DcForm s = dc_form(model, t);
+  const int n = static_cast<int>(s.A.rows()), m = static_cast<int>(s.D.rows());
   std::vector<int> J;
   for (int i = 0; i < m; ++i)
     if (op.z(i) > 0) J.push_back(i);
   const int k = static_cast<int>(J.size());
   if (n + k == 0) return true;
-  const Eigen::VectorXd u = model.input_values(t);
   Eigen::MatrixXd K = Eigen::MatrixXd::Zero(n + k, n + k);
   Eigen::VectorXd rhs(n + k);
   K.topLeftCorner(n, n) = s.A;
-  rhs.head(n) = -s.E * u;
+  rhs.head(n) = -s.e;
   for (int a = 0; a < k; ++a) {
     if (n > 0) {  // a row or column block of an empty matrix points past null (UBSan)
       K.block(0, n + a, n, 1) = s.B.col(J[a]);
       K.block(n + a, 0, 1, n) = s.C.row(J[a]);
     }
     for (int c = 0; c < k; ++c) K(n + a, n + c) = s.D(J[a], J[c]);
-    rhs(n + a) = -s.F.row(J[a]).dot(u);
+    rhs(n + a) = -s.f(J[a]);
   }
   // Row scaling: the rows mix 1/C-sized and ohm-sized coefficients.
   Eigen::VectorXd scale = K.cwiseAbs().rowwise().maxCoeff();
@@ -124,15 +186,15 @@ bool polish(const CircuitModel& model, double t, OperatingPoint& op) {
                                                      : Eigen::MatrixXd(n + k, 0);
     for (int j = 0; j < n; ++j)
       if (kernel.cols() > 0 && kernel.row(j).cwiseAbs().maxCoeff() > 1e-9)
-        undetermined.push_back(model.states()[j].label);
-    candidates.push_back(least_energy(model, u, kernel, min_norm));
+        undetermined.push_back(unknown_label(model, j));
+    candidates.push_back(least_energy(model, model.input_values(t), kernel, min_norm));
   }
   candidates.push_back(min_norm);  // when least energy would turn a diode current negative
   for (const Eigen::VectorXd& sol : candidates) {
     Eigen::VectorXd z = Eigen::VectorXd::Zero(m);
     for (int a = 0; a < k; ++a) z(J[a]) = sol(n + a);
     const Eigen::VectorXd x = sol.head(n);
-    const Eigen::VectorXd w = s.C * x + s.D * z + s.F * u;
+    const Eigen::VectorXd w = s.C * x + s.D * z + s.f;
     const double tol = 1e-9 * std::max({1.0, max_abs(w), max_abs(z)});
     bool complementary = true;
     for (int i = 0; i < m; ++i)
@@ -180,6 +242,7 @@ OperatingPoint choose_among(const CircuitModel& model, const StaticProblem& p, d
   for (int k = 0; k < static_cast<int>(zs.size()); ++k) {
     OperatingPoint op = point_from(p, zs[k]);
     polish(model, t, op);
+    finish(model, op);
     distance.push_back({hint_distance(model, hints, op.x, op.z, t), k});
   }
   std::sort(distance.begin(), distance.end());
@@ -189,6 +252,7 @@ OperatingPoint choose_among(const CircuitModel& model, const StaticProblem& p, d
                                   "values nearer to the one wanted (`op --all` lists them)");
   OperatingPoint op = point_from(p, zs[distance[0].second]);
   polish(model, t, op);
+  finish(model, op);
   for (const auto& [node, value] : hints)
     if (model.graph().node_index(node) >= 0) op.chosen_by.push_back(node);
   op.warnings.push_back("the circuit has " + count + " (" + who + "); the one nearest to the .ic/.nodeset "
@@ -231,6 +295,7 @@ OperatingPoint solve_operating_point(const CircuitModel& model, double t) {
   op.pivots = sol.pivots;
   op.warnings = notes;
   polish(model, t, op);
+  finish(model, op);
   return op;
 }
 
@@ -269,6 +334,7 @@ std::vector<OperatingPoint> enumerate_operating_points(const CircuitModel& model
   for (const Eigen::VectorXd& z : enumerate_lcp_solutions(p.M, p.q)) {
     out.push_back(point_from(p, z));
     polish(model, t, out.back());
+    finish(model, out.back());
   }
   return out;
 }

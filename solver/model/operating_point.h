@@ -16,6 +16,9 @@ namespace lcs {
 struct OperatingPoint {
   Eigen::VectorXd x;  // LCS state
   Eigen::VectorXd z;
+  // Lines: the waves they carry at DC (their history inputs), in DelayHistory order. Solving
+  // makes them the lines' past (LcsProblem::begin_history): values read at t are this point's.
+  std::vector<double> history;
   int pivots = 0;
   // States DC leaves free (a loop of inductors, capacitors with no DC path, not even through a
   // conducting diode): they take the values of least stored energy. Labels listed.
@@ -38,7 +41,8 @@ constexpr int kMaxCheckedPairs = 16;
 // .nodeset does.
 OperatingPoint solve_operating_point(const CircuitModel& model, double t = 0.0);
 
-// Every solution of the static LCP (multistable circuits; diode-only circuits have one).
+// Every solution of the static LCP (multistable circuits; diode-only circuits have one). With
+// lines, call model.begin_history(point.history) before evaluating a point other than the last.
 std::vector<OperatingPoint> enumerate_operating_points(const CircuitModel& model, double t = 0.0);
 
 // .ic and .nodeset node voltages (.ic wins where both name a node): what chooses among several

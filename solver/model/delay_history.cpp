@@ -1,0 +1,112 @@
+#include "solver/model/delay_history.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace lcs {
+
+DelayHistory::DelayHistory(std::vector<double> delays)
+    : delays_(std::move(delays)), before_(delays_.size(), 0.0) {}
+
+double DelayHistory::shortest_delay() const {
+  double d = std::numeric_limits<double>::infinity();
+  for (double x : delays_) d = std::min(d, x);
+  return d;
+}
+
+void DelayHistory::reset(const std::vector<double>& before) {
+  before_ = before;
+  before_.resize(delays_.size(), 0.0);
+  times_.clear();
+  values_.clear();
+  segments_.clear();
+  jump_times_.clear();
+}
+
+void DelayHistory::record(double t, const std::vector<double>& values) {
+  if (!times_.empty() && t < times_.back()) t = times_.back();  // rounding of a method's clock
+  if (!times_.empty() && t == times_.back()) {
+    bool same = true;
+    for (size_t k = 0; k < values.size(); ++k)
+      if (values[k] != values_.back()[k]) same = false;
+    if (same) return;  // the same instant recorded twice
+    if (jump_times_.empty() || jump_times_.back() != t) jump_times_.push_back(t);
+  }
+  times_.push_back(t);
+  values_.push_back(values);
+  trim();
+}
+
+void DelayHistory::record_segment(double t0, double t1, Segment exact) {
+  if (!segments_.empty() && t0 < segments_.back().t1) t0 = segments_.back().t1;
+  if (t1 <= t0) return;
+  segments_.push_back({t0, t1, std::move(exact)});
+}
+
+// Samples older than every delay (plus the stencil an interpolant needs) are never read again.
+void DelayHistory::trim() {
+  if (times_.size() < 4096) return;
+  double longest = 0;
+  for (double d : delays_) longest = std::max(longest, d);
+  const double keep_from = times_.back() - 1.01 * longest;
+  size_t drop = 0;
+  while (drop + 8 < times_.size() && times_[drop + 8] < keep_from) ++drop;
+  if (drop < times_.size() / 2) return;  // trims in bulk, amortised O(1) per record
+  times_.erase(times_.begin(), times_.begin() + drop);
+  values_.erase(values_.begin(), values_.begin() + drop);
+  while (!segments_.empty() && segments_.front().t1 < keep_from) segments_.pop_front();
+  while (!jump_times_.empty() && jump_times_.front() < keep_from) jump_times_.pop_front();
+}
+
+double DelayHistory::wave(int k, double s) const {
+  if (!segments_.empty() && s >= segments_.front().t0) {
+    auto it = std::upper_bound(segments_.begin(), segments_.end(), s,
+                               [](double v, const ExactSegment& seg) { return v < seg.t0; });
+    --it;  // the last segment starting at or before s
+    if (s <= it->t1) {
+      scratch_.resize(delays_.size());
+      it->exact(s, scratch_);
+      return scratch_[k];
+    }
+  }
+  if (times_.empty() || s < times_.front()) return before_[k];
+  // i: the last sample at or before s (the later of a jump's two samples at its instant).
+  const long n = static_cast<long>(times_.size());
+  long i = static_cast<long>(std::upper_bound(times_.begin(), times_.end(), s) - times_.begin()) - 1;
+  if (times_[i] == s || n == 1) return values_[i][k];
+  // The smooth piece around i (no two samples of one instant inside it), as far as a stencil
+  // can reach.
+  long lo = i, hi = i;
+  while (lo > 0 && i - lo <= degree_ && times_[lo - 1] < times_[lo]) --lo;
+  while (hi + 1 < n && hi - i <= degree_ && times_[hi + 1] > times_[hi]) ++hi;
+  // The degree+1 samples of the piece nearest to s (i and i+1 first, when both are in it).
+  const long want = std::min<long>(degree_ + 1, hi - lo + 1);
+  long a = i, b = i;
+  while (b - a + 1 < want) {
+    const bool right_ok = b < hi, left_ok = a > lo;
+    if (right_ok && (!left_ok || times_[b + 1] - s <= s - times_[a - 1])) ++b;
+    else --a;
+  }
+  // Lagrange form (a handful of points).
+  double sum = 0;
+  for (long p = a; p <= b; ++p) {
+    double w = 1;
+    for (long q = a; q <= b; ++q)
+      if (q != p) w *= (s - times_[q]) / (times_[p] - times_[q]);
+    sum += w * values_[p][k];
+  }
+  return sum;
+}
+
+std::vector<double> DelayHistory::jumps_arriving(double t, double t_end) const {
+  std::vector<double> out;
+  for (double j : jump_times_)
+    for (double d : delays_)
+      if (j + d > t && j + d <= t_end) out.push_back(j + d);
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
+}  // namespace lcs

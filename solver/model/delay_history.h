@@ -1,0 +1,69 @@
+// The past of the waves that travel along transmission lines (Stewart 1.3.3): what makes a
+// circuit with lines a convolution complementarity problem (4.6) rather than an LCS.
+//
+// Each history input u_k of the LCS is a wave that left a line port `delay` seconds earlier:
+//   u_k(t) = a_k(t - delay),   a_k = g x + h z + j u   (a row of the model, at the earlier time).
+// The integrators record a_k after every accepted step (LcsProblem::accept); before the first
+// record (t < t0) the wave holds the value it had when the run began (the line's DC state, or
+// its IC= with UIC). A jump of a_k (a source edge, a diode switching with RON = 0) is recorded as
+// two samples at one time: reads at that instant take the later one, and no interpolant spans it.
+// Reads between samples interpolate by a polynomial of the integrator's order through the
+// nearest samples of the same smooth piece (so the history is as accurate as the steps), or,
+// for the event method, on the exact past of each accepted segment (event_driven.cpp).
+#pragma once
+
+#include <deque>
+#include <functional>
+#include <vector>
+
+namespace lcs {
+
+class DelayHistory {
+ public:
+  explicit DelayHistory(std::vector<double> delays = {});
+
+  int size() const { return static_cast<int>(delays_.size()); }
+  double delay(int k) const { return delays_[k]; }
+  double shortest_delay() const;
+
+  // Forgets every sample: a_k holds before[k] until the first record.
+  void reset(const std::vector<double>& before);
+  const std::vector<double>& before() const { return before_; }
+  // Degree of the interpolant through recorded samples (1 linear ... 5); the run's method sets it.
+  void set_degree(int degree) { degree_ = degree; }
+
+  // Appends a_k(t) for every k (t not before the last record; equal t: a jump).
+  void record(double t, const std::vector<double>& values);
+  // The exact past, where a method knows it (event): a_k(s) for s in [t0, t1] of the segment
+  // recorded at t0 with record_segment. Reads inside such a segment call it instead of
+  // interpolating samples.
+  using Segment = std::function<void(double s, std::vector<double>& values)>;
+  void record_segment(double t0, double t1, Segment exact);
+
+  // a_k at time s (s may precede the first record: the value before).
+  double wave(int k, double s) const;
+  // u_k(t) = a_k(t - delay_k).
+  double value(int k, double t) const { return wave(k, t - delays_[k]); }
+  // Times after `t` where some recorded wave jumped, shifted by its delay (where a history input
+  // jumps next), up to `t_end`; the earliest first.
+  std::vector<double> jumps_arriving(double t, double t_end) const;
+  double last_time() const { return times_.empty() ? -1e300 : times_.back(); }
+  const std::deque<double>& times() const { return times_; }  // the recorded instants (kept ones)
+
+ private:
+  struct ExactSegment {
+    double t0, t1;
+    Segment exact;
+  };
+  std::vector<double> delays_;
+  std::vector<double> before_;
+  int degree_ = 1;
+  std::deque<double> times_;
+  std::deque<std::vector<double>> values_;  // values_[i][k] = a_k(times_[i])
+  std::deque<ExactSegment> segments_;
+  std::deque<double> jump_times_;
+  mutable std::vector<double> scratch_;
+  void trim();
+};
+
+}  // namespace lcs
