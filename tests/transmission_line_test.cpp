@@ -431,7 +431,8 @@ TEST(TlineLossyRectifier, AgreesWithNgspiceLtra) {
 }
 
 // =============================================================================================
-// Bad lines: exit 2 before anything is simulated, located (FILE:LINE:), naming the element. Each
+// Bad lines: exit 2 before anything is simulated, located (FILE:LINE:), naming the element (or the
+// incomplete model). Each
 // deck has a control, the same deck with the one value made right, which runs (exit 0): the error
 // is about that value, not about the deck around it.
 struct BadLine {
@@ -452,10 +453,11 @@ TEST(TlineBadInput, NonPositiveDelayOrImpedanceAndIncompleteLtraModelsAreLocated
       {"td_negative", "T1 in 0 out 0 Z0=50 TD=-1n", "", "t1", "T1 in 0 out 0 Z0=50 TD=1n", ""},
       {"z0_zero", "T1 in 0 out 0 Z0=0 TD=1n", "", "t1", "T1 in 0 out 0 Z0=50 TD=1n", ""},
       {"z0_negative", "T1 in 0 out 0 Z0=-50 TD=1n", "", "t1", "T1 in 0 out 0 Z0=50 TD=1n", ""},
-      {"ltra_no_len", "O1 in 0 out 0 cable", ".model cable LTRA(R=0.05 L=250n G=0 C=100p)", "o1", "O1 in 0 out 0 cable",
-       ltra},
-      {"ltra_no_c", "O1 in 0 out 0 cable", ".model cable LTRA(R=0.05 L=250n G=0 LEN=20)", "o1", "O1 in 0 out 0 cable",
-       ltra},
+      // An incomplete model is an error at its own card, naming the model.
+      {"ltra_no_len", "O1 in 0 out 0 cable", ".model cable LTRA(R=0.05 L=250n G=0 C=100p)", "cable",
+       "O1 in 0 out 0 cable", ltra},
+      {"ltra_no_c", "O1 in 0 out 0 cable", ".model cable LTRA(R=0.05 L=250n G=0 LEN=20)", "cable",
+       "O1 in 0 out 0 cable", ltra},
       {"ltra_unknown_model", "O1 in 0 out 0 nosuch", ltra, "o1", "O1 in 0 out 0 cable", ltra},
   };
   for (const BadLine& c : cases) {

@@ -69,15 +69,15 @@ TEST(ParseDiagnostics, BipolarTransistorCards) {
 
 TEST(ParseDiagnostics, UnsupportedCards) {
   check({
-      {"t\n  tline a 0 b 0 z0=50\n", "t.cir:2:23: error: missing TD= (or F= [NL=]) for 'tline'\n  tline a 0 b 0 z0=50\n                      ^"},
+      {"t\n  tline a 0 b 0 z0=50\n", "t.cir:2:22: error: missing TD= (or F= [NL=]) for 'tline'\n  tline a 0 b 0 z0=50\n                     ^"},
       {"t\n  tline a 0 b 0 z0=-50 td=1n\n",
-       "t.cir:2:21: error: Z0 of 'tline' must be positive\n  tline a 0 b 0 z0=-50 td=1n\n                    ^~"},
-      {"t\nT1 a a b 0 z0=50 td=1n\n", "t.cir:2:4: error: port 1 of 't1' connects node 'a' to itself\nT1 a a b 0 z0=50 td=1n\n   ^"},
+       "t.cir:2:20: error: Z0 of 'tline' must be positive\n  tline a 0 b 0 z0=-50 td=1n\n                   ^~~"},
+      {"t\nT1 a a b 0 z0=50 td=1n\n", "t.cir:2:6: error: port 1 of 't1' connects node 'a' to itself\nT1 a a b 0 z0=50 td=1n\n     ^"},
       {"t\nT1 a 0 b 0 z0=50 td=1n ic=1,2\n",
        "t.cir:2:24: error: IC= of 't1' takes four values v1,i1,v2,i2\nT1 a 0 b 0 z0=50 td=1n ic=1,2\n                       ^~"},
       {"t\nO1 a 0 b 0 lmod\n", "t.cir:2:12: error: line model 'lmod' is not defined\nO1 a 0 b 0 lmod\n           ^~~~"},
       {"t\n.model lm ltra(l=1u c=1p len=-1)\n",
-       "t.cir:2:29: error: line parameter 'len' must be positive\n.model lm ltra(l=1u c=1p len=-1)\n                            ^"},
+       "t.cir:2:30: error: line parameter 'len' must be positive\n.model lm ltra(l=1u c=1p len=-1)\n                             ^~"},
       {"t\n.lib foo.lib\n", "t.cir:2:1: error: unknown control card '.lib'\n.lib foo.lib\n^~~~"},
       {"t\n.endc\n", "t.cir:2:1: error: '.endc' without '.control'\n.endc\n^~~~~"},
   });

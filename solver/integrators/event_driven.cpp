@@ -647,6 +647,50 @@ void EventDriven::DoRun(const Eigen::VectorXd& x0, const OutputGrid& grid, const
   restart(0.0, x0, nullptr);
   emit_now(0.0, false);
 
+  // Lines (1.3.3): their history inputs are, on each step, polynomials fitted to the exact past
+  // (SourceSystem::fit_history), and that past is this method's own: every advance is one
+  // mode, X(s) = exp(M (s - t0)) X(t0), recorded for the waves (a = L X) as an exact segment.
+  // A step is halved until the fit is within kHistoryTol of the waves' size; the instants where
+  // the waves jump or bend (mode switches, source corners) arrive a delay later as breakpoints.
+  DelayHistory* history = r.sources->has_history() ? &r.model.history() : nullptr;
+  constexpr double kHistoryTol = 1e-11;
+  struct Forget {
+    DelayHistory* h;
+    ~Forget() {
+      if (h) h->forget_segments();  // the segments refer to this run's modes
+    }
+  } forget{history};
+  std::map<const Mode*, Eigen::MatrixXd> wave_rows;  // L of each mode: a = L [x; σ]
+  auto wave_row = [&](const Mode* md) -> const Eigen::MatrixXd& {
+    auto it = wave_rows.find(md);
+    if (it != wave_rows.end()) return it->second;
+    const std::vector<DelayedWave>& waves = r.model.delayed();
+    const Eigen::MatrixXd P = r.sources->P(md->signature);
+    Eigen::MatrixXd L = Eigen::MatrixXd::Zero(waves.size(), md->q);
+    for (size_t k = 0; k < waves.size(); ++k) {
+      if (n > 0) L.block(k, 0, 1, n) = waves[k].g;
+      if (r.m > 0) L.row(k) += waves[k].h * md->Z;
+      L.block(k, n, 1, md->q - n) += waves[k].j * P;
+    }
+    return wave_rows.emplace(md, std::move(L)).first->second;
+  };
+  auto record_segment = [&](double t0, const Eigen::VectorXd& X0, const Mode* md, double t1) {
+    const Eigen::MatrixXd* L = &wave_row(md);
+    history->record_segment(t0, t1, [md, L, X0, t0](double s, std::vector<double>& a, std::vector<double>& da) {
+      const Eigen::VectorXd X = (md->M * (s - t0)).exp() * X0;
+      const Eigen::VectorXd av = *L * X, dv = *L * (md->M * X);
+      a.assign(av.data(), av.data() + av.size());
+      da.assign(dv.data(), dv.data() + dv.size());
+    });
+  };
+  auto next_at_level = [&](int level) {
+    DyadicTime c = r.pos;
+    if (level >= 64) return c.plus(64);
+    if (level > 0) c.f &= ~((std::uint64_t(1) << (64 - level)) - 1);
+    else c.f = 0;
+    return c.plus(level);
+  };
+
   // Devices with history (lines) cap the step: targets at most h0 / 2^cap_level apart.
   int cap_level = 0;
   while (cap_level < 62 && std::ldexp(h0, -cap_level) > r.model.max_step()) ++cap_level;
@@ -672,7 +716,39 @@ void EventDriven::DoRun(const Eigen::VectorXd& x0, const OutputGrid& grid, const
       capped = capped.plus(cap_level);
       if (capped < target) target = capped;
     }
+    bool arrival = false;
+    double t_start = 0;
+    Eigen::VectorXd X_start;
+    const Mode* mode_start = nullptr;
+    if (history) {
+      t_start = r.pos.seconds(h0);
+      const double a = history->next_arrival(t_start, target.seconds(h0), 1e-9);
+      if (std::isfinite(a)) {
+        const DyadicTime at = DyadicTime::from(a, h0);
+        if (r.pos < at && at <= target) {
+          target = at;
+          arrival = true;
+        }
+      }
+      int level = 0;
+      while (level < 62 && !(next_at_level(level) <= target)) ++level;
+      Eigen::Ref<Eigen::VectorXd> sigma_now = r.X.tail(r.X.size() - n);
+      while (r.sources->fit_history(t_start, target.seconds(h0), r.cur->signature, sigma_now) > kHistoryTol &&
+             level < 60) {
+        ++level;
+        const DyadicTime finer = next_at_level(level);
+        if (finer < target) {
+          target = finer;
+          arrival = false;
+        }
+      }
+      r.project();
+      r.refresh_constraints();
+      X_start = r.X;
+      mode_start = r.cur;
+    }
     const bool reached = r.advance_to(target, progress);
+    if (history) record_segment(t_start, X_start, mode_start, r.pos.seconds(h0));
     accept_here();
     if (!reached) {
       const double t = r.pos.seconds(h0);
@@ -688,8 +764,18 @@ void EventDriven::DoRun(const Eigen::VectorXd& x0, const OutputGrid& grid, const
                                       "Zeno point)");
       const Eigen::VectorXd propagated = r.X.tail(r.X.size() - n);
       if (restart(t, r.state(), &propagated)) ++r.stats.mode_switches;
+      if (history) history->mark_break(t);
       emit_now(t, true);
       continue;
+    }
+    if (arrival) {  // a wavefront arrives: the history inputs jump or bend here
+      const double t = r.pos.seconds(h0);
+      history->mark_break(t);
+      if (restart(t, r.state(), nullptr)) {
+        ++r.stats.mode_switches;
+        ++r.stats.events;
+        emit_now(t, true);
+      }
     }
     while (next_stop < stops.size() && stops[next_stop].at <= r.pos) {
       const Stop& st = stops[next_stop++];
@@ -700,6 +786,7 @@ void EventDriven::DoRun(const Eigen::VectorXd& x0, const OutputGrid& grid, const
         // jump of u (its derivative has no u' term: it is the charge of a capacitor/source
         // loop, the flux of an inductor/source cutset), and x_phys jumps by Gamma du
         // (circuit_model.h), as in the time-stepping methods.
+        if (history) history->mark_break(st.t);
         if (restart(st.t, r.state(), nullptr)) {
           ++r.stats.mode_switches;
           ++r.stats.events;

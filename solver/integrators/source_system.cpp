@@ -8,13 +8,39 @@ namespace lcs {
 
 namespace {
 constexpr double kTwoPi = 6.283185307179586476925;
-int kind_dimension(char k) { return k == 'c' ? 1 : k == 'r' ? 2 : 3; }
+int kind_dimension(char k) { return k == 'c' ? 1 : k == 'r' ? 2 : k == 's' ? 3 : kHistoryDegree + 1; }
+
+// Chebyshev points of [0, 1] (the degree+1 zeros) and the monomial (Vandermonde) system on them,
+// factorised once.
+struct ChebyshevFit {
+  Eigen::VectorXd nodes, checks;
+  Eigen::PartialPivLU<Eigen::MatrixXd> lu;
+  ChebyshevFit() {
+    const int m = kHistoryDegree + 1;
+    nodes.resize(m);
+    for (int i = 0; i < m; ++i) nodes(i) = 0.5 * (1 - std::cos(M_PI * (2 * i + 1) / (2.0 * m)));
+    // Checked between the nodes, not at the ends: a wavefront arrives at the start of a step to
+    // within the rounding of its time, and the end of one step is the start of the next.
+    checks.resize(m - 1);
+    for (int i = 1; i < m; ++i) checks(i - 1) = 0.5 * (nodes(i - 1) + nodes(i));
+    Eigen::MatrixXd V(m, m);
+    for (int i = 0; i < m; ++i)
+      for (int k = 0; k < m; ++k) V(i, k) = std::pow(nodes(i), k);
+    lu.compute(V);
+  }
+};
+const ChebyshevFit& chebyshev() {
+  static const ChebyshevFit fit;
+  return fit;
+}
 }  // namespace
 
-SourceSystem::SourceSystem(const LcsProblem& model, double tstop) {
+SourceSystem::SourceSystem(const LcsProblem& model, double tstop) : provider_(&model.inputs()) {
   for (const InputSignal& signal : model.inputs().signals()) {
     Input in;
-    if (signal.quantity != InputSignal::Quantity::One) {
+    if (signal.history >= 0) {  // its corners come as the run makes them
+      in.history = history_ = true;
+    } else if (signal.quantity != InputSignal::Quantity::One) {
       in.waveform = &signal.waveform;
       const Waveform& w = *in.waveform;
       if (w.kind == Waveform::Kind::Sin) {
@@ -35,6 +61,7 @@ SourceSystem::SourceSystem(const LcsProblem& model, double tstop) {
 }
 
 char SourceSystem::kind(const Input& in, double t) const {
+  if (in.history) return 'h';
   if (!in.waveform) return 'c';
   const Waveform& w = *in.waveform;
   switch (w.kind) {
@@ -69,6 +96,8 @@ Eigen::MatrixXd SourceSystem::S(const std::string& sig) const {
   int o = 0;
   for (size_t k = 0; k < sig.size(); ++k) {
     if (sig[k] == 'r') S(o, o + 1) = 1;
+    if (sig[k] == 'h')
+      for (int j = 0; j < kHistoryDegree; ++j) S(o + j, o + j + 1) = j + 1;
     if (sig[k] == 's') {
       const Input& in = inputs_[k];
       const double rate = std::sqrt(in.omega * in.omega + in.theta * in.theta);
@@ -97,6 +126,8 @@ Eigen::VectorXd SourceSystem::rounding_weights(const std::string& sig, double se
   int o = 0;
   for (size_t k = 0; k < sig.size(); ++k) {
     if (sig[k] == 'r') w(o + 1) = segment;
+    if (sig[k] == 'h')
+      for (int j = 1; j <= kHistoryDegree; ++j) w(o + j) = std::pow(segment, j);
     if (sig[k] == 's') {
       const Input& in = inputs_[k];
       w(o + 2) = std::sqrt(in.omega * in.omega + in.theta * in.theta);
@@ -111,6 +142,12 @@ void SourceSystem::sigma(double t, const std::string& sig, Eigen::VectorXd& out)
   int o = 0;
   for (size_t k = 0; k < sig.size(); ++k) {
     const Input& in = inputs_[k];
+    if (sig[k] == 'h') {
+      out.segment(o, kHistoryDegree + 1).setZero();
+      out(o) = provider_->history()->value(provider_->signals()[k].history, t);
+      o += kind_dimension('h');
+      continue;
+    }
     const double u = in.waveform ? in.waveform->value(t) : 1.0;
     switch (sig[k]) {
       case 'c':
@@ -128,6 +165,36 @@ void SourceSystem::sigma(double t, const std::string& sig, Eigen::VectorXd& out)
     }
     o += kind_dimension(sig[k]);
   }
+}
+
+double SourceSystem::fit_history(double t0, double t1, const std::string& sig,
+                                 Eigen::Ref<Eigen::VectorXd> sigma) const {
+  const ChebyshevFit& cheb = chebyshev();
+  const DelayHistory& history = *provider_->history();
+  const int m = kHistoryDegree + 1;
+  const double h = t1 - t0;
+  double worst = 0, size = 0;
+  Eigen::VectorXd y(m), c(m);
+  int o = 0;
+  for (size_t k = 0; k < sig.size(); ++k) {
+    if (sig[k] != 'h') {
+      o += kind_dimension(sig[k]);
+      continue;
+    }
+    const int wave = provider_->signals()[k].history;
+    for (int i = 0; i < m; ++i) y(i) = history.value(wave, t0 + h * cheb.nodes(i));
+    c = cheb.lu.solve(y);  // in x = (t - t0) / h
+    for (int i = 0; i < cheb.checks.size(); ++i) {
+      const double x = cheb.checks(i);
+      double p = 0;
+      for (int j = m - 1; j >= 0; --j) p = p * x + c(j);
+      worst = std::max(worst, std::abs(p - history.value(wave, t0 + h * x)));
+    }
+    size = std::max(size, y.cwiseAbs().maxCoeff());
+    for (int j = 0; j < m; ++j) sigma(o + j) = c(j) / std::pow(h, j);  // Taylor coefficients in t - t0
+    o += m;
+  }
+  return worst / std::max({size, history.magnitude(), 1e-300});
 }
 
 }  // namespace lcs

@@ -8,6 +8,9 @@
 //   (p'/Ω rather than p': S is then a scaled rotation, whose exponential is accurate in every
 //   entry; with [0 1; −Ω² 0] the entries range over Ω², and exp(S h) carried errors of 1e-16 Ω² h
 //   relative to its small ones: 4e-9 of a 10 kHz source's amplitude between grid times.)
+//   a line's history input (the wave that left the other port a delay earlier, 1.3.3): on each
+//   step a polynomial of degree kHistoryDegree in s = t - t0 fitted to the exact past
+//   (fit_history), σ = [u, u', u''/2, ..., u^(p)/p!] at t0,  S = [[0 1 0 ..] [0 0 2 ..] ...]
 // S depends only on the kind of each input (and a SIN's ω, θ, fixed for the run); the segment's
 // values live in σ, which is reset from the waveform at every breakpoint and grid time.
 #pragma once
@@ -21,19 +24,28 @@
 
 namespace lcs {
 
+constexpr int kHistoryDegree = 7;
+
 class SourceSystem {
  public:
   // Breakpoints (source corners, SIN starts) in (0, tstop] are collected once.
   SourceSystem(const LcsProblem& model, double tstop);
 
   // Which form each input takes on the segment starting at t (one character per input: 'c',
-  // 'r', 's'); segments with the same signature share S and P.
+  // 'r', 's', 'h'); segments with the same signature share S and P.
   std::string signature(double t) const;
   int dimension(const std::string& signature) const;
   Eigen::MatrixXd S(const std::string& signature) const;
   Eigen::MatrixXd P(const std::string& signature) const;  // u = P σ
-  // σ at t on the segment starting at or before t (right values at a corner).
+  // σ at t on the segment starting at or before t (right values at a corner). History inputs
+  // get their value at t and no slope: fit_history gives them their polynomial for a step.
   void sigma(double t, const std::string& signature, Eigen::VectorXd& out) const;
+  bool has_history() const { return history_; }
+  // The history inputs' slots of σ for the step [t0, t1]: the degree-kHistoryDegree polynomial
+  // through their exact values at Chebyshev points. Returns the largest difference between it and
+  // the exact values at the points between, relative to the inputs' size: the caller halves the
+  // step while it exceeds the tolerance.
+  double fit_history(double t0, double t1, const std::string& signature, Eigen::Ref<Eigen::VectorXd> sigma) const;
 
   // Weights that turn σ into the sizes its rounding is relative to: a ramp's slope u' counts
   // times `segment` (the most it can move u before the next reset: a 1 ps PULSE edge has
@@ -49,7 +61,10 @@ class SourceSystem {
   struct Input {
     const Waveform* waveform = nullptr;  // nullptr: the constant input u[0] = 1
     double omega = 0, theta = 0, vo = 0, td = 0;
+    bool history = false;
   };
+  const InputProvider* provider_ = nullptr;
+  bool history_ = false;
   char kind(const Input& in, double t) const;
   std::vector<Input> inputs_;
   std::vector<double> breakpoints_;

@@ -22,6 +22,9 @@ void DelayHistory::reset(const std::vector<double>& before) {
   values_.clear();
   segments_.clear();
   jump_times_.clear();
+  breaks_.clear();
+  size_ = 0;
+  for (double b : before_) size_ = std::max(size_, std::abs(b));
 }
 
 void DelayHistory::record(double t, const std::vector<double>& values) {
@@ -35,6 +38,7 @@ void DelayHistory::record(double t, const std::vector<double>& values) {
   }
   times_.push_back(t);
   values_.push_back(values);
+  for (double v : values) size_ = std::max(size_, std::abs(v));
   trim();
 }
 
@@ -57,6 +61,7 @@ void DelayHistory::trim() {
   values_.erase(values_.begin(), values_.begin() + drop);
   while (!segments_.empty() && segments_.front().t1 < keep_from) segments_.pop_front();
   while (!jump_times_.empty() && jump_times_.front() < keep_from) jump_times_.pop_front();
+  while (!breaks_.empty() && breaks_.front().t < keep_from) breaks_.pop_front();
 }
 
 double DelayHistory::wave(int k, double s) const {
@@ -66,7 +71,8 @@ double DelayHistory::wave(int k, double s) const {
     --it;  // the last segment starting at or before s
     if (s <= it->t1) {
       scratch_.resize(delays_.size());
-      it->exact(s, scratch_);
+      slopes_.resize(delays_.size());
+      it->exact(s, scratch_, slopes_);
       return scratch_[k];
     }
   }
@@ -97,6 +103,56 @@ double DelayHistory::wave(int k, double s) const {
     sum += w * values_[p][k];
   }
   return sum;
+}
+
+void DelayHistory::mark_break(double t) {
+  if (!breaks_.empty() && breaks_.back().t >= t) return;
+  breaks_.push_back({t, {}});
+}
+
+// Wave k jumps or bends at b: its values and slopes on the two segments meeting there.
+bool DelayHistory::judge(Break& b, double tol) {
+  auto left = segments_.end(), right = segments_.end();
+  auto after = std::upper_bound(segments_.begin(), segments_.end(), b.t,
+                                [](double v, const ExactSegment& seg) { return v < seg.t0; });
+  if (after != segments_.begin()) {
+    auto at = std::prev(after);  // the last segment starting at or before b
+    if (b.t < at->t1) right = at;
+    if (at->t0 < b.t && b.t <= at->t1) left = at;
+    else if (at != segments_.begin() && b.t <= std::prev(at)->t1) left = std::prev(at);
+  }
+  const size_t n = delays_.size();
+  if (right == segments_.end()) return false;  // not yet recorded past b: judged later
+  std::vector<double> vl(n), sl(n), vr(n), sr(n);
+  if (left != segments_.end()) {
+    left->exact(b.t, vl, sl);
+  } else {  // the first segment: before it the waves held their values before the run
+    vl = before_;
+    sl.assign(n, 0.0);
+  }
+  right->exact(b.t, vr, sr);
+  b.significant.assign(n, 0);
+  for (size_t k = 0; k < n; ++k) {
+    const double change = std::abs(vr[k] - vl[k]) + delays_[k] * std::abs(sr[k] - sl[k]);
+    b.significant[k] = change > tol * std::max(size_, 1e-300);
+  }
+  return true;
+}
+
+double DelayHistory::next_arrival(double t, double t_end, double tol) {
+  double best = std::numeric_limits<double>::infinity();
+  for (Break& b : breaks_) {
+    bool any = false;
+    for (double d : delays_) any = any || (b.t + d > t && b.t + d <= t_end);
+    if (!any) continue;
+    if (b.significant.empty() && !judge(b, tol)) {
+      best = std::min(best, b.t + shortest_delay() > t ? b.t + shortest_delay() : best);
+      continue;
+    }
+    for (size_t k = 0; k < delays_.size(); ++k)
+      if (b.significant[k] && b.t + delays_[k] > t && b.t + delays_[k] <= t_end) best = std::min(best, b.t + delays_[k]);
+  }
+  return best;
 }
 
 std::vector<double> DelayHistory::jumps_arriving(double t, double t_end) const {

@@ -34,11 +34,21 @@ class DelayHistory {
 
   // Appends a_k(t) for every k (t not before the last record; equal t: a jump).
   void record(double t, const std::vector<double>& values);
-  // The exact past, where a method knows it (event): a_k(s) for s in [t0, t1] of the segment
-  // recorded at t0 with record_segment. Reads inside such a segment call it instead of
-  // interpolating samples.
-  using Segment = std::function<void(double s, std::vector<double>& values)>;
+  // The exact past, where a method knows it (event): a_k(s) and its slope for s in [t0, t1] of a
+  // segment recorded with record_segment. Reads inside such a segment call it instead of
+  // interpolating samples (a read at a segment boundary takes the later segment). A method that
+  // records segments forgets them (forget_segments) before the objects they refer to go.
+  using Segment = std::function<void(double s, std::vector<double>& values, std::vector<double>& slopes)>;
   void record_segment(double t0, double t1, Segment exact);
+  void forget_segments() { segments_.clear(); }
+
+  // Breaks: instants where the waves may jump or bend (the event method's mode switches and
+  // source corners), each arriving `delay_k` later in history input k. next_arrival() returns
+  // the earliest arrival in (t, t_end] of a break where wave k did jump or bend by more than
+  // `tol` of the waves' size (a jump, or a change of slope over one delay), so that a wavefront
+  // that has died away stops making breakpoints; +inf when none.
+  void mark_break(double t);
+  double next_arrival(double t, double t_end, double tol);
 
   // a_k at time s (s may precede the first record: the value before).
   double wave(int k, double s) const;
@@ -47,6 +57,7 @@ class DelayHistory {
   // Times after `t` where some recorded wave jumped, shifted by its delay (where a history input
   // jumps next), up to `t_end`; the earliest first.
   std::vector<double> jumps_arriving(double t, double t_end) const;
+  double magnitude() const { return size_; }  // the largest |a_k| recorded (or held before the run)
   double last_time() const { return times_.empty() ? -1e300 : times_.back(); }
   const std::deque<double>& times() const { return times_; }  // the recorded instants (kept ones)
 
@@ -55,6 +66,12 @@ class DelayHistory {
     double t0, t1;
     Segment exact;
   };
+  struct Break {
+    double t;
+    std::vector<char> significant;  // per wave; empty until judged (both sides recorded)
+  };
+  bool judge(Break& b, double tol);
+  double size_ = 0;  // the largest |a_k| recorded
   std::vector<double> delays_;
   std::vector<double> before_;
   int degree_ = 1;
@@ -62,7 +79,8 @@ class DelayHistory {
   std::deque<std::vector<double>> values_;  // values_[i][k] = a_k(times_[i])
   std::deque<ExactSegment> segments_;
   std::deque<double> jump_times_;
-  mutable std::vector<double> scratch_;
+  std::deque<Break> breaks_;
+  mutable std::vector<double> scratch_, slopes_;
   void trim();
 };
 
