@@ -1,5 +1,6 @@
 // `lcspice analyze`: the normal tree, fundamental loops, the pair type and C/R/L class of every
 // diode (5.4.4), the components of H and the quotient G/H (5.4.6), the LCS dimensions and index.
+#include <optional>
 #include <cstdio>
 #include <sstream>
 
@@ -11,6 +12,7 @@
 #include "graph/diode_classes.h"
 #include "solver/devices/device.h"
 #include "solver/model/lcs_index.h"
+#include "cli/ccp_report.h"
 
 namespace lcs {
 
@@ -50,7 +52,44 @@ struct Report {
   LcsIndex index;
   std::vector<std::string> warnings;
   std::vector<UniquenessEntry> uniqueness;
+  std::optional<CcpReport> ccp;  // circuits with lines
 };
+
+std::string verdict_text(const PMatrixReport& p) {
+  switch (p.verdict) {
+    case PMatrixReport::Verdict::P: return "a P-matrix";
+    case PMatrixReport::Verdict::NotP: return "not a P-matrix";
+    case PMatrixReport::Verdict::Unchecked: return "not checked (too many pairs)";
+  }
+  return "";
+}
+
+void print_ccp(const CircuitModel& m, const CcpReport& c) {
+  std::printf("\nconvolution complementarity problem (lines, Stewart 4.6, 5.3):\n");
+  std::printf("  w(t) = M0 z(t) + (m * z)(t) + q(t); the lines' paths enter m at their delays:");
+  for (double d : c.delays) std::printf(" %s s", number(d).c_str());
+  std::printf("\n");
+  for (const std::shared_ptr<Device>& d : m.devices())
+    if (d->has_history())
+      for (const std::string& note : d->notes()) std::printf("  %s\n", note.c_str());
+  if (m.pairs().empty()) {
+    std::printf("  no complementarity pairs: a linear delay system\n");
+    return;
+  }
+  std::ostringstream a, b;
+  a << c.m0.format(Eigen::IOFormat(6, 0, " ", "\n", "    [", "]"));
+  b << c.m1.format(Eigen::IOFormat(6, 0, " ", "\n", "    [", "]"));
+  std::printf("  M0 = D (%s):\n%s\n", verdict_text(c.m0_report).c_str(), a.str().c_str());
+  std::printf("  m(0+) = CB (%s):\n%s\n", verdict_text(c.m1_report).c_str(), b.str().c_str());
+  if (c.index == 0)
+    std::printf("  index 0: M0 is a P-matrix, a unique solution exists (4.6.1)\n");
+  else if (c.index == 1)
+    std::printf("  index 1: M0 vanishes on the pairs and m(0+) is a P-matrix (Theorem 5.6)\n");
+  else if (c.index > 1)
+    std::printf("  index %d: pairs of mixed index (see the LCS index above)\n", c.index);
+  else
+    std::printf("  index: undefined\n");
+}
 
 std::string class_of(const Report& r, int branch) {
   for (const DiodeClass& c : r.classes)
@@ -130,6 +169,7 @@ void print_text(const Report& r) {
   std::printf("\nuniqueness (LCP(q, M) has one solution for every q iff M is a P-matrix, 2.2):\n");
   for (const UniquenessEntry& e : r.uniqueness)
     std::printf("  %s, m = %d: %s\n", e.what.c_str(), e.size, e.verdict().c_str());
+  if (r.ccp) print_ccp(m, *r.ccp);
   for (const std::string& w : r.warnings) std::printf("warning: %s\n", w.c_str());
 }
 
@@ -172,7 +212,15 @@ void print_json(const Report& r) {
     for (size_t j = 0; j < e.failing_pairs.size(); ++j) o << (j ? ", " : "") << json_string(e.failing_pairs[j]);
     o << "]}";
   }
-  o << "\n  ],\n  \"warnings\": [";
+  o << "\n  ],\n";
+  if (r.ccp) {
+    o << "  \"ccp\": {\"delays\": [";
+    for (size_t k = 0; k < r.ccp->delays.size(); ++k) o << (k ? ", " : "") << number(r.ccp->delays[k]);
+    o << "], \"m0_p_matrix\": " << (r.ccp->m0_report.verdict == PMatrixReport::Verdict::P ? "true" : "false")
+      << ", \"m1_p_matrix\": " << (r.ccp->m1_report.verdict == PMatrixReport::Verdict::P ? "true" : "false")
+      << ", \"index\": " << r.ccp->index << "},\n";
+  }
+  o << "  \"warnings\": [";
   for (size_t k = 0; k < r.warnings.size(); ++k) o << (k ? ", " : "") << json_string(r.warnings[k]);
   o << "]\n}\n";
   std::fputs(o.str().c_str(), stdout);
@@ -187,7 +235,12 @@ int analyze_command(const AnalyzeArgs& args) {
   Report r{model, h_components(model.graph()), classify_diodes(model.graph()), lcs_index(model.lcs()), {}, {}};
   for (const std::string& w : floating_potential_warnings(model)) r.warnings.push_back(w);
   for (const std::shared_ptr<Device>& d : model.devices())
-    for (const std::string& note : d->notes()) r.warnings.push_back(note);
+    if (!d->has_history())  // a line's notes are its part of the CCP section
+      for (const std::string& note : d->notes()) r.warnings.push_back(note);
+  if (model.has_history()) {
+    r.ccp = ccp_report(model);
+    for (const std::string& w : r.ccp->warnings) r.warnings.push_back(w);
+  }
   r.uniqueness = uniqueness_report(model, netlist.tran ? netlist.tran->tstep : 0.0);
   if (args.json) print_json(r);
   else print_text(r);

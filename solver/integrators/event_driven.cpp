@@ -674,11 +674,26 @@ void EventDriven::DoRun(const Eigen::VectorXd& x0, const OutputGrid& grid, const
     }
     return wave_rows.emplace(md, std::move(L)).first->second;
   };
-  auto record_segment = [&](double t0, const Eigen::VectorXd& X0, const Mode* md, double t1) {
+  // X(s) = exp(M (s - t0)) X(t0) as the product of the mode's cached exp(M h0 / 2^j) over the
+  // binary digits of (s - t0) / h0 (to 2^-52 of a step: the rounding of s itself); a segment is
+  // at most one step h0 long.
+  Impl* impl = &r;
+  auto record_segment = [&, impl](double t0, const Eigen::VectorXd& X0, const Mode* md, double t1) {
     const Eigen::MatrixXd* L = &wave_row(md);
-    history->record_segment(t0, t1, [md, L, X0, t0](double s, std::vector<double>& a, std::vector<double>& da) {
-      const Eigen::VectorXd X = (md->M * (s - t0)).exp() * X0;
-      const Eigen::VectorXd av = *L * X, dv = *L * (md->M * X);
+    Mode* mode = const_cast<Mode*>(md);
+    history->record_segment(t0, t1, [impl, mode, L, X0, t0](double s, std::vector<double>& a, std::vector<double>& da) {
+      Eigen::VectorXd X = X0, tmp;
+      const DyadicTime d = DyadicTime::from(std::max(0.0, s - t0), impl->h0);
+      for (std::int64_t k = 0; k < d.k; ++k) {
+        tmp.noalias() = impl->exponential(*mode, 0) * X;
+        X.swap(tmp);
+      }
+      for (int j = 1; j <= 52; ++j)
+        if (d.f & (std::uint64_t(1) << (64 - j))) {
+          tmp.noalias() = impl->exponential(*mode, j) * X;
+          X.swap(tmp);
+        }
+      const Eigen::VectorXd av = *L * X, dv = *L * (mode->M * X);
       a.assign(av.data(), av.data() + av.size());
       da.assign(dv.data(), dv.data() + dv.size());
     });

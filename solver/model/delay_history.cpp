@@ -21,6 +21,7 @@ void DelayHistory::reset(const std::vector<double>& before) {
   times_.clear();
   values_.clear();
   segments_.clear();
+  cached_segment_ = nullptr;
   jump_times_.clear();
   breaks_.clear();
   size_ = 0;
@@ -60,6 +61,7 @@ void DelayHistory::trim() {
   times_.erase(times_.begin(), times_.begin() + drop);
   values_.erase(values_.begin(), values_.begin() + drop);
   while (!segments_.empty() && segments_.front().t1 < keep_from) segments_.pop_front();
+  cached_segment_ = nullptr;
   while (!jump_times_.empty() && jump_times_.front() < keep_from) jump_times_.pop_front();
   while (!breaks_.empty() && breaks_.front().t < keep_from) breaks_.pop_front();
 }
@@ -70,9 +72,13 @@ double DelayHistory::wave(int k, double s) const {
                                [](double v, const ExactSegment& seg) { return v < seg.t0; });
     --it;  // the last segment starting at or before s
     if (s <= it->t1) {
-      scratch_.resize(delays_.size());
-      slopes_.resize(delays_.size());
-      it->exact(s, scratch_, slopes_);
+      if (s != cached_s_ || &*it != cached_segment_) {  // waves of one delay are read in turn
+        scratch_.resize(delays_.size());
+        slopes_.resize(delays_.size());
+        it->exact(s, scratch_, slopes_);
+        cached_s_ = s;
+        cached_segment_ = &*it;
+      }
       return scratch_[k];
     }
   }

@@ -40,7 +40,10 @@ class DelayHistory {
   // records segments forgets them (forget_segments) before the objects they refer to go.
   using Segment = std::function<void(double s, std::vector<double>& values, std::vector<double>& slopes)>;
   void record_segment(double t0, double t1, Segment exact);
-  void forget_segments() { segments_.clear(); }
+  void forget_segments() {
+    segments_.clear();
+    cached_segment_ = nullptr;
+  }
 
   // Breaks: instants where the waves may jump or bend (the event method's mode switches and
   // source corners), each arriving `delay_k` later in history input k. next_arrival() returns
@@ -81,6 +84,8 @@ class DelayHistory {
   std::deque<double> jump_times_;
   std::deque<Break> breaks_;
   mutable std::vector<double> scratch_, slopes_;
+  mutable double cached_s_ = 0;
+  mutable const void* cached_segment_ = nullptr;
   void trim();
 };
 
