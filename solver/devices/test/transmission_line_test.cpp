@@ -1,0 +1,130 @@
+// The line device's recursive convolutions against closed forms of the same fitted kernels
+// (line_kernel.h), and the lossless line's bookkeeping (history, DC relations).
+//
+// A lossy line from rest (UIC), driven at port 1 by an ideal 1 V step and open at port 2:
+//   I1 = Yc V1 - H (Yc V2 + I2); before the far end's answer returns (t < 2 tau) the second term
+//   is zero, so i1(t) = 1/Z0 + (step response of the fitted Yc - 1/Z0)(t), which
+//   RationalFit::step gives in closed form (the direct convolution of the fitted kernel with the
+//   step, done exactly);
+//   I2 = 0 = Yc V2 - H (2 Yc V1): V2 = 2 H V1, so v2(t) = 2 (step response of the fitted H e^{s tau})(t - tau)
+//   for tau < t < 3 tau, 0 before.
+// The run carries these convolutions as exponential states (the recursive convolution); the
+// event method integrates them exactly, so both agree to rounding.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "netlist/netlist.h"
+#include "solver/devices/transmission_line.h"
+#include "solver/integrators/output_sink.h"
+#include "solver/integrators/transient.h"
+#include "solver/model/circuit_model.h"
+#include "solver/model/operating_point.h"
+
+namespace lcs {
+namespace {
+
+const char* kLossyStep =
+    "lossy line step\n"
+    "v1 in 0 dc 1\n"
+    "o1 in 0 far 0 cable\n"
+    ".model cable ltra(r=0.5 l=250n g=0 c=100p len=10)\n"
+    ".tran 1n 140n uic\n"
+    ".end\n";
+
+struct Run {
+  CircuitModel model;
+  MemorySink sink;
+  const TransmissionLine* line = nullptr;
+};
+
+std::unique_ptr<Run> run(const char* deck, const std::string& method, double step) {
+  const Netlist netlist = parse_netlist_string(deck, "line.cir");
+  ModelOptions mo;
+  mo.t1 = netlist.tran->tstop;
+  auto r = std::make_unique<Run>(Run{CircuitModel::build(netlist, mo), {}, nullptr});
+  for (const auto& d : r->model.devices())
+    if (auto* l = dynamic_cast<const TransmissionLine*>(d.get())) r->line = l;
+  TransientOptions o;
+  o.method = method;
+  o.step = step;
+  o.tstop = netlist.tran->tstop;
+  o.uic = true;
+  std::vector<Probe> probes = {parse_probe("i(o1)", {}), parse_probe("v(far)", {})};
+  run_transient(r->model, r->model.output_map(probes), o, r->sink);
+  return r;
+}
+
+TEST(TransmissionLine, LossyRecursiveConvolutionIsTheFittedKernelsClosedForm) {
+  for (const std::string method : {"event", "radau5"}) {
+    SCOPED_TRACE(method);
+    const auto r = run(kLossyStep, method, method == "event" ? 1e-9 : 0.25e-9);
+    ASSERT_NE(r->line, nullptr);
+    ASSERT_TRUE(r->line->lossy());
+    const LineKernel& k = *r->line->kernel();
+    const double tau = k.delay, z0 = k.z0;
+    ASSERT_NEAR(tau, 50e-9, 1e-15);
+    ASSERT_FALSE(k.admittance.poles.empty());
+    ASSERT_FALSE(k.propagation.poles.empty());
+    // Event: to rounding of the states' exponentials (1e-9 of the levels); radau5 at 0.25 ns:
+    // its error on the fastest fitted poles (|p| h up to ~2), measured 2e-4 of the levels.
+    const double tol = method == "event" ? 1e-9 : 1e-3;
+    int checked_i = 0, checked_v = 0;
+    for (size_t row = 0; row < r->sink.times.size(); ++row) {
+      const double t = r->sink.times[row];
+      if (t > 0 && t < 2 * tau - 1e-12) {
+        const double expected = 1 / z0 + k.admittance.step(t);
+        EXPECT_NEAR(r->sink.rows[row](0), expected, tol / z0) << "i(o1) at t = " << t;
+        ++checked_i;
+      }
+      if (t > 0 && t < 3 * tau - 1e-12) {
+        const double expected = t < tau ? 0.0 : 2 * k.propagation.step(t - tau);
+        if (std::abs(t - tau) > 1.5e-9) {  // the wavefront itself: a jump at tau
+          EXPECT_NEAR(r->sink.rows[row](1), expected, 2 * tol) << "v(far) at t = " << t;
+          ++checked_v;
+        }
+      }
+    }
+    EXPECT_GT(checked_i, 90);
+    EXPECT_GT(checked_v, 130);
+  }
+}
+
+// At DC a lossy line is its series resistance R len (G = 0), whatever the fitted kernel says
+// about s -> 0: 1 V through the line into 45 ohm gives 1 / (45 + 5) A.
+TEST(TransmissionLine, LossyLineAtDcIsItsSeriesResistance) {
+  const Netlist netlist = parse_netlist_string(
+      "dc\nv1 in 0 dc 1\no1 in 0 far 0 cable\nrl far 0 45\n"
+      ".model cable ltra(r=0.5 l=250n g=0 c=100p len=10)\n.tran 1n 100n\n.end\n",
+      "dc.cir");
+  ModelOptions mo;
+  mo.t1 = 100e-9;
+  const CircuitModel model = CircuitModel::build(netlist, mo);
+  const OperatingPoint op = solve_operating_point(model, 0.0);
+  const int far = model.graph().node_index("far");
+  EXPECT_NEAR(model.evaluate_dc(model.node_voltage(far), op.x, op.z, 0.0), 45.0 / 50.0, 1e-9);
+  int port1 = -1;
+  for (size_t b = 0; b < model.graph().branches.size(); ++b)
+    if (model.graph().branches[b].name == "o1") port1 = static_cast<int>(b);
+  EXPECT_NEAR(model.evaluate_dc(model.branch_current(port1), op.x, op.z, 0.0), 1.0 / 50.0, 1e-12);
+  EXPECT_TRUE(op.undetermined.empty());
+}
+
+// With G > 0 the DC two-port is cosh/sinh of th = len sqrt(RG): the far end of an open line
+// sits at 1 / cosh(th) of the near end.
+TEST(TransmissionLine, LeakyLineAtDcIsItsHyperbolicTwoPort) {
+  const Netlist netlist = parse_netlist_string(
+      "dc\nv1 in 0 dc 1\no1 in 0 far 0 cable\nrl far 0 1e12\n"
+      ".model cable ltra(r=2 l=250n g=0.02 c=100p len=10)\n.tran 1n 100n\n.end\n",
+      "dc.cir");
+  ModelOptions mo;
+  mo.t1 = 100e-9;
+  const CircuitModel model = CircuitModel::build(netlist, mo);
+  const OperatingPoint op = solve_operating_point(model, 0.0);
+  const double th = 10 * std::sqrt(2 * 0.02);
+  const int far = model.graph().node_index("far");
+  EXPECT_NEAR(model.evaluate_dc(model.node_voltage(far), op.x, op.z, 0.0), 1 / std::cosh(th), 1e-9);
+}
+
+}  // namespace
+}  // namespace lcs
