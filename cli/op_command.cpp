@@ -10,6 +10,7 @@
 #include "solver/model/numerical_failure.h"
 #include "solver/devices/device.h"
 #include "solver/lcp/lcp.h"
+#include "solver/model/line_dc_loops.h"
 #include "solver/model/operating_point.h"
 
 namespace lcs {
@@ -70,6 +71,11 @@ int op_command(const OpArgs& args) {
   if (args.all && model.pairs().size() > kMaxEnumeratedPairs)
     throw CliError(kExitUsage, "error: op --all enumerates circuits of at most 24 diodes; this one has " +
                                    std::to_string(model.pairs().size()));
+  try {
+    check_line_dc_loops(netlist);  // a UIC deck was not checked by build_model
+  } catch (const TopologyError& e) {
+    throw CliError(kExitNetlist, e.formatted(netlist));
+  }
   std::vector<OperatingPoint> points;
   try {
     if (args.all) points = enumerate_operating_points(model, 0.0);

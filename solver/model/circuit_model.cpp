@@ -8,6 +8,7 @@
 
 #include "graph/topology.h"
 #include "solver/devices/device_registry.h"
+#include "solver/model/line_dc_loops.h"
 #include "solver/model/netlist_options.h"
 #include "solver/model/perfect_coupling.h"
 #include "solver/model/structural_zeros.h"
@@ -130,6 +131,7 @@ CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& opt
   m.tree_ = build_normal_tree(g);
   const SpanningTree& t = m.tree_;
   check_source_loops_and_cutsets(netlist, g, t);
+  if (!(netlist.tran && netlist.tran->uic)) check_line_dc_loops(netlist);  // the run starts at DC
 
   // Collect the stamps: every device sees where its branches landed.
   Stamps stamps;
