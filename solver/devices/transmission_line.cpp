@@ -12,6 +12,7 @@ TransmissionLine::TransmissionLine(const Element& element, const Netlist& netlis
   if (element.model.empty()) {  // T: Z0 and TD on the card
     z0_ = element.value;
     delay_ = element.delay;
+    check_delay(options);
     return;
   }
   const LineModel& card = netlist.line_models.at(element.model);
@@ -34,6 +35,18 @@ TransmissionLine::TransmissionLine(const Element& element, const Netlist& netlis
   delay_ = kernel_->delay;
   admittance_ = modes_of(kernel_->admittance);
   propagation_ = modes_of(kernel_->propagation);
+  check_delay(options);
+}
+
+// Every method steps at most one delay at a time: a delay a billion times shorter than the run
+// is a run that never ends, refused at the card.
+void TransmissionLine::check_delay(const DeviceOptions& options) const {
+  if (options.tstop > 0 && options.tstop / delay_ > 1e9) {
+    char buf[200];
+    std::snprintf(buf, sizeof buf, "the delay of line %s (%.6g s) is too short for TSTOP = %.6g s: every method "
+                  "steps at most one delay at a time (more than 1e9 steps)", name().c_str(), delay_, options.tstop);
+    throw NetlistError(element_.loc, buf);
+  }
 }
 
 std::vector<TransmissionLine::Mode> TransmissionLine::modes_of(const RationalFit& fit) {

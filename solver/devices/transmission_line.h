@@ -51,6 +51,7 @@ class TransmissionLine : public Device {
     bool pair = false;
   };
   static std::vector<Mode> modes_of(const RationalFit& fit);
+  void check_delay(const DeviceOptions& options) const;
   std::string internal_node(const std::string& what, int k) const;
 
   double z0_ = 0, delay_ = 0;

@@ -146,6 +146,9 @@ bool DelayHistory::judge(Break& b, double tol) {
 }
 
 double DelayHistory::next_arrival(double t, double t_end, double tol) {
+  double longest = 0;
+  for (double d : delays_) longest = std::max(longest, d);
+  while (!breaks_.empty() && breaks_.front().t + longest <= t) breaks_.pop_front();  // arrived everywhere
   double best = std::numeric_limits<double>::infinity();
   for (Break& b : breaks_) {
     bool any = false;

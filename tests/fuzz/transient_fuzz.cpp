@@ -1,5 +1,6 @@
 // libFuzzer target: the first byte picks a method from the registry, the rest is a netlist run
 // for at most kMaxSteps output steps. Every row must be finite and times strictly increasing.
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -28,6 +29,18 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
       const lcs::Waveform& w = e.waveform;
       if (w.kind == lcs::Waveform::Kind::Pulse && w.params.size() >= 7 && w.params[6] > 0 &&
           !(netlist.tran->tstop / w.params[6] <= 10000))
+        return;
+    }
+    // Every method steps at most one line delay at a time: the same for a delay 1e4 times
+    // shorter than the run.
+    for (const lcs::Element& e : netlist.elements) {
+      double delay = e.delay;
+      if (e.kind == lcs::ElementKind::LossyLine) {
+        const auto it = netlist.line_models.find(e.model);
+        if (it != netlist.line_models.end()) delay = it->second.len * std::sqrt(it->second.l * it->second.c);
+      }
+      if ((e.kind == lcs::ElementKind::Line || e.kind == lcs::ElementKind::LossyLine) &&
+          !(netlist.tran->tstop / delay <= 10000))
         return;
     }
     lcs::TransientOptions o;
