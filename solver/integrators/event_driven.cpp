@@ -715,6 +715,7 @@ void EventDriven::DoRun(const Eigen::VectorXd& x0, const OutputGrid& grid, const
     z_out.noalias() = r.cur->Z * r.X;
     r.model.accept(r.pos.seconds(h0), x_out, z_out);
   };
+  accept_here();  // the waves at the start: the history's first sample
 
   size_t next_stop = 0;
   int events_here = 0;

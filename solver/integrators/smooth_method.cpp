@@ -315,7 +315,7 @@ void SmoothMethod::DoRun(const Eigen::VectorXd& x0, const OutputGrid& grid, cons
     at_rest(s);
   }
 
-  double last = -1, last_progress = 0, last_accepted = 0;
+  double last = -1, last_progress = 0, last_accepted = -1;
   Eigen::VectorXd s_out;
   // Between IDA's steps s is the interpolating polynomial's, controlled only to the margin
   // tolerance; rows (and devices with history) get the s consistent with the states instead.
@@ -334,7 +334,8 @@ void SmoothMethod::DoRun(const Eigen::VectorXd& x0, const OutputGrid& grid, cons
   auto emit_state = [&](double t, const Eigen::VectorXd& y, bool event) {
     if (t <= last) return;
     const Eigen::VectorXd z_out = consistent_z(t, y);
-    if (n == 0 && model_.has_history()) accept_step(t, y);  // no IDA: the rows are the steps
+    // No IDA (n = 0): the rows are the steps; and the start is the history's first sample.
+    if ((n == 0 || t == 0) && model_.has_history()) accept_step(t, y);
     emit(t, y.head(n), z_out, event);
     last = t;
     if (progress && t - last_progress >= 0.005 * stops.back()) {

@@ -158,6 +158,13 @@ void run_fixed_step(const CircuitModel& model, const OutputMap& outputs, const T
     throw;
   }
   summary.cpu_setup = process_cpu_seconds() - cpu0;
+  const bool history = model.has_history();
+  if (history) {
+    model.accept(0.0, x, z);  // the lines' first sample: their waves at the start
+    std::vector<double> corners = model.inputs().breakpoints(0.0, options.tstop);
+    corners.insert(corners.begin(), 0.0);
+    model.history().add_kinks(corners, options.tstop);
+  }
   RowWriter writer(model, outputs, sink);
   auto emit = [&](double t) {
     writer.write(t, x, z);
@@ -167,7 +174,6 @@ void run_fixed_step(const CircuitModel& model, const OutputMap& outputs, const T
   const long full_steps = static_cast<long>(std::floor(options.tstop / h * (1 + 1e-12)));
   const bool partial = options.tstop - full_steps * h > 1e-9 * h;
   const long total = full_steps + (partial ? 1 : 0);
-  const bool history = model.has_history();
   const int substeps = h > model.max_step() ? static_cast<int>(std::ceil(h / model.max_step())) : 1;
   const double loop0 = process_cpu_seconds();
   if (options.tstart <= 0) emit(0.0);

@@ -24,6 +24,7 @@ void DelayHistory::reset(const std::vector<double>& before) {
   cached_segment_ = nullptr;
   jump_times_.clear();
   breaks_.clear();
+  kinks_.clear();
   size_ = 0;
   for (double b : before_) size_ = std::max(size_, std::abs(b));
 }
@@ -87,11 +88,17 @@ double DelayHistory::wave(int k, double s) const {
   const long n = static_cast<long>(times_.size());
   long i = static_cast<long>(std::upper_bound(times_.begin(), times_.end(), s) - times_.begin()) - 1;
   if (times_[i] == s || n == 1) return values_[i][k];
-  // The smooth piece around i (no two samples of one instant inside it), as far as a stencil
-  // can reach.
+  // The smooth piece around i (no two samples of one instant inside it, no bend between), as far
+  // as a stencil can reach.
+  double bend_lo = -1e300, bend_hi = 1e300;
+  if (!kinks_.empty()) {
+    auto it = std::upper_bound(kinks_.begin(), kinks_.end(), s);
+    if (it != kinks_.end()) bend_hi = *it;
+    if (it != kinks_.begin()) bend_lo = *std::prev(it);
+  }
   long lo = i, hi = i;
-  while (lo > 0 && i - lo <= degree_ && times_[lo - 1] < times_[lo]) --lo;
-  while (hi + 1 < n && hi - i <= degree_ && times_[hi + 1] > times_[hi]) ++hi;
+  while (lo > 0 && i - lo <= degree_ && times_[lo - 1] < times_[lo] && times_[lo - 1] >= bend_lo) --lo;
+  while (hi + 1 < n && hi - i <= degree_ && times_[hi + 1] > times_[hi] && times_[hi + 1] <= bend_hi) ++hi;
   // The degree+1 samples of the piece nearest to s (i and i+1 first, when both are in it).
   const long want = std::min<long>(degree_ + 1, hi - lo + 1);
   long a = i, b = i;
@@ -109,6 +116,17 @@ double DelayHistory::wave(int k, double s) const {
     sum += w * values_[p][k];
   }
   return sum;
+}
+
+void DelayHistory::add_kinks(const std::vector<double>& corners, double t_end) {
+  std::vector<double> delays = delays_;
+  std::sort(delays.begin(), delays.end());
+  delays.erase(std::unique(delays.begin(), delays.end()), delays.end());
+  for (double c : corners)
+    for (double d : delays)
+      for (double t = c; t <= t_end && kinks_.size() < kMaxKinks; t += d) kinks_.push_back(t);
+  std::sort(kinks_.begin(), kinks_.end());
+  kinks_.erase(std::unique(kinks_.begin(), kinks_.end()), kinks_.end());
 }
 
 void DelayHistory::mark_break(double t) {

@@ -31,6 +31,12 @@ class DelayHistory {
   const std::vector<double>& before() const { return before_; }
   // Degree of the interpolant through recorded samples (1 linear ... 5); the run's method sets it.
   void set_degree(int degree) { degree_ = degree; }
+  // Instants where the waves bend (the start, source corners, and their arrivals a delay, two
+  // delays, ... later): no interpolant through samples spans one, so a method whose steps land
+  // on them keeps its order across a wavefront. At most kMaxKinks are kept (beyond that,
+  // interpolants may span a bend: a local error of the step's size squared).
+  static constexpr size_t kMaxKinks = 100000;
+  void add_kinks(const std::vector<double>& corners, double t_end);
 
   // Appends a_k(t) for every k (t not before the last record; equal t: a jump).
   void record(double t, const std::vector<double>& values);
@@ -83,6 +89,7 @@ class DelayHistory {
   std::deque<ExactSegment> segments_;
   std::deque<double> jump_times_;
   std::deque<Break> breaks_;
+  std::vector<double> kinks_;  // sorted
   mutable std::vector<double> scratch_, slopes_;
   mutable double cached_s_ = 0;
   mutable const void* cached_segment_ = nullptr;
