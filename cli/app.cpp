@@ -105,6 +105,12 @@ int run_cli(int argc, char** argv) {
   bench_cmd->add_option("--probe", bench.probes, "comma-separated probes for the netlists given");
   bench_cmd->add_option("--ngspice-option", bench.ngspice_options, "extra ngspice .options word (repeatable)");
   add_number(bench_cmd, "--ngspice-timeout", bench.ngspice_timeout, "seconds of wall time per ngspice run (default 300)");
+  bench_cmd->add_flag("--scaling", bench.scaling,
+                      "cost scaling instead: a fixed-step method (default euler) and ngspice at step h over "
+                      "TSTOP, 2 TSTOP, 4 TSTOP, ...; CPU against steps, log-log slopes; <circuit>_scaling.csv/.png");
+  add_number(bench_cmd, "--tstop", bench.tstop, "--scaling: the first run's TSTOP (default: the netlist's)");
+  bench_cmd->add_option("--scaling-max", bench.scaling_max,
+                        "--scaling: longest run / first run, a power of two (default: up to 64, at most ~4e4 steps)");
 
   PlotArgs plot;
   CLI::App* plot_cmd = app.add_subcommand("plot", "plot a waveform CSV against time (PNG, gnuplot)");

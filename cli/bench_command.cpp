@@ -13,6 +13,7 @@
 
 #include "cli/atomic_file.h"
 #include "cli/bench_chart.h"
+#include "cli/bench_scaling.h"
 #include "cli/bench_study.h"
 #include "cli/commands.h"
 #include "cli/csv_writer.h"
@@ -111,9 +112,47 @@ void print_study(const CircuitStudy& s) {
   std::fflush(stdout);
 }
 
+// `bench --scaling`: one cost-scaling study per netlist given.
+int scaling_command(const BenchArgs& args) {
+  if (args.netlists.empty()) throw CliError(kExitUsage, "error: --scaling needs one or more netlists");
+  if (args.quick) throw CliError(kExitUsage, "error: --quick is for the work-precision study, not --scaling");
+  ScalingSettings settings;
+  if (!args.methods.empty()) settings.methods = split(args.methods, ',');
+  settings.ngspice = !args.no_ngspice;
+  settings.ngspice_timeout = args.ngspice_timeout;
+  settings.ngspice_options = args.ngspice_options;
+  if (args.tstop) {
+    if (!(*args.tstop > 0)) throw CliError(kExitUsage, "error: --tstop must be positive");
+    settings.base_tstop = *args.tstop;
+  }
+  if (args.scaling_max != 0 && args.scaling_max < 2)
+    throw CliError(kExitUsage, "error: --scaling-max must be at least 2");
+  settings.max_multiple = args.scaling_max;
+  if (!(args.ngspice_timeout > 0)) throw CliError(kExitUsage, "error: --ngspice-timeout must be positive");
+  if (mkdir(args.output_dir.c_str(), 0777) != 0 && errno != EEXIST)
+    throw CliError(kExitUsage, "error: cannot create " + args.output_dir + ": " + std::strerror(errno));
+  for (const std::string& netlist : args.netlists) {
+    ScalingStudy study;
+    {
+      ProgressLine line("bench --scaling " + stem(netlist));
+      study = study_scaling(netlist, args.probes, settings,
+                            [&](const std::string& what, double f) { line.update(f, what); });
+    }
+    const std::string base = args.output_dir + "/" + stem(netlist) + "_scaling";
+    write_scaling_csv(study, base + ".csv");
+    write_scaling_chart(study, base + ".png");
+    print_scaling(study);
+    std::printf("wrote %s.csv and %s.png\n", base.c_str(), base.c_str());
+  }
+  return kExitOk;
+}
+
 }  // namespace
 
 int bench_command(const BenchArgs& args) {
+  if (args.scaling) return scaling_command(args);
+  if (args.tstop || args.scaling_max != 0)
+    throw CliError(kExitUsage, "error: --tstop and --scaling-max belong to --scaling");
   std::vector<SuiteEntry> suite;
   if (args.netlists.empty()) {
     suite = default_suite();

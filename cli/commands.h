@@ -54,6 +54,10 @@ struct BenchArgs {
   std::vector<std::string> ngspice_options;
   double ngspice_timeout = 300;
   bool quick = false, no_ngspice = false;
+  // --scaling: CPU against the number of steps instead (cli/bench_scaling.h).
+  bool scaling = false;
+  std::optional<double> tstop;  // the first run's TSTOP (default: the netlist's)
+  int scaling_max = 0;          // longest run / first run (0: from the netlist's TSTOP/TSTEP)
 };
 int bench_command(const BenchArgs& args);
 

@@ -97,7 +97,8 @@ TranslatedDeck translate_to_ngspice(const CircuitModel& model, const std::vector
   }
   double tmax = tran.tmax > 0 && tran.tmax < tran.tstep ? tran.tmax : tran.tstep;
   if (options.max_step > 0) tmax = options.max_step;  // asked for explicitly: it wins
-  deck.lines.push_back(".tran " + num(tran.tstep) + " " + num(tran.tstop) + " " + num(tran.tstart) +
+  const double tstop = options.tstop > 0 ? options.tstop : tran.tstop;
+  deck.lines.push_back(".tran " + num(tran.tstep) + " " + num(tstop) + " " + num(tran.tstart) +
                        " " + num(tmax) + (uic ? " uic" : ""));
   if (!options.options.empty()) {
     std::string o = ".options";

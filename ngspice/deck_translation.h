@@ -42,6 +42,8 @@ struct TranslationOptions {
   double emission = 0.05;            // N of the Shockley diodes standing in for ideal ones
   double saturation_current = 1e-14; // IS of those diodes
   double max_step = 0;               // ngspice TMAX; 0: TSTEP (or the netlist's smaller TMAX)
+  double tstop = 0;                  // ngspice TSTOP; 0: the netlist's (sources are written as
+                                     // the netlist gives them either way)
   std::vector<std::string> options;  // extra `.options` words, e.g. "reltol=1e-4"
   // Test hooks, in the deck only (`validate` must fail): diodes written anode/cathode swapped,
   // with their series resistance scaled, or left out (open).

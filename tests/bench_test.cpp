@@ -141,5 +141,46 @@ TEST(Bench, BadArgumentsAreUsageErrors) {
   EXPECT_FALSE(fs::exists(dir / "out" / "bench.csv"));
 }
 
+// --scaling on a short base (2 us of the 50 us run, 200 steps of 10 ns, up to 8x): the CSV holds
+// one euler row per TSTOP, TSTOP and the steps doubling exactly, and a fitted slope is printed.
+// No timings are asserted (shared machines are noisy).
+TEST(Bench, ScalingStudyDoublesTheRunAndFitsASlope) {
+  const fs::path dir = scratch_dir("bench_scaling");
+  const Result r = run_lcspice("bench --scaling --no-ngspice --tstop 2u --scaling-max 8 '" +
+                                   source_path("circuits/tline_lossy_rectifier.cir").string() + "' -o '" +
+                                   (dir / "out").string() + "'",
+                               dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const Csv csv = parse_csv(read_file(dir / "out" / "tline_lossy_rectifier_scaling.csv"));
+  ASSERT_EQ(csv.header, (std::vector<std::string>{"who", "tstop", "steps", "cpu_seconds"}));
+  ASSERT_EQ(csv.raw.size(), 4u);
+  for (size_t k = 0; k < csv.raw.size(); ++k) {
+    EXPECT_EQ(csv.raw[k][0], "euler") << k;
+    EXPECT_NEAR(std::stod(csv.raw[k][1]), 2e-6 * (1 << k), 1e-15) << k;
+    EXPECT_EQ(std::stol(csv.raw[k][2]), 200L << k) << k;
+    EXPECT_GT(std::stod(csv.raw[k][3]), 0) << k;
+  }
+  EXPECT_NE(r.out.find("slope euler: "), std::string::npos) << r.out;
+  const std::string png = read_file(dir / "out" / "tline_lossy_rectifier_scaling.png");
+  ASSERT_GT(png.size(), 8u);
+  EXPECT_EQ(png.substr(1, 3), "PNG");
+  EXPECT_EQ(r.err, "") << r.err;
+}
+
+TEST(Bench, ScalingNeedsAFixedStepMethodAndANetlist) {
+  const fs::path dir = scratch_dir("bench_scaling_errors");
+  const std::string line = "'" + source_path("circuits/tline_lossy_rectifier.cir").string() + "'";
+  const std::string out = " -o '" + (dir / "out").string() + "'";
+  Result r = run_lcspice("bench --scaling --no-ngspice --method event " + line + out, dir);
+  EXPECT_EQ(r.code, 1);
+  EXPECT_EQ(r.err_line(0), "error: --scaling needs a fixed-step method; 'event' is not one");
+  r = run_lcspice("bench --scaling --no-ngspice" + out, dir);
+  EXPECT_EQ(r.code, 1);
+  EXPECT_EQ(r.err_line(0), "error: --scaling needs one or more netlists");
+  r = run_lcspice("bench --quick --no-ngspice --tstop 1u " + line + out, dir);
+  EXPECT_EQ(r.code, 1);
+  EXPECT_EQ(r.err_line(0), "error: --tstop and --scaling-max belong to --scaling");
+}
+
 }  // namespace
 }  // namespace lcs::cli_testing
