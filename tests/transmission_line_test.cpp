@@ -22,6 +22,7 @@
 #include <map>
 #include <sstream>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -421,6 +422,38 @@ TEST(TlineLossyRectifier, AnalyzeReportsTheLine) {
   const Result r = run_lcspice("analyze '" + circuit("tline_lossy_rectifier").string() + "'", dir);
   EXPECT_EQ(r.code, 0) << r.out << r.err;
   EXPECT_NE(lower(r.out).find("o1"), std::string::npos) << r.out;
+  // The kernel fit is reported with its errors, within the fit's 1e-4 target.
+  const std::string out = r.out;
+  const size_t at = out.find("max relative error ");
+  ASSERT_NE(at, std::string::npos) << out;
+  EXPECT_LE(std::stod(out.substr(at + 19)), 1e-4) << out;
+  const size_t again = out.find("max relative error ", at + 1);
+  ASSERT_NE(again, std::string::npos) << out;
+  EXPECT_LE(std::stod(out.substr(again + 19)), 1e-4) << out;
+}
+
+// The CCP's index (Stewart 5.3): a diode at a line port sees Z0 at once (M0 = D = Z0 + RON > 0,
+// index 0); behind a capacitor with RON = 0 it sees nothing at once (D = 0) and the capacitor
+// within the kernel's first instant (m(0+) = CB = 1/C > 0, index 1).
+TEST(TlineAnalyze, CcpIndexZeroAtAPortAndOneBehindACapacitor) {
+  const fs::path dir = scratch_dir("tline_ccp_index");
+  const std::string head = "ccp\nv1 s 0 sin(0 1 10meg)\nrs s in 50\nt1 in 0 out 0 z0=50 td=1n\n";
+  const std::string tail = ".model dd d(von=0.5 ron=0)\n.tran 1n 100n\n.end\n";
+  std::ofstream(dir / "port.cir") << head << "d1 out 0 dd\n" << tail;
+  std::ofstream(dir / "cap.cir") << head << "rc out c 10\ncc c 0 1n\nd1 c 0 dd\n" << tail;
+  for (const auto& [deck, index, m0, m1] : {std::tuple<std::string, int, bool, bool>{"port.cir", 0, true, false},
+                                           std::tuple<std::string, int, bool, bool>{"cap.cir", 1, false, true}}) {
+    SCOPED_TRACE(deck);
+    const Result r = run_lcspice("analyze --json '" + (dir / deck).string() + "'", dir);
+    ASSERT_EQ(r.code, 0) << r.err;
+    const size_t at = r.out.find("\"ccp\": {");
+    ASSERT_NE(at, std::string::npos) << r.out;
+    const std::string ccp = r.out.substr(at, r.out.find('}', at) - at);
+    EXPECT_NE(ccp.find("\"delays\": [1e-09]"), std::string::npos) << ccp;
+    EXPECT_NE(ccp.find(std::string("\"m0_p_matrix\": ") + (m0 ? "true" : "false")), std::string::npos) << ccp;
+    EXPECT_NE(ccp.find(std::string("\"m1_p_matrix\": ") + (m1 ? "true" : "false")), std::string::npos) << ccp;
+    EXPECT_NE(ccp.find("\"index\": " + std::to_string(index)), std::string::npos) << ccp;
+  }
 }
 
 
