@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <map>
 #include <string>
 
@@ -716,6 +718,7 @@ void EventDriven::DoRun(const Eigen::VectorXd& x0, const OutputGrid& grid, const
     r.model.accept(r.pos.seconds(h0), x_out, z_out);
   };
   accept_here();  // the waves at the start: the history's first sample
+  if (history) history->mark_break(0.0);  // the waves start (from their past before the run)
 
   size_t next_stop = 0;
   int events_here = 0;
@@ -738,7 +741,8 @@ void EventDriven::DoRun(const Eigen::VectorXd& x0, const OutputGrid& grid, const
     const Mode* mode_start = nullptr;
     if (history) {
       t_start = r.pos.seconds(h0);
-      const double a = history->next_arrival(t_start, target.seconds(h0), 1e-9);
+      // A bend that would spoil a fit (kHistoryTol) is a stop where it arrives.
+      const double a = history->next_arrival(t_start, target.seconds(h0), 0.1 * kHistoryTol);
       if (std::isfinite(a)) {
         const DyadicTime at = DyadicTime::from(a, h0);
         if (r.pos < at && at <= target) {
@@ -748,9 +752,18 @@ void EventDriven::DoRun(const Eigen::VectorXd& x0, const OutputGrid& grid, const
       }
       int level = 0;
       while (level < 62 && !(next_at_level(level) <= target)) ++level;
+      // A step shorter than 1e-7 of the longest a line allows holds the history inputs at their
+      // value (a polynomial's powers of its length would reach the double range; the error is
+      // the waves' slope times that length). Longer ones are halved until the fit holds, down
+      // to that length (a wavefront this method did not stop at).
+      const int deepest = std::min(62, std::max(cap_level, 0) + 23);
       Eigen::Ref<Eigen::VectorXd> sigma_now = r.X.tail(r.X.size() - n);
-      while (r.sources->fit_history(t_start, target.seconds(h0), r.cur->signature, sigma_now) > kHistoryTol &&
-             level < 60) {
+      while (level >= deepest ||
+             r.sources->fit_history(t_start, target.seconds(h0), r.cur->signature, sigma_now) > kHistoryTol) {
+        if (level >= deepest) {
+          r.sources->hold_history(t_start, target.seconds(h0), r.cur->signature, sigma_now);
+          break;
+        }
         ++level;
         const DyadicTime finer = next_at_level(level);
         if (finer < target) {

@@ -10,17 +10,19 @@ namespace {
 constexpr double kTwoPi = 6.283185307179586476925;
 int kind_dimension(char k) { return k == 'c' ? 1 : k == 'r' ? 2 : k == 's' ? 3 : kHistoryDegree + 1; }
 
-// Chebyshev points of [0, 1] (the degree+1 zeros) and the monomial (Vandermonde) system on them,
-// factorised once.
+// Chebyshev-Lobatto points of [0, 1] (both ends among them) and the monomial (Vandermonde)
+// system on them, factorised once. The ends make each step's polynomial start where the last one
+// ended (the exact past at the shared instant, one-sided limits): a fit that left a jump at
+// every step would send it down the line, and a line between nearly reflecting ends brings it
+// back into the middle of a later step, where the next fit makes two of it (rounding-level
+// noise doubling every few round trips, found by a random lossless-line deck).
 struct ChebyshevFit {
   Eigen::VectorXd nodes, checks;
   Eigen::PartialPivLU<Eigen::MatrixXd> lu;
   ChebyshevFit() {
     const int m = kHistoryDegree + 1;
     nodes.resize(m);
-    for (int i = 0; i < m; ++i) nodes(i) = 0.5 * (1 - std::cos(M_PI * (2 * i + 1) / (2.0 * m)));
-    // Checked between the nodes, not at the ends: a wavefront arrives at the start of a step to
-    // within the rounding of its time, and the end of one step is the start of the next.
+    for (int i = 0; i < m; ++i) nodes(i) = 0.5 * (1 - std::cos(M_PI * i / (m - 1.0)));
     checks.resize(m - 1);
     for (int i = 1; i < m; ++i) checks(i - 1) = 0.5 * (nodes(i - 1) + nodes(i));
     Eigen::MatrixXd V(m, m);
@@ -167,6 +169,18 @@ void SourceSystem::sigma(double t, const std::string& sig, Eigen::VectorXd& out)
   }
 }
 
+void SourceSystem::hold_history(double t0, double t1, const std::string& sig, Eigen::Ref<Eigen::VectorXd> sigma) const {
+  const DelayHistory& history = *provider_->history();
+  int o = 0;
+  for (size_t k = 0; k < sig.size(); ++k) {
+    if (sig[k] == 'h') {
+      sigma.segment(o, kHistoryDegree + 1).setZero();
+      sigma(o) = history.value(provider_->signals()[k].history, t0, 1e-9 * (t1 - t0));
+    }
+    o += kind_dimension(sig[k]);
+  }
+}
+
 double SourceSystem::fit_history(double t0, double t1, const std::string& sig,
                                  Eigen::Ref<Eigen::VectorXd> sigma) const {
   const ChebyshevFit& cheb = chebyshev();
@@ -182,7 +196,11 @@ double SourceSystem::fit_history(double t0, double t1, const std::string& sig,
       continue;
     }
     const int wave = provider_->signals()[k].history;
-    for (int i = 0; i < m; ++i) y(i) = history.value(wave, t0 + h * cheb.nodes(i));
+    // The ends as one-sided limits: a wavefront arriving at t0 (to within the rounding of its
+    // time) is already there, one arriving at t1 not yet.
+    const double nudge = 1e-9 * h;
+    for (int i = 0; i < m; ++i)
+      y(i) = history.value(wave, t0 + h * cheb.nodes(i), i == 0 ? nudge : i == m - 1 ? -nudge : 0.0);
     c = cheb.lu.solve(y);  // in x = (t - t0) / h
     for (int i = 0; i < cheb.checks.size(); ++i) {
       const double x = cheb.checks(i);

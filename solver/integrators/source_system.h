@@ -46,6 +46,9 @@ class SourceSystem {
   // the exact values at the points between, relative to the inputs' size: the caller halves the
   // step while it exceeds the tolerance.
   double fit_history(double t0, double t1, const std::string& signature, Eigen::Ref<Eigen::VectorXd> sigma) const;
+  // The history inputs held at their value at t0 over [t0, t1] (a step too short for a fit's
+  // powers of its length: 1e-9 of a step and less).
+  void hold_history(double t0, double t1, const std::string& signature, Eigen::Ref<Eigen::VectorXd> sigma) const;
 
   // Weights that turn σ into the sizes its rounding is relative to: a ramp's slope u' counts
   // times `segment` (the most it can move u before the next reset: a 1 ps PULSE edge has

@@ -67,12 +67,12 @@ void DelayHistory::trim() {
   while (!breaks_.empty() && breaks_.front().t < keep_from) breaks_.pop_front();
 }
 
-double DelayHistory::wave(int k, double s) const {
-  if (!segments_.empty() && s >= segments_.front().t0) {
-    auto it = std::upper_bound(segments_.begin(), segments_.end(), s,
+double DelayHistory::wave(int k, double s, double side) const {
+  if (!segments_.empty() && s + side >= segments_.front().t0) {
+    auto it = std::upper_bound(segments_.begin(), segments_.end(), s + side,
                                [](double v, const ExactSegment& seg) { return v < seg.t0; });
     --it;  // the last segment starting at or before s
-    if (s <= it->t1) {
+    if (s + side <= it->t1) {
       if (s != cached_s_ || &*it != cached_segment_) {  // waves of one delay are read in turn
         scratch_.resize(delays_.size());
         slopes_.resize(delays_.size());
@@ -131,6 +131,7 @@ void DelayHistory::add_kinks(const std::vector<double>& corners, double t_end) {
 
 void DelayHistory::mark_break(double t) {
   if (!breaks_.empty() && breaks_.back().t >= t) return;
+  if (breaks_.size() >= kMaxBreaks) return;  // the fits find the rest by halving their steps
   breaks_.push_back({t, {}});
 }
 

@@ -56,13 +56,18 @@ class DelayHistory {
   // the earliest arrival in (t, t_end] of a break where wave k did jump or bend by more than
   // `tol` of the waves' size (a jump, or a change of slope over one delay), so that a wavefront
   // that has died away stops making breakpoints; +inf when none.
+  // At most kMaxBreaks are kept in flight (a nearly lossless line network multiplies its
+  // wavefronts; past that, bends are found by the event method halving its steps).
+  static constexpr size_t kMaxBreaks = 512;
   void mark_break(double t);
   double next_arrival(double t, double t_end, double tol);
 
-  // a_k at time s (s may precede the first record: the value before).
-  double wave(int k, double s) const;
+  // a_k at time s (s may precede the first record: the value before). `side` (exact segments
+  // only): the segment is the one holding s + side, evaluated at s — a one-sided limit where
+  // s is within rounding of a segment boundary (a jump arriving).
+  double wave(int k, double s, double side = 0) const;
   // u_k(t) = a_k(t - delay_k).
-  double value(int k, double t) const { return wave(k, t - delays_[k]); }
+  double value(int k, double t, double side = 0) const { return wave(k, t - delays_[k], side); }
   // Times after `t` where some recorded wave jumped, shifted by its delay (where a history input
   // jumps next), up to `t_end`; the earliest first.
   std::vector<double> jumps_arriving(double t, double t_end) const;

@@ -42,6 +42,12 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
       if ((e.kind == lcs::ElementKind::Line || e.kind == lcs::ElementKind::LossyLine) &&
           !(netlist.tran->tstop / delay <= 10000))
         return;
+      // The event method's known limit (README): on a nearly lossless line network its
+      // wavefronts multiply with the round trips; decks of more than 30 round trips are work out
+      // of proportion to the deck, not a hang to find.
+      if ((e.kind == lcs::ElementKind::Line || e.kind == lcs::ElementKind::LossyLine) &&
+          entry.name == "event" && !(netlist.tran->tstop / delay <= 30))
+        return;
     }
     lcs::TransientOptions o;
     o.method = entry.name;
