@@ -232,7 +232,7 @@ int analyze_command(const AnalyzeArgs& args) {
   Netlist netlist = load_netlist(args.netlist);
   const double t1 = netlist.tran ? netlist.tran->tstop : 0.0;
   CircuitModel model = build_model(netlist, 0.0, t1);
-  Report r{model, h_components(model.graph()), classify_diodes(model.graph()), lcs_index(model.lcs()), {}, {}};
+  Report r{model, h_components(model.graph()), classify_diodes(model.graph()), lcs_index(model.lcs()), {}, {}, {}};
   for (const std::string& w : floating_potential_warnings(model)) r.warnings.push_back(w);
   for (const std::shared_ptr<Device>& d : model.devices())
     if (!d->has_history())  // a line's notes are its part of the CCP section

@@ -20,8 +20,7 @@ void write_bench_chart(const CircuitStudy& study, const std::string& png) {
   }
   if (order.empty()) return;
   AtomicFile file(png);
-  std::string script = "set terminal pngcairo size 900,640 noenhanced font ',10'\nset output " +
-                       gnuplot_string(file.temp()) + "\n";
+  std::string script = bench_chart_preamble(file.temp(), study.circuit, study.title, 70);
   char buf[256];
   for (size_t k = 0; k < order.size(); ++k) {
     script += "$m" + std::to_string(k) + " << EOD\n";
@@ -31,10 +30,6 @@ void write_bench_chart(const CircuitStudy& study, const std::string& png) {
     }
     script += "EOD\n";
   }
-  std::string title = study.title.size() > 70 ? study.title.substr(0, 67) + "..." : study.title;
-  const std::string name = study.circuit.substr(study.circuit.find_last_of('/') + 1);
-  script += "set title " + gnuplot_string(name + ": " + title) + "\n";
-  script += "set logscale xy\n";
   script += "set xlabel 'CPU time [s] (in-process; ngspice: its own analysis time)'\n";
   script += "set ylabel 'max |error| / range (vs event reference; smooth, ngspice: vs smooth reference)'\n";
   script += "set grid\nset key outside right\nset format x '%g'\nset format y '%g'\n";

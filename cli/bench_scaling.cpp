@@ -10,6 +10,7 @@
 #include "cli/atomic_file.h"
 #include "cli/exit_codes.h"
 #include "cli/gnuplot.h"
+#include "cli/repeat_for_timing.h"
 #include "cli/load_circuit.h"
 #include "ngspice/deck_translation.h"
 #include "ngspice/ngspice_session.h"
@@ -31,8 +32,7 @@ class DiscardSink : public OutputSink {
   void finish() override {}
 };
 
-// A method's run at TSTOP `tstop`; fast runs are repeated until min_seconds of CPU and the best
-// time is kept (the least disturbed on a shared machine).
+// A method's run at TSTOP `tstop`, repeated for timing (repeat_for_timing.h).
 ScalingPoint run_lcspice(const CircuitModel& model, const OutputMap& outputs, const std::string& method,
                          double h, double tstop, bool uic, double min_seconds) {
   TransientOptions o;
@@ -43,16 +43,12 @@ ScalingPoint run_lcspice(const CircuitModel& model, const OutputMap& outputs, co
   ScalingPoint p;
   p.who = method;
   p.tstop = tstop;
-  p.cpu_seconds = std::numeric_limits<double>::infinity();
-  double spent = 0;
-  for (int k = 0; k < 50 && (k == 0 || spent < min_seconds); ++k) {
+  p.cpu_seconds = least_cpu_of_repeats(min_seconds, [&](int) {
     DiscardSink sink;
     const TransientSummary s = run_transient(model, outputs, o, sink);
-    const double cpu = s.cpu_setup + s.cpu_steps;
-    spent += cpu;
-    if (cpu < p.cpu_seconds) p.cpu_seconds = cpu;
     p.steps = s.stepper.steps;
-  }
+    return s.cpu_setup + s.cpu_steps;
+  });
   return p;
 }
 
@@ -224,8 +220,7 @@ void write_scaling_chart(const ScalingStudy& study, const std::string& png) {
     }
   if (!first) return;
   AtomicFile file(png);
-  std::string script = "set terminal pngcairo size 900,640 noenhanced font ',10'\nset output " +
-                       gnuplot_string(file.temp()) + "\n";
+  std::string script = bench_chart_preamble(file.temp(), study.circuit, study.title, 60, " (cost scaling)");
   char buf[256];
   for (size_t k = 0; k < series.size(); ++k) {
     script += "$s" + std::to_string(k) + " << EOD\n";
@@ -236,10 +231,6 @@ void write_scaling_chart(const ScalingStudy& study, const std::string& png) {
       }
     script += "EOD\n";
   }
-  std::string title = study.title.size() > 60 ? study.title.substr(0, 57) + "..." : study.title;
-  const std::string name = study.circuit.substr(study.circuit.find_last_of('/') + 1);
-  script += "set title " + gnuplot_string(name + ": " + title + " (cost scaling)") + "\n";
-  script += "set logscale xy\n";
   script += "set xlabel 'steps N (lcspice: fixed steps; ngspice: time points, max step h)'\n";
   script += "set ylabel 'CPU time [s] (in-process; ngspice: its own analysis time)'\n";
   script += "set grid\nset key top left\nset format x '%g'\nset format y '%g'\n";

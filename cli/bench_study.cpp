@@ -6,6 +6,7 @@
 #include <map>
 
 #include "cli/exit_codes.h"
+#include "cli/repeat_for_timing.h"
 #include "cli/load_circuit.h"
 #include "ngspice/deck_translation.h"
 #include "ngspice/ngspice_session.h"
@@ -48,8 +49,8 @@ struct Timed {
   double cpu = 0;
 };
 
-// Runs a method; fast runs are repeated until min_seconds of CPU and the best time is kept
-// (machines are shared and noisy: the minimum is the least disturbed).
+// Runs a method, repeated for timing (repeat_for_timing.h); the first run's rows, the fastest
+// run's summary.
 Timed run(const Prepared& p, const std::string& method, double step, double rtol, double atol,
           const std::vector<double>& extra, double min_seconds) {
   TransientOptions o;
@@ -61,19 +62,18 @@ Timed run(const Prepared& p, const std::string& method, double step, double rtol
   o.method_options.atol = atol;
   o.extra_output_times = extra;
   Timed t;
-  t.cpu = std::numeric_limits<double>::infinity();
-  double spent = 0;
-  for (int k = 0; k < 50 && (k == 0 || spent < min_seconds); ++k) {
+  double best = 0;
+  t.cpu = least_cpu_of_repeats(min_seconds, [&](int k) {
     MemorySink sink;
     TransientSummary s = run_transient(*p.model, p.outputs, o, sink);
     const double cpu = s.cpu_setup + s.cpu_steps;
-    spent += cpu;
-    if (cpu < t.cpu) {
-      t.cpu = cpu;
+    if (k == 0 || cpu < best) {
+      best = cpu;
       t.summary = s;
     }
     if (k == 0) t.sink = std::move(sink);
-  }
+    return cpu;
+  });
   return t;
 }
 

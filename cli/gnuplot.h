@@ -15,6 +15,17 @@ inline std::string gnuplot_string(const std::string& s) {
   return out + "'";
 }
 
+// The start of a `bench` chart's script: a 900x640 PNG written to `path` (an AtomicFile's
+// temporary), on logarithmic axes, titled "circuit file: its title" (the title shortened to
+// `width` characters) and `suffix`.
+inline std::string bench_chart_preamble(const std::string& path, const std::string& circuit,
+                                        const std::string& title, size_t width, const std::string& suffix = "") {
+  const std::string shown = title.size() > width ? title.substr(0, width - 3) + "..." : title;
+  const std::string name = circuit.substr(circuit.find_last_of('/') + 1);
+  return "set terminal pngcairo size 900,640 noenhanced font ',10'\nset output " + gnuplot_string(path) +
+         "\nset title " + gnuplot_string(name + ": " + shown + suffix) + "\nset logscale xy\n";
+}
+
 // Runs `script` through gnuplot; throws CliError (exit 1) naming `what` when it fails.
 inline void run_gnuplot(const std::string& script, const std::string& what) {
   std::FILE* gp = popen("gnuplot 2>&1", "w");

@@ -72,7 +72,7 @@ int op_command(const OpArgs& args) {
     throw CliError(kExitUsage, "error: op --all enumerates circuits of at most 24 diodes; this one has " +
                                    std::to_string(model.pairs().size()));
   try {
-    check_line_dc_loops(netlist);  // a UIC deck was not checked by build_model
+    if (netlist.tran && netlist.tran->uic) check_line_dc_loops(netlist);  // build_model did not
   } catch (const TopologyError& e) {
     throw CliError(kExitNetlist, e.formatted(netlist));
   }

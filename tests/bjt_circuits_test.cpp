@@ -21,27 +21,6 @@ namespace {
 // The methods of the ideal model; "" is the default (no --method).
 const std::vector<std::string> kIdealMethods = {"", "event", "euler", "theta", "radau3", "radau5"};
 
-fs::path circuit(const std::string& name) { return source_path("circuits/" + name + ".cir"); }
-
-Csv run_csv(const fs::path& netlist, const std::string& method, const std::string& extra = "") {
-  static int serial = 0;
-  const fs::path dir = scratch_dir("bjt_run_" + std::to_string(++serial));
-  const Result r = run_lcspice("run '" + netlist.string() + "'" + (method.empty() ? "" : " --method " + method) +
-                                   " -o '" + (dir / "out.csv").string() + "' " + extra,
-                               dir);
-  EXPECT_EQ(r.code, 0) << netlist << " --method " << method << ": " << r.err;
-  return parse_csv(read_file(dir / "out.csv"));
-}
-
-std::vector<double> column(const Csv& csv, const std::string& name) {
-  const int c = csv.column(name);
-  EXPECT_GE(c, 0) << "no column " << name;
-  std::vector<double> out;
-  if (c >= 0)
-    for (const std::vector<double>& row : csv.rows) out.push_back(row[c]);
-  return out;
-}
-
 // circuits/NAME.cir with its `.param` line replaced, written to a scratch file.
 fs::path variant(const std::string& name, const std::string& param_line, const std::string& tag) {
   std::string text = read_file(circuit(name));

@@ -131,4 +131,28 @@ inline Csv parse_csv(const std::string& text) {
   return csv;
 }
 
+// circuits/NAME.cir in the source tree.
+inline fs::path circuit(const std::string& name) { return source_path("circuits/" + name + ".cir"); }
+
+// `lcspice run NETLIST [--method METHOD] EXTRA` into a scratch directory; its CSV (exit 0 expected).
+inline Csv run_csv(const fs::path& netlist, const std::string& method, const std::string& extra = "") {
+  static int serial = 0;
+  const fs::path dir = scratch_dir("run_csv_" + std::to_string(++serial));
+  const Result r = run_lcspice("run '" + netlist.string() + "'" + (method.empty() ? "" : " --method " + method) +
+                                   " -o '" + (dir / "out.csv").string() + "' " + extra,
+                               dir);
+  EXPECT_EQ(r.code, 0) << netlist << " --method " << method << ": " << r.err;
+  return parse_csv(read_file(dir / "out.csv"));
+}
+
+// One column of a CSV by its header name (a failure when there is none).
+inline std::vector<double> column(const Csv& csv, const std::string& name) {
+  const int c = csv.column(name);
+  EXPECT_GE(c, 0) << "no column " << name;
+  std::vector<double> out;
+  if (c >= 0)
+    for (const std::vector<double>& row : csv.rows) out.push_back(row[c]);
+  return out;
+}
+
 }  // namespace lcs::cli_testing

@@ -32,27 +32,6 @@
 namespace lcs::cli_testing {
 namespace {
 
-fs::path circuit(const std::string& name) { return source_path("circuits/" + name + ".cir"); }
-
-Csv run_csv(const fs::path& netlist, const std::string& method, const std::string& extra = "") {
-  static int serial = 0;
-  const fs::path dir = scratch_dir("tline_run_" + std::to_string(++serial));
-  const Result r = run_lcspice("run '" + netlist.string() + "'" + (method.empty() ? "" : " --method " + method) +
-                                   " -o '" + (dir / "out.csv").string() + "' " + extra,
-                               dir);
-  EXPECT_EQ(r.code, 0) << netlist << " --method " << method << ": " << r.err;
-  return parse_csv(read_file(dir / "out.csv"));
-}
-
-std::vector<double> column(const Csv& csv, const std::string& name) {
-  const int c = csv.column(name);
-  EXPECT_GE(c, 0) << "no column " << name;
-  std::vector<double> out;
-  if (c >= 0)
-    for (const std::vector<double>& row : csv.rows) out.push_back(row[c]);
-  return out;
-}
-
 std::string lower(std::string s) {
   for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   return s;
@@ -293,6 +272,12 @@ struct DiodeLine {
     }
     return {lo, hi};
   }
+  // The probe's largest magnitude over the rows' times: what its tolerances are relative to.
+  double scale(const std::string& probe, const std::vector<double>& times) const {
+    double s = 0;
+    for (double t : times) s = std::max(s, std::abs(probes(t).at(probe)));
+    return s;
+  }
   // Between echoes: more than `margin` away from every window t0 + m TD + [0, TR].
   bool on_plateau(double t, double margin) const {
     const double phase = std::fmod(t - vs.delay + 100 * td, td);
@@ -359,8 +344,7 @@ TEST(TlineDiodeTermination, EventMatchesTheCharacteristicsEverywhere) {
     SCOPED_TRACE(probe);
     const auto v = column(csv, probe);
     ASSERT_EQ(v.size(), t.size());
-    double scale = 0;
-    for (double tr : t) scale = std::max(scale, std::abs(s.probes(tr).at(probe)));
+    const double scale = s.scale(probe, t);
     int plateau_rows = 0;
     for (size_t r = 0; r < t.size(); ++r) {
       const auto [lo, hi] = s.range(probe, t[r], dt);
@@ -393,8 +377,7 @@ TEST(TlineDiodeTermination, EulerAndRadau5AtAStepDividingTdMatchThePlateausAndSw
       SCOPED_TRACE(probe);
       const auto v = column(csv, probe);
       ASSERT_EQ(v.size(), t.size());
-      double scale = 0;
-      for (double tr : t) scale = std::max(scale, std::abs(s.probes(tr).at(probe)));
+      const double scale = s.scale(probe, t);
       int rows = 0;
       for (size_t r = 0; r < t.size(); ++r) {
         if (!s.on_plateau(t[r], 3 * h)) continue;

@@ -4,8 +4,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 #include <map>
 #include <string>
 
@@ -680,9 +678,8 @@ void EventDriven::DoRun(const Eigen::VectorXd& x0, const OutputGrid& grid, const
   // binary digits of (s - t0) / h0 (to 2^-52 of a step: the rounding of s itself); a segment is
   // at most one step h0 long.
   Impl* impl = &r;
-  auto record_segment = [&, impl](double t0, const Eigen::VectorXd& X0, const Mode* md, double t1) {
-    const Eigen::MatrixXd* L = &wave_row(md);
-    Mode* mode = const_cast<Mode*>(md);
+  auto record_segment = [&, impl](double t0, const Eigen::VectorXd& X0, Mode* mode, double t1) {
+    const Eigen::MatrixXd* L = &wave_row(mode);
     history->record_segment(t0, t1, [impl, mode, L, X0, t0](double s, std::vector<double>& a, std::vector<double>& da) {
       Eigen::VectorXd X = X0, tmp;
       const DyadicTime d = DyadicTime::from(std::max(0.0, s - t0), impl->h0);
@@ -738,7 +735,7 @@ void EventDriven::DoRun(const Eigen::VectorXd& x0, const OutputGrid& grid, const
     bool arrival = false;
     double t_start = 0;
     Eigen::VectorXd X_start;
-    const Mode* mode_start = nullptr;
+    Mode* mode_start = nullptr;
     if (history) {
       t_start = r.pos.seconds(h0);
       // A bend that would spoil a fit (kHistoryTol) is a stop where it arrives.

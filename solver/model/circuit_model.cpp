@@ -174,9 +174,7 @@ CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& opt
   // History inputs (lines): wave i of the DelayHistory feeds input stamps.delayed[i].input.
   std::vector<double> delays;
   for (size_t i = 0; i < stamps.delayed.size(); ++i) {
-    InputSignal& in = stamps.inputs.at(stamps.delayed[i].input - 1);
-    in.quantity = InputSignal::Quantity::History;
-    in.history = static_cast<int>(i);
+    stamps.inputs.at(stamps.delayed[i].input - 1).history = static_cast<int>(i);
     delays.push_back(stamps.delayed[i].delay);
   }
   m.inputs_ = InputProvider(stamps.inputs);

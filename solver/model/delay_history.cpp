@@ -7,12 +7,11 @@
 namespace lcs {
 
 DelayHistory::DelayHistory(std::vector<double> delays)
-    : delays_(std::move(delays)), before_(delays_.size(), 0.0) {}
-
-double DelayHistory::shortest_delay() const {
-  double d = std::numeric_limits<double>::infinity();
-  for (double x : delays_) d = std::min(d, x);
-  return d;
+    : delays_(std::move(delays)), before_(delays_.size(), 0.0) {
+  for (double d : delays_) {
+    shortest_ = std::min(shortest_, d);
+    longest_ = std::max(longest_, d);
+  }
 }
 
 void DelayHistory::reset(const std::vector<double>& before) {
@@ -22,7 +21,6 @@ void DelayHistory::reset(const std::vector<double>& before) {
   values_.clear();
   segments_.clear();
   cached_segment_ = nullptr;
-  jump_times_.clear();
   breaks_.clear();
   kinks_.clear();
   size_ = 0;
@@ -36,7 +34,6 @@ void DelayHistory::record(double t, const std::vector<double>& values) {
     for (size_t k = 0; k < values.size(); ++k)
       if (values[k] != values_.back()[k]) same = false;
     if (same) return;  // the same instant recorded twice
-    if (jump_times_.empty() || jump_times_.back() != t) jump_times_.push_back(t);
   }
   times_.push_back(t);
   values_.push_back(values);
@@ -53,9 +50,7 @@ void DelayHistory::record_segment(double t0, double t1, Segment exact) {
 // Samples older than every delay (plus the stencil an interpolant needs) are never read again.
 void DelayHistory::trim() {
   if (times_.size() < 4096) return;
-  double longest = 0;
-  for (double d : delays_) longest = std::max(longest, d);
-  const double keep_from = times_.back() - 1.01 * longest;
+  const double keep_from = times_.back() - 1.01 * longest_;
   size_t drop = 0;
   while (drop + 8 < times_.size() && times_[drop + 8] < keep_from) ++drop;
   if (drop < times_.size() / 2) return;  // trims in bulk, amortised O(1) per record
@@ -63,7 +58,6 @@ void DelayHistory::trim() {
   values_.erase(values_.begin(), values_.begin() + drop);
   while (!segments_.empty() && segments_.front().t1 < keep_from) segments_.pop_front();
   cached_segment_ = nullptr;
-  while (!jump_times_.empty() && jump_times_.front() < keep_from) jump_times_.pop_front();
   while (!breaks_.empty() && breaks_.front().t < keep_from) breaks_.pop_front();
 }
 
@@ -165,32 +159,20 @@ bool DelayHistory::judge(Break& b, double tol) {
 }
 
 double DelayHistory::next_arrival(double t, double t_end, double tol) {
-  double longest = 0;
-  for (double d : delays_) longest = std::max(longest, d);
-  while (!breaks_.empty() && breaks_.front().t + longest <= t) breaks_.pop_front();  // arrived everywhere
+  while (!breaks_.empty() && breaks_.front().t + longest_ <= t) breaks_.pop_front();  // arrived everywhere
   double best = std::numeric_limits<double>::infinity();
   for (Break& b : breaks_) {
     bool any = false;
     for (double d : delays_) any = any || (b.t + d > t && b.t + d <= t_end);
     if (!any) continue;
-    if (b.significant.empty() && !judge(b, tol)) {
-      best = std::min(best, b.t + shortest_delay() > t ? b.t + shortest_delay() : best);
+    if (b.significant.empty() && !judge(b, tol)) {  // not recorded past b yet: assume it matters
+      if (b.t + shortest_ > t) best = std::min(best, b.t + shortest_);
       continue;
     }
     for (size_t k = 0; k < delays_.size(); ++k)
       if (b.significant[k] && b.t + delays_[k] > t && b.t + delays_[k] <= t_end) best = std::min(best, b.t + delays_[k]);
   }
   return best;
-}
-
-std::vector<double> DelayHistory::jumps_arriving(double t, double t_end) const {
-  std::vector<double> out;
-  for (double j : jump_times_)
-    for (double d : delays_)
-      if (j + d > t && j + d <= t_end) out.push_back(j + d);
-  std::sort(out.begin(), out.end());
-  out.erase(std::unique(out.begin(), out.end()), out.end());
-  return out;
 }
 
 }  // namespace lcs

@@ -14,6 +14,7 @@
 
 #include <deque>
 #include <functional>
+#include <limits>
 #include <vector>
 
 namespace lcs {
@@ -24,11 +25,9 @@ class DelayHistory {
 
   int size() const { return static_cast<int>(delays_.size()); }
   double delay(int k) const { return delays_[k]; }
-  double shortest_delay() const;
 
   // Forgets every sample: a_k holds before[k] until the first record.
   void reset(const std::vector<double>& before);
-  const std::vector<double>& before() const { return before_; }
   // Degree of the interpolant through recorded samples (1 linear ... 5); the run's method sets it.
   void set_degree(int degree) { degree_ = degree; }
   // Instants where the waves bend (the start, source corners, and their arrivals a delay, two
@@ -68,11 +67,7 @@ class DelayHistory {
   double wave(int k, double s, double side = 0) const;
   // u_k(t) = a_k(t - delay_k).
   double value(int k, double t, double side = 0) const { return wave(k, t - delays_[k], side); }
-  // Times after `t` where some recorded wave jumped, shifted by its delay (where a history input
-  // jumps next), up to `t_end`; the earliest first.
-  std::vector<double> jumps_arriving(double t, double t_end) const;
   double magnitude() const { return size_; }  // the largest |a_k| recorded (or held before the run)
-  double last_time() const { return times_.empty() ? -1e300 : times_.back(); }
   const std::deque<double>& times() const { return times_; }  // the recorded instants (kept ones)
 
  private:
@@ -87,12 +82,12 @@ class DelayHistory {
   bool judge(Break& b, double tol);
   double size_ = 0;  // the largest |a_k| recorded
   std::vector<double> delays_;
+  double shortest_ = std::numeric_limits<double>::infinity(), longest_ = 0;
   std::vector<double> before_;
   int degree_ = 1;
   std::deque<double> times_;
   std::deque<std::vector<double>> values_;  // values_[i][k] = a_k(times_[i])
   std::deque<ExactSegment> segments_;
-  std::deque<double> jump_times_;
   std::deque<Break> breaks_;
   std::vector<double> kinks_;  // sorted
   mutable std::vector<double> scratch_, slopes_;

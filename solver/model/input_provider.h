@@ -39,13 +39,12 @@ class InputProvider {
   Eigen::VectorXd values_before(double t) const;                // limits from the left
   Eigen::VectorXd derivatives(double t) const;                  // right derivatives
   // Corners of every input in (t0, t1), sorted, duplicates kept (history inputs excluded: their
-  // corners arrive as the run makes them, DelayHistory::jumps_arriving).
+  // corners arrive as the run makes them, DelayHistory::next_arrival).
   std::vector<double> breakpoints(double t0, double t1) const;
 
   // History inputs read this; shared by the copies of a model, reset at the start of every run.
   void attach_history(std::shared_ptr<DelayHistory> history) { history_ = std::move(history); }
   const std::shared_ptr<DelayHistory>& history() const { return history_; }
-  bool is_history(int k) const { return signals_[k].quantity == InputSignal::Quantity::History; }
 
  private:
   std::vector<InputSignal> signals_;

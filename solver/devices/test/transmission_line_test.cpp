@@ -91,42 +91,44 @@ TEST(TransmissionLine, LossyRecursiveConvolutionIsTheFittedKernelsClosedForm) {
   }
 }
 
-// At DC a lossy line is its series resistance R len (G = 0), whatever the fitted kernel says
-// about s -> 0: 1 V through the line into 45 ohm gives 1 / (45 + 5) A.
-TEST(TransmissionLine, LossyLineAtDcIsItsSeriesResistance) {
+// The operating point of a deck whose line `o1` (LTRA parameters `ltra`) joins `in` (1 V) to `far`,
+// loaded by `load` ohm: v(far) and the port-1 current.
+struct DcLine {
+  double v_far, i_port1;
+  std::vector<std::string> undetermined;
+};
+DcLine dc_line(const std::string& ltra, const std::string& load) {
   const Netlist netlist = parse_netlist_string(
-      "dc\nv1 in 0 dc 1\no1 in 0 far 0 cable\nrl far 0 45\n"
-      ".model cable ltra(r=0.5 l=250n g=0 c=100p len=10)\n.tran 1n 100n\n.end\n",
+      "dc\nv1 in 0 dc 1\no1 in 0 far 0 cable\nrl far 0 " + load + "\n.model cable ltra(" + ltra +
+          ")\n.tran 1n 100n\n.end\n",
       "dc.cir");
   ModelOptions mo;
   mo.t1 = 100e-9;
-  const CircuitModel model = CircuitModel::build(netlist, mo);
-  const OperatingPoint op = solve_operating_point(model, 0.0);
-  const int far = model.graph().node_index("far");
-  EXPECT_NEAR(model.evaluate_dc(model.node_voltage(far), op.x, op.z, 0.0), 45.0 / 50.0, 1e-9);
+  const CircuitModel m = CircuitModel::build(netlist, mo);
+  const OperatingPoint op = solve_operating_point(m, 0.0);
   int port1 = -1;
-  for (size_t b = 0; b < model.graph().branches.size(); ++b)
-    if (model.graph().branches[b].name == "o1") port1 = static_cast<int>(b);
-  EXPECT_NEAR(model.evaluate_dc(model.branch_current(port1), op.x, op.z, 0.0), 1.0 / 50.0, 1e-12);
-  EXPECT_TRUE(op.undetermined.empty());
+  for (size_t b = 0; b < m.graph().branches.size(); ++b)
+    if (m.graph().branches[b].name == "o1") port1 = static_cast<int>(b);
+  const int far = m.graph().node_index("far");
+  return {m.evaluate_dc(m.node_voltage(far), op.x, op.z, 0.0),
+          m.evaluate_dc(m.branch_current(port1), op.x, op.z, 0.0), op.undetermined};
+}
+
+// At DC a lossy line is its series resistance R len (G = 0), whatever the fitted kernel says
+// about s -> 0: 1 V through the line into 45 ohm gives 1 / (45 + 5) A.
+TEST(TransmissionLine, LossyLineAtDcIsItsSeriesResistance) {
+  const DcLine dc = dc_line("r=0.5 l=250n g=0 c=100p len=10", "45");
+  EXPECT_NEAR(dc.v_far, 45.0 / 50.0, 1e-9);
+  EXPECT_NEAR(dc.i_port1, 1.0 / 50.0, 1e-12);
+  EXPECT_TRUE(dc.undetermined.empty());
 }
 
 // With G > 0 the DC two-port is cosh/sinh of th = len sqrt(RG): the far end of an open line
 // sits at 1 / cosh(th) of the near end.
 TEST(TransmissionLine, LeakyLineAtDcIsItsHyperbolicTwoPort) {
-  const Netlist netlist = parse_netlist_string(
-      "dc\nv1 in 0 dc 1\no1 in 0 far 0 cable\nrl far 0 1e12\n"
-      ".model cable ltra(r=2 l=250n g=0.02 c=100p len=10)\n.tran 1n 100n\n.end\n",
-      "dc.cir");
-  ModelOptions mo;
-  mo.t1 = 100e-9;
-  const CircuitModel model = CircuitModel::build(netlist, mo);
-  const OperatingPoint op = solve_operating_point(model, 0.0);
-  const double th = 10 * std::sqrt(2 * 0.02);
-  const int far = model.graph().node_index("far");
-  EXPECT_NEAR(model.evaluate_dc(model.node_voltage(far), op.x, op.z, 0.0), 1 / std::cosh(th), 1e-9);
+  const DcLine dc = dc_line("r=2 l=250n g=0.02 c=100p len=10", "1e12");
+  EXPECT_NEAR(dc.v_far, 1 / std::cosh(10 * std::sqrt(2 * 0.02)), 1e-9);
 }
-
 
 // A lossless line between a 50 MHz sine behind 30 ohm and an RC load (the wave bends where the
 // run starts and wherever that bend arrives, k TD later, on the steps here): each method's error
