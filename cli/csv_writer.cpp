@@ -1,6 +1,7 @@
 #include "cli/csv_writer.h"
 
 #include <cerrno>
+#include <charconv>
 #include <cstring>
 #include <unistd.h>
 
@@ -60,11 +61,21 @@ void CsvSink::begin(const std::vector<std::string>& names) {
   std::fputc('\n', out_);
 }
 
+// "%.14e" for every number, by std::to_chars (which is specified to print what printf prints,
+// and is several times faster: a 1000-diode circuit's rows of 2000 columns made printf a quarter
+// of the run).
 void CsvSink::row(double t, const Eigen::VectorXd& values) {
   ++rows_;
-  std::fprintf(out_, "%.14e", t);
-  for (int k = 0; k < values.size(); ++k) std::fprintf(out_, ",%.14e", values(k));
-  std::fputc('\n', out_);
+  line_.resize(24 * (values.size() + 1) + 1);
+  char* p = line_.data();
+  char* const end = p + line_.size();
+  p = std::to_chars(p, end, t, std::chars_format::scientific, 14).ptr;
+  for (int k = 0; k < values.size(); ++k) {
+    *p++ = ',';
+    p = std::to_chars(p, end, values(k), std::chars_format::scientific, 14).ptr;
+  }
+  *p++ = '\n';
+  std::fwrite(line_.data(), 1, p - line_.data(), out_);
 }
 
 void CsvSink::finish() {

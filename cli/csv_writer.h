@@ -6,6 +6,7 @@
 
 #include <cstdio>
 #include <string>
+#include <vector>
 
 #include "solver/integrators/output_sink.h"
 
@@ -24,6 +25,7 @@ class CsvSink : public OutputSink {
  private:
   std::string path_, final_path_, temp_path_;
   std::FILE* out_ = nullptr;
+  std::vector<char> line_;  // one row's text
   bool to_stdout_ = false, in_place_ = false, finished_ = false;
   long rows_ = 0;
 };

@@ -1,6 +1,8 @@
 // The theta-method with one LCP per step (8.4): theta = 1 is implicit Euler, 1/2 trapezoidal.
 //   x+ = x + h(1-θ)(A x + B z + E u) + hθ(A x+ + B z+ + E u+),   w+ = C x+ + D z+ + F u+
-// gives LCP(q, D + hθ C W^-1 B) with W = I - hθ A (DESIGN.md).
+// gives LCP(q, D + hθ C W^-1 B) with W = I - hθ A (DESIGN.md). Circuits with many pairs and a
+// sparse LCS solve the step on the sparse system instead, never forming W^-1 (ThetaMethod::
+// SparseStep), and fall back to Lemke on the dense LCP for a step whose mode search fails.
 #pragma once
 
 #include <map>
@@ -23,10 +25,17 @@ class ThetaMethod : public TimeStepper {
  private:
   struct StepFactors;  // everything that depends only on h, prepared once per step size
   StepFactors& factors(double h);
+  // Large circuits: the step's LCP solved on the sparse system (sparse_active_set.h), per h.
+  struct SparseStep;
+  SparseStep* sparse_step(double h);
+  bool sparse_ = false;  // decided once: enough pairs, and A, B, C, D sparse enough
+  struct SparseLcs;
+  std::unique_ptr<SparseLcs> sparse_lcs_;
 
   double theta_;
   std::map<double, std::unique_ptr<StepFactors>> cache_;
-  Eigen::VectorXd u0_, u1_, q_;
+  std::map<double, std::unique_ptr<SparseStep>> sparse_cache_;
+  Eigen::VectorXd u0_, u1_, q_, a_, b_, y_, zs_, w_;
 };
 
 }  // namespace lcs

@@ -8,6 +8,7 @@
 
 #include "solver/integrators/multistability.h"
 #include "solver/lcp/lcp.h"
+#include "solver/lcp/sparse_active_set.h"
 #include "solver/model/lcs_problem.h"
 
 namespace lcs {
@@ -24,6 +25,8 @@ struct StepperStats {
   long residual_evals = 0;  // DAE residual evaluations (smooth)
   long jacobian_evals = 0;  // Jacobian evaluations (smooth)
   long newton_iterations = 0;
+  SparseActiveSetStats sparse;  // time-stepping on the sparse system (large circuits)
+  long sparse_fallbacks = 0;    // steps the sparse active-set search left to Lemke
 };
 
 // Advances (x, z) of a circuit's LCS. Step() is the non-virtual entry point (Drake style).

@@ -1,5 +1,7 @@
 #include "solver/integrators/transient.h"
 
+#include <Eigen/Sparse>
+
 #include "solver/integrators/distinct_rows.h"
 
 #include <algorithm>
@@ -51,6 +53,16 @@ std::string TransientSummary::BriefReport() const {
                   stepper.factorisations);
     out += buf;
   }
+  if (stepper.sparse.solves > 0) {
+    std::snprintf(buf, sizeof buf,
+                  "\nsparse active-set LCP: %ld solves (%.1f%% warm-start hits), %ld pairs flipped, "
+                  "%ld factorisations, %.1f MB cached (%ld evicted), %ld steps left to Lemke",
+                  stepper.sparse.solves, 100.0 * stepper.sparse.warm_hits / stepper.sparse.solves,
+                  stepper.sparse.flips, stepper.sparse.factorisations,
+                  stepper.sparse.cache_bytes / 1048576.0, stepper.sparse.evictions,
+                  stepper.sparse_fallbacks);
+    out += buf;
+  }
   if (stepper.events > 0 || stepper.modes > 0) {
     std::snprintf(buf, sizeof buf, "\nevents %ld", stepper.events);
     out += buf;
@@ -81,11 +93,24 @@ class RowWriter {
  public:
   RowWriter(const LcsProblem& model, const OutputMap& outputs, OutputSink& sink)
       : model_(model), outputs_(outputs), sink_(sink), y_(outputs.names.size()),
-        u_(model.lcs().inputs()), has_k_(outputs.K.size() > 0 && !outputs.K.isZero()) {}
+        u_(model.lcs().inputs()), has_k_(outputs.K.size() > 0 && !outputs.K.isZero()) {
+    // A large circuit's probes each read a few states and pairs: stored sparse, a row costs
+    // O(probes), not O(probes * (states + pairs)). Exact zeros only are dropped.
+    if (outputs.G.size() + outputs.H.size() >= kSparseOutputSize) {
+      Gs_ = outputs.G.sparseView();
+      Hs_ = outputs.H.sparseView();
+      sparse_ = Gs_.nonZeros() + Hs_.nonZeros() <= (outputs.G.size() + outputs.H.size()) / 10;
+    }
+  }
   void write(double t, const Eigen::VectorXd& x, const Eigen::VectorXd& z) {
     model_.input_values(t, u_);
-    y_.noalias() = outputs_.G * x;
-    y_.noalias() += outputs_.H * z;
+    if (sparse_) {
+      y_.noalias() = Gs_ * x;
+      y_.noalias() += Hs_ * z;
+    } else {
+      y_.noalias() = outputs_.G * x;
+      y_.noalias() += outputs_.H * z;
+    }
     y_.noalias() += outputs_.J * u_;
     if (has_k_) y_.noalias() += outputs_.K * model_.input_derivatives(t);
     if (!y_.allFinite()) {  // never written: SPEC §3 rows hold numbers
@@ -98,7 +123,10 @@ class RowWriter {
 
  private:
   const LcsProblem& model_;
+  static constexpr Eigen::Index kSparseOutputSize = 1 << 16;
   const OutputMap& outputs_;
+  Eigen::SparseMatrix<double, Eigen::RowMajor> Gs_, Hs_;
+  bool sparse_ = false;
   OutputSink& sink_;
   Eigen::VectorXd y_, u_;
   bool has_k_;

@@ -11,6 +11,7 @@
 #include "solver/model/line_dc_loops.h"
 #include "solver/model/netlist_options.h"
 #include "solver/model/perfect_coupling.h"
+#include "solver/model/sparse_solve.h"
 #include "solver/model/structural_zeros.h"
 
 namespace lcs {
@@ -58,15 +59,17 @@ void check_finite_inputs(const Netlist& netlist, const InputProvider& inputs, do
 
 // Mdyn's diagonal without cancellation, |Tc|^T C |Tc| + |Tl|^T |Lf| |Tl| (diagonal only): what
 // tells two windings in series opposition (L1 + L2 - 2M = 0) from a small inductance.
-Eigen::VectorXd uncancelled_diagonal(const Eigen::MatrixXd& Tc, const Eigen::VectorXd& Cd,
-                                     const Eigen::MatrixXd& Tl, const Eigen::MatrixXd& Lf) {
+Eigen::VectorXd uncancelled_diagonal(const SparseMatrixD& Tc, const Eigen::VectorXd& Cd,
+                                     const SparseMatrixD& Tl, const SparseMatrixD& Lf) {
   Eigen::VectorXd out = Eigen::VectorXd::Zero(Tc.cols());
-  if (Tc.cols() == 0) return out;  // no states: rows of the no-column Tc/Tl point past null (UBSan)
-  for (int k = 0; k < Tc.rows(); ++k) out += Cd(k) * Tc.row(k).cwiseAbs2().transpose();
-  for (int k = 0; k < Lf.rows(); ++k)
-    for (int l = 0; l < Lf.cols(); ++l)
-      if (Lf(k, l) != 0)
-        out += std::abs(Lf(k, l)) * Tl.row(k).cwiseAbs().cwiseProduct(Tl.row(l).cwiseAbs()).transpose();
+  for (int j = 0; j < Tc.outerSize(); ++j)
+    for (SparseMatrixD::InnerIterator it(Tc, j); it; ++it) out(j) += Cd(it.row()) * it.value() * it.value();
+  for (int j = 0; j < Tl.outerSize(); ++j)
+    for (SparseMatrixD::InnerIterator a(Tl, j); a; ++a)
+      for (SparseMatrixD::InnerIterator b(Tl, j); b; ++b) {
+        const double l = Lf.coeff(a.row(), b.row());
+        if (l != 0) out(j) += std::abs(l) * std::abs(a.value()) * std::abs(b.value());
+      }
   return out;
 }
 
@@ -216,78 +219,94 @@ CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& opt
   int ncol = n + mp + 2 * nu;  // columns of [x | z | u | du]
   auto col_z = [&](int k) { return n + k; };
   auto col_u = [&](int k) { return n + mp + k; };
-  auto Bt = [&](int tree_branch, int link_branch) {
-    return t.B(t.position[tree_branch], t.position[link_branch]);
-  };
   auto value = [&](int b) { return m.storage_[b]->value; };
 
   // Primary unknown p_b: the voltage of a tree branch, the current of a link. Every branch
   // voltage and current is linear in p: KCL i_tree = B i_link, KVL v_link = -B^T v_tree.
-  Eigen::MatrixXd Vmap = Eigen::MatrixXd::Zero(nb, nb), Imap = Eigen::MatrixXd::Zero(nb, nb);
-  for (int b = 0; b < nb; ++b) {
-    if (t.in_tree[b]) {
-      Vmap(b, b) = 1;
-      for (int l : t.links) Imap(b, l) = Bt(b, l);
-    } else {
-      Imap(b, b) = 1;
-      for (int f : t.tree) Vmap(b, f) = -Bt(f, b);
+  // Sparse throughout (issue 12): a row holds one fundamental loop or cutset, not nb entries,
+  // and the products below cost O(nnz * columns), not O(nb^2 * columns).
+  using RowSparse = Eigen::SparseMatrix<double, Eigen::RowMajor>;
+  using Triplets = std::vector<Eigen::Triplet<double>>;
+  RowSparse Vmap(nb, nb), Imap(nb, nb);
+  {
+    Triplets vt, it;
+    for (int b = 0; b < nb; ++b) (t.in_tree[b] ? vt : it).emplace_back(b, b, 1.0);
+    for (int l : t.links) {
+      const std::vector<LoopTerm>& loop = t.loops[t.position[l]];
+      for (size_t k = 1; k < loop.size(); ++k) {
+        it.emplace_back(loop[k].branch, l, loop[k].sign);   // Imap(f, l) = b_{f,l}
+        vt.emplace_back(l, loop[k].branch, -loop[k].sign);  // Vmap(l, f) = -b_{f,l}
+      }
     }
+    Vmap.setFromTriplets(vt.begin(), vt.end());
+    Imap.setFromTriplets(it.begin(), it.end());
   }
 
   // Static (resistive, source and diode) equations, one per Static branch:
   //   EqP p + EqR [x z u du] = 0   (EqR holds the z and u coefficients).
-  std::vector<int> statics;
+  std::vector<int> statics, static_of(nb, -1);
   for (int b = 0; b < nb; ++b)
-    if (role[b] == Role::Static) statics.push_back(b);
+    if (role[b] == Role::Static) {
+      static_of[b] = static_cast<int>(statics.size());
+      statics.push_back(b);
+    }
   const int ns = static_cast<int>(statics.size());
-  Eigen::MatrixXd EqP = Eigen::MatrixXd::Zero(ns, nb), EqR = Eigen::MatrixXd::Zero(ns, ncol);
-  for (int r = 0; r < ns; ++r) {
-    const int b = statics[r];
-    if (pair_of[b] >= 0) {               // the swap of 5.4.4
-      if (t.in_tree[b]) {                // v - RON i + z - VON = 0
-        EqP.row(r) = Vmap.row(b) - law[b].ron * Imap.row(b);
-        EqR(r, col_z(pair_of[b])) = 1;
-        EqR(r, col_u(0)) = -law[b].von;
-      } else {                           // i - z = 0
-        EqP(r, b) = 1;
-        EqR(r, col_z(pair_of[b])) = -1;
+  SparseMatrixD EqP(ns, nb);
+  Eigen::MatrixXd EqR = Eigen::MatrixXd::Zero(ns, ncol);
+  {
+    Triplets eq;
+    auto add_row = [&](int r, const RowSparse& map, int b, double coeff) {
+      if (coeff == 0) return;
+      for (RowSparse::InnerIterator it(map, b); it; ++it) eq.emplace_back(r, it.col(), coeff * it.value());
+    };
+    for (int r = 0; r < ns; ++r) {
+      const int b = statics[r];
+      if (pair_of[b] >= 0) {               // the swap of 5.4.4
+        if (t.in_tree[b]) {                // v - RON i + z - VON = 0
+          add_row(r, Vmap, b, 1.0);
+          add_row(r, Imap, b, -law[b].ron);
+          EqR(r, col_z(pair_of[b])) = 1;
+          EqR(r, col_u(0)) = -law[b].von;
+        } else {                           // i - z = 0
+          eq.emplace_back(r, b, 1.0);
+          EqR(r, col_z(pair_of[b])) = -1;
+        }
+        continue;
       }
-      continue;
-    }
-    for (const Term& term : relation_of[b]->terms) {  // the device's relation, sum = 0
-      switch (term.of) {
-        case Term::Of::Voltage: EqP.row(r) += term.coeff * Vmap.row(term.index); break;
-        case Term::Of::Current: EqP.row(r) += term.coeff * Imap.row(term.index); break;
-        case Term::Of::Input: EqR(r, col_u(term.index)) += term.coeff; break;
+      for (const Term& term : relation_of[b]->terms) {  // the device's relation, sum = 0
+        switch (term.of) {
+          case Term::Of::Voltage: add_row(r, Vmap, term.index, term.coeff); break;
+          case Term::Of::Current: add_row(r, Imap, term.index, term.coeff); break;
+          case Term::Of::Input: EqR(r, col_u(term.index)) += term.coeff; break;
+        }
       }
     }
+    EqP.setFromTriplets(eq.begin(), eq.end());
   }
   // Split EqP into the static unknowns (solved for) and the states; by the cycle property the
   // forced unknowns never appear here.
-  Eigen::MatrixXd Es(ns, ns);
-  for (int c = 0; c < ns; ++c) Es.col(c) = EqP.col(statics[c]);
+  SparseMatrixD Es(ns, ns);
   Eigen::MatrixXd rhs = EqR;
-  for (int b = 0; b < nb && ns > 0; ++b) {
-    if (role[b] == Role::State) rhs.col(state_of[b]) += EqP.col(b);
-    if (role[b] == Role::Forced && EqP.col(b).cwiseAbs().maxCoeff() > 0)
-      throw std::logic_error("circuit model: forced branch in a static equation");
+  {
+    Triplets es;
+    for (int b = 0; b < EqP.outerSize(); ++b)
+      for (SparseMatrixD::InnerIterator it(EqP, b); it; ++it) {
+        if (role[b] == Role::Static) es.emplace_back(it.row(), static_of[b], it.value());
+        else if (role[b] == Role::State) rhs(it.row(), state_of[b]) += it.value();
+        else if (it.value() != 0) throw std::logic_error("circuit model: forced branch in a static equation");
+      }
+    Es.setFromTriplets(es.begin(), es.end());
   }
   // P: every primary unknown as a row over [x_phys | z | u | du]; forced rows filled below.
   Eigen::MatrixXd P = Eigen::MatrixXd::Zero(nb, ncol);
   if (ns > 0) {
-    // Rows scaled to unit size first, so that a 1e16 ohm resistor next to a 1 V source is not
-    // mistaken for a singular system.
-    Eigen::VectorXd row_scale = Es.cwiseAbs().rowwise().maxCoeff();
-    for (int r = 0; r < ns; ++r) row_scale(r) = row_scale(r) > 0 ? 1.0 / row_scale(r) : 1.0;
-    Eigen::FullPivLU<Eigen::MatrixXd> es_lu(row_scale.asDiagonal() * Es);
-    if (!es_lu.isInvertible()) {
+    Eigen::MatrixXd sol;
+    if (!solve_scaled(Es, rhs, true, sol)) {
       std::vector<int> elements;
       for (int b : statics) elements.push_back(g.branches[b].element);
       throw TopologyError("the resistive part of the circuit has no unique solution", elements);
     }
-    Eigen::MatrixXd sol = -solve_or_empty(es_lu, row_scale.asDiagonal() * rhs);
-    clear_structural_zeros(Es, rhs, sol);
-    for (int r = 0; r < ns; ++r) P.row(statics[r]) = sol.row(r);
+    for (int r = 0; r < ns; ++r) P.row(statics[r]) = -sol.row(r);
   }
   for (int b = 0; b < nb; ++b)
     if (role[b] == Role::State) P(b, state_of[b]) = 1;
@@ -301,64 +320,78 @@ CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& opt
     if (g.branches[b].cls == BranchClass::Inductor) { ind_index[b] = inds.size(); inds.push_back(b); }
   }
   const int nc = caps.size(), nl = inds.size();
-  Eigen::MatrixXd Tc = Eigen::MatrixXd::Zero(nc, n), Tcu = Eigen::MatrixXd::Zero(nc, nu);
-  Eigen::MatrixXd Tl = Eigen::MatrixXd::Zero(nl, n), Tlu = Eigen::MatrixXd::Zero(nl, nu);
+  SparseMatrixD Tc(nc, n), Tl(nl, n), Lf(nl, nl);
+  Eigen::MatrixXd Tcu = Eigen::MatrixXd::Zero(nc, nu), Tlu = Eigen::MatrixXd::Zero(nl, nu);
   Eigen::VectorXd Cd(nc);
-  Eigen::MatrixXd Lf = Eigen::MatrixXd::Zero(nl, nl);
-  for (int k = 0; k < nc; ++k) {
-    const int b = caps[k];
-    Cd(k) = value(b);
-    if (role[b] == Role::State) {
-      Tc(k, state_of[b]) = 1;
-    } else {  // link capacitor: its loop holds only tree capacitors and voltage sources
-      for (int f : t.tree) {
-        const double s = Bt(f, b);
-        if (s == 0) continue;
-        if (state_of[f] >= 0) Tc(k, state_of[f]) -= s;
-        else if (input_of[f] >= 0) Tcu(k, input_of[f]) -= s;
-        else throw std::logic_error("circuit model: unexpected branch in a capacitor loop");
+  {
+    Triplets tc, tl, lf;
+    for (int k = 0; k < nc; ++k) {
+      const int b = caps[k];
+      Cd(k) = value(b);
+      if (role[b] == Role::State) {
+        tc.emplace_back(k, state_of[b], 1.0);
+      } else {  // link capacitor: its loop holds only tree capacitors and voltage sources
+        const std::vector<LoopTerm>& loop = t.loops[t.position[b]];
+        for (size_t j = 1; j < loop.size(); ++j) {
+          const int f = loop[j].branch;
+          const double s = loop[j].sign;  // b_{f,b}
+          if (state_of[f] >= 0) tc.emplace_back(k, state_of[f], -s);
+          else if (input_of[f] >= 0) Tcu(k, input_of[f]) -= s;
+          else throw std::logic_error("circuit model: unexpected branch in a capacitor loop");
+        }
       }
     }
-  }
-  for (int k = 0; k < nl; ++k) {
-    const int b = inds[k];
-    Lf(k, k) = value(b);
-    if (role[b] == Role::State) {
-      Tl(k, state_of[b]) = 1;
-    } else {  // tree inductor: its cutset holds only link inductors and current sources
-      for (int l : t.links) {
-        const double s = Bt(b, l);
-        if (s == 0) continue;
-        if (state_of[l] >= 0) Tl(k, state_of[l]) += s;
-        else if (input_of[l] >= 0) Tlu(k, input_of[l]) += s;
-        else throw std::logic_error("circuit model: unexpected branch in an inductor cutset");
+    for (int k = 0; k < nl; ++k) {
+      const int b = inds[k];
+      lf.emplace_back(k, k, value(b));
+      if (role[b] == Role::State) {
+        tl.emplace_back(k, state_of[b], 1.0);
+      } else {  // tree inductor: its cutset holds only link inductors and current sources
+        for (RowSparse::InnerIterator it(Imap, b); it; ++it) {
+          const int l = static_cast<int>(it.col());
+          const double s = it.value();  // b_{b,l}
+          if (state_of[l] >= 0) tl.emplace_back(k, state_of[l], s);
+          else if (input_of[l] >= 0) Tlu(k, input_of[l]) += s;
+          else throw std::logic_error("circuit model: unexpected branch in an inductor cutset");
+        }
       }
     }
-  }
-  for (const Stamps::Coupling& k : stamps.couplings) {  // mutual inductance M = k sqrt(L1 L2)
-    const int k1 = ind_index[k.branch_a], k2 = ind_index[k.branch_b];
-    const double mutual = k.k * std::sqrt(Lf(k1, k1) * Lf(k2, k2));
-    Lf(k1, k2) += mutual;
-    Lf(k2, k1) += mutual;
+    for (const Stamps::Coupling& k : stamps.couplings) {  // mutual inductance M = k sqrt(L1 L2)
+      const int k1 = ind_index[k.branch_a], k2 = ind_index[k.branch_b];
+      const double mutual = k.k * std::sqrt(value(k.branch_a) * value(k.branch_b));
+      lf.emplace_back(k1, k2, mutual);
+      lf.emplace_back(k2, k1, mutual);
+    }
+    Tc.setFromTriplets(tc.begin(), tc.end());
+    Tl.setFromTriplets(tl.begin(), tl.end());
+    Lf.setFromTriplets(lf.begin(), lf.end());
   }
 
   // State equations. Cutset of each tree capacitor f (KCL) and loop of each link inductor e
   // (KVL), with the dependent capacitors/inductors moved to the left:
   //   Tc^T diag(C) (Tc x' + Tcu u') = sum over R, D, L, I links l of b_{f,l} i_l
   //   Tl^T Lf (Tl x' + Tlu u')      = -sum over V, C, R, D tree branches f of b_{f,e} v_f
-  Eigen::MatrixXd Mdyn = Tc.transpose() * Cd.asDiagonal() * Tc + Tl.transpose() * Lf * Tl;
-  Eigen::MatrixXd Kdu = -(Tc.transpose() * Cd.asDiagonal() * Tcu + Tl.transpose() * Lf * Tlu);
-  Eigen::MatrixXd Rp = Eigen::MatrixXd::Zero(n, nb);
-  for (int b = 0; b < nb; ++b) {
-    if (role[b] != Role::State) continue;
-    const int j = state_of[b];
-    if (g.branches[b].cls == BranchClass::Capacitor) {
-      for (int l : t.links)
-        if (g.branches[l].cls != BranchClass::Capacitor) Rp(j, l) += Bt(b, l);
-    } else {
-      for (int f : t.tree)
-        if (g.branches[f].cls != BranchClass::Inductor) Rp(j, f) -= Bt(f, b);
+  const SparseMatrixD CdTc = Cd.asDiagonal() * Tc, LfTl = Lf * Tl;
+  SparseMatrixD MdynS = SparseMatrixD(Tc.transpose() * CdTc) + SparseMatrixD(Tl.transpose() * LfTl);
+  Eigen::MatrixXd Mdyn(MdynS);
+  Eigen::MatrixXd Kdu = -(CdTc.transpose() * Tcu + LfTl.transpose() * Tlu);
+  SparseMatrixD Rp(n, nb);
+  {
+    Triplets rp;
+    for (int b = 0; b < nb; ++b) {
+      if (role[b] != Role::State) continue;
+      const int j = state_of[b];
+      if (g.branches[b].cls == BranchClass::Capacitor) {  // its cutset: the links through it
+        for (RowSparse::InnerIterator it(Imap, b); it; ++it)
+          if (g.branches[it.col()].cls != BranchClass::Capacitor) rp.emplace_back(j, it.col(), it.value());
+      } else {  // its loop: the tree path
+        const std::vector<LoopTerm>& loop = t.loops[t.position[b]];
+        for (size_t k = 1; k < loop.size(); ++k)
+          if (g.branches[loop[k].branch].cls != BranchClass::Inductor)
+            rp.emplace_back(j, loop[k].branch, -loop[k].sign);
+      }
     }
+    Rp.setFromTriplets(rp.begin(), rp.end());
   }
   Eigen::MatrixXd Rfull = Rp * P;  // forced rows of P are still zero and Rp never uses them
 
@@ -366,18 +399,21 @@ CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& opt
   // algebraic (perfect_coupling.h). Change to the kept states xi, x = T xi + N eta(xi, z, u):
   // every row over [x z u du] becomes a row over [xi z u du], and the equations are projected
   // on T^T. Lf Tl N = 0 and Tc N = 0, so the forced rows below need only xi'.
-  const FluxReduction flux = flux_reduction(Mdyn, uncancelled_diagonal(Tc, Cd, Tl, Lf));
+  std::vector<bool> inductor_state(n, false);
+  for (int j = 0; j < n; ++j) inductor_state[j] = !m.states_[j].capacitor;
+  const FluxReduction flux = flux_reduction(Mdyn, uncancelled_diagonal(Tc, Cd, Tl, Lf), inductor_state);
   if (!flux.empty()) {
     Eigen::MatrixXd Cmap;
     if (!substitute_flux_free(flux, Rfull, n, Cmap))
-      throw flux_free_current_undetermined(netlist, g, inds, Tl * flux.N);
+      throw flux_free_current_undetermined(netlist, g, inds, Eigen::MatrixXd(Tl * flux.N));
     const Eigen::MatrixXd& T = flux.T;
     P = P * Cmap;
     Rfull = T.transpose() * Rfull * Cmap;
     Mdyn = T.transpose() * Mdyn * T;
+    MdynS = Mdyn.sparseView();
     Kdu = T.transpose() * Kdu;
-    Tc = Tc * T;
-    Tl = Tl * T;
+    Tc = Eigen::MatrixXd(Tc * T).sparseView();
+    Tl = Eigen::MatrixXd(Tl * T).sparseView();
     m.states_ = magnetising_states(m.states_, flux);
     n = static_cast<int>(flux.kept.size());
     ncol = n + mp + 2 * nu;
@@ -387,14 +423,20 @@ CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& opt
   m.energy_xu_ = -Kdu;
   Eigen::MatrixXd Xdot = Eigen::MatrixXd::Zero(n, ncol);  // physical x' = A x + B z + E u + Gamma u'
   if (n > 0) {
-    Eigen::FullPivLU<Eigen::MatrixXd> m_lu(Mdyn);
-    if (!m_lu.isInvertible()) {  // not expected once perfect couplings are reduced
+    Rfull.rightCols(nu) = Kdu;  // Rp never reads du: those columns take the source derivatives
+    bool invertible;
+    if (n < kSparseSolveSize) {  // small circuits keep the unscaled dense solve they always had
+      Eigen::FullPivLU<Eigen::MatrixXd> m_lu(Mdyn);
+      invertible = m_lu.isInvertible();
+      if (invertible) Xdot = solve_or_empty(m_lu, Rfull);
+    } else {
+      invertible = solve_scaled(MdynS, Rfull, false, Xdot);
+    }
+    if (!invertible) {  // not expected once perfect couplings are reduced
       std::vector<int> elements;
       for (int b : inds) elements.push_back(g.branches[b].element);
       throw TopologyError("the inductance matrix is singular", elements);
     }
-    Xdot = solve_or_empty(m_lu, Rfull);
-    Xdot.rightCols(nu) = solve_or_empty(m_lu, Kdu);
   }
   Lcs& s = m.lcs_;
   s.A = Xdot.leftCols(n);
@@ -405,15 +447,18 @@ CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& opt
   // Forced unknowns: link capacitor currents C v', tree inductor voltages Lf i'.
   Eigen::MatrixXd du_sel = Eigen::MatrixXd::Zero(nu, ncol);
   du_sel.rightCols(nu).setIdentity();
+  const RowSparse TcRows = Tc;
+  Eigen::MatrixXd inductor_rates;  // Tl x' + Tlu u' over [x z u du], when a tree inductor needs it
   for (int b = 0; b < nb; ++b) {
     if (role[b] != Role::Forced) continue;
     if (g.branches[b].cls == BranchClass::Capacitor) {
       const int k = cap_index[b];
       P.row(b) = Cd(k) * (Tcu.row(k) * du_sel);
-      if (n > 0) P.row(b) += Cd(k) * (Tc.row(k) * Xdot);  // no states: Tc has no columns (UBSan)
+      for (RowSparse::InnerIterator it(TcRows, k); it; ++it) P.row(b) += Cd(k) * it.value() * Xdot.row(it.col());
     } else {
       const int k = ind_index[b];
-      P.row(b) = Lf.row(k) * (Tl * Xdot + Tlu * du_sel);
+      if (inductor_rates.size() == 0) inductor_rates = Tl * Xdot + Tlu * du_sel;
+      P.row(b) = Lf.row(k) * inductor_rates;
     }
   }
   m.branch_v_ = Vmap * P;
@@ -480,10 +525,28 @@ OutputRow CircuitModel::branch_current(int branch) const {
   return row_from_physical(branch_i_.row(branch));
 }
 
+// v(node) = v(parent) + sign * v(the tree branch from the parent), memoised: summing each node's
+// whole tree path cost O(depth * columns) per node, O(n^3) for a chain-like tree (a multiplier).
+const Eigen::RowVectorXd& CircuitModel::node_row(int node) const {
+  if (node_rows_.empty()) node_rows_.resize(graph_.nodes.size());
+  std::vector<int> pending;  // node, then its ancestors, up to the first known one
+  for (int v = node; v != 0 && node_rows_.at(v).size() == 0;) {
+    pending.push_back(v);
+    const Branch& br = graph_.branches[tree_.node_paths[v].back().branch];
+    v = br.from == v ? br.to : br.from;
+  }
+  if (node_rows_[0].size() == 0) node_rows_[0] = Eigen::RowVectorXd::Zero(branch_v_.cols());
+  for (auto it = pending.rbegin(); it != pending.rend(); ++it) {
+    const LoopTerm& last = tree_.node_paths[*it].back();
+    const Branch& br = graph_.branches[last.branch];
+    const int parent = br.from == *it ? br.to : br.from;
+    node_rows_[*it] = node_rows_[parent] + last.sign * branch_v_.row(last.branch);
+  }
+  return node_rows_[node];
+}
+
 OutputRow CircuitModel::node_voltage(int node) const {
-  Eigen::RowVectorXd r = Eigen::RowVectorXd::Zero(branch_v_.cols());
-  for (const LoopTerm& term : tree_.node_paths.at(node)) r += term.sign * branch_v_.row(term.branch);
-  return row_from_physical(r);
+  return row_from_physical(node_row(node));
 }
 
 double CircuitModel::evaluate(const OutputRow& row, const Eigen::VectorXd& x,

@@ -94,6 +94,7 @@ class CircuitModel : public LcsProblem {
 
  private:
   OutputRow row_from_physical(const Eigen::RowVectorXd& r) const;  // [x z u du] -> shifted row
+  const Eigen::RowVectorXd& node_row(int node) const;              // physical, memoised
 
   Netlist netlist_;
   CircuitGraph graph_;
@@ -103,6 +104,7 @@ class CircuitModel : public LcsProblem {
   // Branch voltages and currents as rows over [x_phys | z | u | du] (physical state).
   Eigen::MatrixXd branch_v_, branch_i_;
   Eigen::MatrixXd energy_xx_, energy_xu_;
+  mutable std::vector<Eigen::RowVectorXd> node_rows_;  // node_row's memo (empty: not yet)
 };
 
 }  // namespace lcs

@@ -58,7 +58,8 @@ std::vector<int> rows_to_eliminate(const Eigen::MatrixXd& V) {
 
 }  // namespace
 
-FluxReduction flux_reduction(const Eigen::MatrixXd& Mdyn, const Eigen::VectorXd& size) {
+FluxReduction flux_reduction(const Eigen::MatrixXd& Mdyn, const Eigen::VectorXd& size,
+                             const std::vector<bool>& may_be_flux_free) {
   const int n = static_cast<int>(Mdyn.rows());
   FluxReduction out;
   for (int j = 0; j < n; ++j)
@@ -66,6 +67,7 @@ FluxReduction flux_reduction(const Eigen::MatrixXd& Mdyn, const Eigen::VectorXd&
   std::vector<std::pair<int, Eigen::VectorXd>> columns;  // (state eliminated, null vector)
   for (const std::vector<int>& group : coupled_groups(Mdyn)) {
     const int g = static_cast<int>(group.size());
+    if (std::none_of(group.begin(), group.end(), [&](int j) { return may_be_flux_free[j]; })) continue;
     Eigen::VectorXd d(g);  // scaled to unit size: the eigenvalues compare with 1
     for (int a = 0; a < g; ++a) d(a) = 1 / std::sqrt(size(group[a]));
     Eigen::MatrixXd scaled(g, g);

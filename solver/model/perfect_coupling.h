@@ -39,8 +39,11 @@ struct FluxReduction {
 // cancellation (> 0: every state has its own C or L): Mdyn scaled by it counts as singular where
 // an eigenvalue is at most kFluxFreeTolerance, so k within about 1e-12 of 1 is k = 1, and two
 // equal windings in series opposition with k = 1 leave no state at all. Empty when Mdyn is
-// nonsingular.
-FluxReduction flux_reduction(const Eigen::MatrixXd& Mdyn, const Eigen::VectorXd& size);
+// nonsingular. Only groups with a state in `may_be_flux_free` are examined: capacitances are
+// positive, so a group of capacitor voltages is never singular (and one that a capacitor loop
+// couples can hold every state of a large circuit, whose eigen-decomposition would cost O(n^3)).
+FluxReduction flux_reduction(const Eigen::MatrixXd& Mdyn, const Eigen::VectorXd& size,
+                             const std::vector<bool>& may_be_flux_free);
 
 constexpr double kFluxFreeTolerance = 1e-12;
 

@@ -1,0 +1,90 @@
+// A mixed LCP on a sparse system, solved by active sets without forming its dense Schur
+// complement: find y (free) and z with
+//
+//   K y + L z = a,     w = P y + Q z + b,     0 <= z ⟂ w >= 0.
+//
+// A time step of an LCS is one (Stewart 8.4: K = I - h theta A, L = -h theta B, P = C, Q = D).
+// Eliminating y gives the LCP(q, M) with M = Q - P K^-1 L, which is dense even when the circuit
+// is sparse: this solver never forms it. A mode J (the pairs with w = 0 and z free; the others
+// have z = 0) turns the problem into one sparse linear system of n + m unknowns,
+//
+//   [ K     L   ] [y]   [ a  ]
+//   [ P_J   Q_J ] [z] = [-b_J ]     and  z_i = 0 for i outside J,
+//
+// whose solution is accepted when z_J >= 0 and w_i >= 0 outside J. The first mode tried is the
+// previous call's (a time step's mode rarely changes: the warm start). Otherwise the pairs that
+// violate their sign conditions are flipped together (block principal pivoting, Judice and
+// Pires 1994), falling back to flipping one pair at a time, the largest index (Murty's rule,
+// finite for a P-matrix M) after three flips that did not shrink the violating set.
+//
+// Cost model. Each mode's matrix has the same sparsity pattern (rows outside J are unit rows
+// stored with explicit zeros), factorised by SparseLU with a COLAMD ordering: O(nnz(L+U)) per
+// factorisation, and each warm hit costs one pair of triangular solves, O(nnz(L+U)), plus one
+// product with [P Q], O(nnz). For a circuit whose graph is a ladder, a tree of rectifiers or a
+// chain, nnz(L+U) grows like n + m, so a step costs O(n + m), not the O((n + m)^2) of a dense
+// Schur complement. Factorisations are cached per mode under a byte budget (least recently used
+// evicted), so a periodic circuit factorises each of its modes once.
+//
+// Failure (a singular mode, or no answer within the pivot limit) is reported, not guessed: the
+// caller falls back to Lemke on the dense M (time_stepper's dense path).
+#pragma once
+
+#include <cstddef>
+#include <memory>
+#include <vector>
+
+#include <Eigen/Dense>
+#include <Eigen/Sparse>
+
+namespace lcs {
+
+struct SparseActiveSetStats {
+  long solves = 0;
+  long warm_hits = 0;          // the previous mode answered
+  long flips = 0;              // pairs whose side changed, summed
+  long factorisations = 0;     // numeric factorisations (cache misses)
+  long failures = 0;           // solves that returned false
+  long evictions = 0;          // cached factorisations dropped to stay within the budget
+  std::size_t cache_bytes = 0; // the cache's current estimate
+};
+
+class SparseActiveSetLcp {
+ public:
+  using Sparse = Eigen::SparseMatrix<double>;
+  // K: n x n, L: n x m, P: m x n, Q: m x m. `cache_budget_bytes` bounds the cached factorisations.
+  SparseActiveSetLcp(const Sparse& K, const Sparse& L, const Sparse& P, const Sparse& Q,
+                     std::size_t cache_budget_bytes = std::size_t{128} << 20);
+  ~SparseActiveSetLcp();
+  SparseActiveSetLcp(const SparseActiveSetLcp&) = delete;
+  SparseActiveSetLcp& operator=(const SparseActiveSetLcp&) = delete;
+
+  // The first mode tried next: the pairs with z_i > 0 (a previous solution).
+  void prefer(const Eigen::VectorXd& z);
+  // Solves for (y, z); w = P y + Q z + b. False when the mode search fails (then y, z are
+  // unspecified and the previous mode is kept).
+  bool solve(const Eigen::VectorXd& a, const Eigen::VectorXd& b, Eigen::VectorXd& y,
+             Eigen::VectorXd& z, Eigen::VectorXd& w);
+  const SparseActiveSetStats& stats() const { return stats_; }
+  int states() const { return n_; }
+  int pairs() const { return m_; }
+
+ private:
+  struct Factorisation;
+  Factorisation* factorisation(const std::vector<char>& mode);
+  bool solve_mode(const std::vector<char>& mode, const Eigen::VectorXd& a, const Eigen::VectorXd& b,
+                  Eigen::VectorXd& y, Eigen::VectorXd& z, Eigen::VectorXd& w);
+
+  int n_ = 0, m_ = 0;
+  Sparse pattern_;                 // [K L; P Q] plus the pair diagonal, column-major
+  std::vector<std::vector<std::pair<int, int>>> pair_entries_;  // per pair row: (column, slot)
+  std::vector<int> diagonal_slot_; // per pair: the slot of its (n + i, n + i) entry
+  Eigen::SparseMatrix<double, Eigen::RowMajor> PQ_;  // [P Q], for w
+  std::vector<char> mode_;         // the last accepted mode (1: z free, w = 0)
+  SparseActiveSetStats stats_;
+  std::size_t budget_;
+  struct Cache;
+  std::unique_ptr<Cache> cache_;
+  Eigen::VectorXd rhs_, sol_;
+};
+
+}  // namespace lcs
