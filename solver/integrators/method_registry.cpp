@@ -37,7 +37,7 @@ std::vector<MethodEntry> make_table() {
 
   MethodEntry euler = fixed_step(
       "euler", "implicit Euler (theta = 1), fixed step, one LCP per step",
-      [](const LcsProblem& m, const MethodOptions&) { return std::make_unique<ThetaMethod>(m, 1.0); });
+      [](const LcsProblem& m, const MethodOptions& o) { return std::make_unique<ThetaMethod>(m, 1.0, o.sparse); });
   euler.is_default = true;
   table.push_back(euler);
 
@@ -77,7 +77,7 @@ std::vector<MethodEntry> make_table() {
 
   MethodEntry theta = fixed_step(
       "theta", "theta-method (--theta, default 0.5: trapezoidal), fixed step, one LCP per step",
-      [](const LcsProblem& m, const MethodOptions& o) { return std::make_unique<ThetaMethod>(m, o.theta); });
+      [](const LcsProblem& m, const MethodOptions& o) { return std::make_unique<ThetaMethod>(m, o.theta, o.sparse); });
   theta.uses_theta = true;
   table.push_back(theta);
 

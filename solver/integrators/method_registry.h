@@ -17,6 +17,9 @@ struct MethodOptions {
   // `--rtol`, `--atol` of the adaptive methods; 0 means the method's default (event: rtol 1e-13
   // on event times; smooth: rtol 1e-6, atol 1e-9 as in SUNDIALS' weighted norm).
   double rtol = 0, atol = 0;
+  // Large circuits step on the sparse system (theta_method.h); false keeps the dense LCP, to
+  // compare the two.
+  bool sparse = true;
 };
 
 // What `bench` varies for a method: the fixed step h, or the tolerance --rtol.

@@ -6,6 +6,10 @@
 
 #include "solver/integrators/event_driven.h"
 #include "solver/lcp/lcp.h"
+#include "solver/lcp/sparse_active_set.h"
+#include "solver/model/sparse_lcs.h"
+
+#include <Eigen/SparseLU>
 #include "solver/model/numerical_failure.h"
 
 namespace lcs {
@@ -25,6 +29,81 @@ double start_step(const Lcs& s, double h_run) {
   return 1e-8 * (rate > 0 ? std::min(h_run, 1.0 / rate) : h_run);
 }
 
+
+// The start's step h on the sparse LCS: the same rate as start_step, from sparse products.
+double sparse_start_step(const SparseLcs& s, double h_run) {
+  double rate = 0;
+  Eigen::VectorXd rows = Eigen::VectorXd::Zero(s.A.rows());
+  for (int k = 0; k < s.A.outerSize(); ++k)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(s.A, k); it; ++it) rows(it.row()) += std::abs(it.value());
+  if (rows.size() > 0) rate = rows.maxCoeff();
+  const Eigen::SparseMatrix<double, Eigen::RowMajor> CB = s.C * s.B;
+  for (int i = 0; i < CB.rows(); ++i) {
+    const double d = s.D.coeff(i, i);
+    if (!(d > 0)) continue;
+    double sum = 0;
+    for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(CB, i); it; ++it) sum += std::abs(it.value());
+    rate = std::max(rate, sum / d);
+  }
+  return 1e-8 * (rate > 0 ? std::min(h_run, 1.0 / rate) : h_run);
+}
+
+// Whether the start LCP's answer leaves something for the event method's mode selection to
+// decide (see consistent_start_z): a pair with no O(1) entry of its own (D_ii = 0), or one at
+// z = w = 0. `q` is w at z = 0.
+bool start_is_ambiguous(const Eigen::VectorXd& diagonal, const Eigen::VectorXd& row_size,
+                        const Eigen::VectorXd& q, const Eigen::VectorXd& z, const Eigen::VectorXd& w) {
+  const double qs = q.size() > 0 ? q.cwiseAbs().maxCoeff() : 0.0;
+  const double zs = (z.size() > 0 ? z.cwiseAbs().maxCoeff() : 0.0) + qs;
+  for (int i = 0; i < z.size(); ++i) {
+    const bool index_one = !(diagonal(i) > 1e-12 * row_size(i));
+    const bool degenerate = std::abs(z(i)) <= 1e-9 * zs && std::abs(w(i)) <= 1e-9 * qs;
+    if (index_one || degenerate) return true;
+  }
+  return false;
+}
+
+// consistent_start_z on the sparse system (large circuits without transistors or lines): the
+// same implicit Euler step's LCP, solved by active sets (sparse_active_set.h). False when the
+// mode search fails (the dense path decides then).
+bool sparse_start_z(const LcsProblem& model, const SparseLcs& s, double t0, double h_run,
+                    const Eigen::VectorXd& x, StepperStats& stats, const Eigen::VectorXd& prefer,
+                    Eigen::VectorXd& z) {
+  const double h = sparse_start_step(s, h_run);
+  const int n = static_cast<int>(s.A.rows()), m = static_cast<int>(s.D.rows());
+  Eigen::SparseMatrix<double> W(n, n);
+  W.setIdentity();
+  W -= h * s.A;
+  SparseActiveSetLcp lcp(W, Eigen::SparseMatrix<double>(-h * s.B), s.C, s.D);
+  if (prefer.size() == m && m > 0 && prefer.cwiseAbs().maxCoeff() > 0) lcp.prefer(prefer);
+  const Eigen::VectorXd u = model.input_values(t0 + h);
+  const Eigen::VectorXd a = x + h * (s.E * u), b = s.F * u;
+  Eigen::VectorXd y, w;
+  const bool solved = lcp.solve(a, b, y, z, w);
+  stats.sparse.solves += lcp.stats().solves;
+  stats.sparse.warm_hits += lcp.stats().warm_hits;
+  stats.sparse.flips += lcp.stats().flips;
+  stats.sparse.factorisations += lcp.stats().factorisations;
+  stats.sparse.failures += lcp.stats().failures;
+  ++stats.factorisations;
+  if (!solved) return false;
+  Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> free_flow(W);
+  if (free_flow.info() != Eigen::Success) return true;
+  const Eigen::VectorXd q = s.C * Eigen::VectorXd(free_flow.solve(a)) + b;
+  Eigen::VectorXd diagonal(m), row_size = Eigen::VectorXd::Zero(m);
+  for (int i = 0; i < m; ++i) diagonal(i) = s.D.coeff(i, i);
+  for (int k = 0; k < s.D.outerSize(); ++k)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(s.D, k); it; ++it)
+      row_size(it.row()) = std::max(row_size(it.row()), std::abs(it.value()));
+  if (start_is_ambiguous(diagonal, row_size, q, z, w)) {
+    try {
+      z = event_mode_z(model, t0, h_run, x);
+    } catch (const NumericalFailure&) {
+    }
+  }
+  return true;
+}
+
 }  // namespace
 
 Eigen::VectorXd consistent_start_z(const LcsProblem& model, double t0, double h_run,
@@ -34,6 +113,12 @@ Eigen::VectorXd consistent_start_z(const LcsProblem& model, double t0, double h_
   // w+ = C W^-1 x + (C W^-1 h E + F) u+  +  (D + C W^-1 h B) z.
   const Lcs& s = model.lcs();
   const int n = s.states();
+  const std::unique_ptr<SparseLcs> sparse =
+      model.has_history() || model.has_transfer_pairs() ? nullptr : sparse_lcs_if_worth(s);
+  if (sparse) {
+    Eigen::VectorXd z;
+    if (sparse_start_z(model, *sparse, t0, h_run, x, stats, prefer, z)) return z;
+  }
   const double h = start_step(s, h_run);
   Eigen::MatrixXd I = Eigen::MatrixXd::Identity(n, n);
   Eigen::PartialPivLU<Eigen::MatrixXd> W(I - h * s.A);
@@ -60,14 +145,9 @@ Eigen::VectorXd consistent_start_z(const LcsProblem& model, double t0, double h_
   // its steps as a ringing. There the event method's mode selection decides, which checks the
   // mode against its derivatives and index-one constraints; a state it cannot fit (one that
   // must jump) keeps the LCP's answer.
-  bool ambiguous = false;
-  const double qs = q.size() > 0 ? q.cwiseAbs().maxCoeff() : 0.0;
-  const double zs = (sol.z.size() > 0 ? sol.z.cwiseAbs().maxCoeff() : 0.0) + qs;
-  for (int i = 0; i < s.pairs(); ++i) {
-    const bool index_one = !(s.D(i, i) > 1e-12 * s.D.row(i).cwiseAbs().maxCoeff());
-    const bool degenerate = std::abs(sol.z(i)) <= 1e-9 * zs && std::abs(sol.w(i)) <= 1e-9 * qs;
-    ambiguous = ambiguous || index_one || degenerate;
-  }
+  const Eigen::VectorXd row_size =
+      s.pairs() > 0 ? Eigen::VectorXd(s.D.cwiseAbs().rowwise().maxCoeff()) : Eigen::VectorXd(0);
+  const bool ambiguous = start_is_ambiguous(s.D.diagonal(), row_size, q, sol.z, sol.w);
   if (ambiguous && lcp.multiplicity() != LcpWarmSolver::Multiplicity::SeveralKeptContinuous) {
     try {
       return event_mode_z(model, t0, h_run, x);

@@ -2,6 +2,7 @@
 #include "solver/model/empty_safe.h"
 
 #include "solver/integrators/start_complementarity.h"
+#include "solver/model/sparse_lcs.h"
 #include "solver/model/numerical_failure.h"
 
 namespace lcs {
@@ -13,45 +14,14 @@ struct ThetaMethod::StepFactors {
   std::unique_ptr<LcpWarmSolver> lcp;
 };
 
-// The LCS with its matrices stored sparse, for the sparse step. Exact zeros only are dropped:
-// the sparse step works with the same numbers as the dense one.
-struct ThetaMethod::SparseLcs {
-  SparseActiveSetLcp::Sparse A, B, C, D;
-  Eigen::MatrixXd E, F;
-};
-
 struct ThetaMethod::SparseStep {
   std::unique_ptr<SparseActiveSetLcp> lcp;
   bool fresh = true;  // no step taken yet: the last mode is its first guess
 };
 
-namespace {
-
-// Measured (bench --scale, implicit Euler): with fewer pairs the dense LCP and its warm start are
-// faster; above, the sparse system's solves grow like the circuit while the dense ones grow like
-// its square. A dense LCS (a multiplier's capacitor loop couples every stage) stays dense.
-constexpr int kSparseStepPairs = 48;
-constexpr double kSparseStepDensity = 0.05;  // nonzeros of A, B, C, D / (n + m)^2
-
-}  // namespace
-
-ThetaMethod::ThetaMethod(const LcsProblem& model, double theta)
+ThetaMethod::ThetaMethod(const LcsProblem& model, double theta, bool sparse)
     : TimeStepper(model), theta_(theta) {
-  const Lcs& s = model.lcs();
-  const int n = s.states(), m = s.pairs();
-  if (m < kSparseStepPairs || model.has_history()) return;
-  auto sparse = std::make_unique<SparseLcs>();
-  sparse->A = s.A.sparseView();
-  sparse->B = s.B.sparseView();
-  sparse->C = s.C.sparseView();
-  sparse->D = s.D.sparseView();
-  const double nnz = static_cast<double>(sparse->A.nonZeros() + sparse->B.nonZeros() +
-                                         sparse->C.nonZeros() + sparse->D.nonZeros());
-  if (nnz > kSparseStepDensity * (n + m) * static_cast<double>(n + m)) return;
-  sparse->E = s.E;
-  sparse->F = s.F;
-  sparse_lcs_ = std::move(sparse);
-  sparse_ = true;
+  if (sparse && !model.has_history()) sparse_lcs_ = sparse_lcs_if_worth(model.lcs());
 }
 
 ThetaMethod::SparseStep* ThetaMethod::sparse_step(double h) {
@@ -65,6 +35,7 @@ ThetaMethod::SparseStep* ThetaMethod::sparse_step(double h) {
   step->lcp = std::make_unique<SparseActiveSetLcp>(
       SparseActiveSetLcp::Sparse(I - h * theta_ * s.A), SparseActiveSetLcp::Sparse(-h * theta_ * s.B),
       s.C, s.D);
+  step->lcp->set_warm_only(model_.has_transfer_pairs());
   ++stats_.factorisations;
   return sparse_cache_.emplace(h, std::move(step)).first->second.get();
 }
@@ -102,7 +73,7 @@ void ThetaMethod::DoStart(double t0, double h_run, const Eigen::VectorXd& x, Eig
 }
 
 void ThetaMethod::DoStep(double t, double h, Eigen::VectorXd& x, Eigen::VectorXd& z) {
-  if (sparse_) {
+  if (sparse_lcs_) {
     // K x+ + L z+ = a: x+ - hθ(A x+ + B z+) = x + h(1-θ)(A x + B z + E u) + hθ E u+.
     SparseStep* step = sparse_step(h);
     if (step->fresh) step->lcp->prefer(z);

@@ -9,12 +9,14 @@
 #include <memory>
 
 #include "solver/integrators/time_stepper.h"
+#include "solver/model/sparse_lcs.h"
 
 namespace lcs {
 
 class ThetaMethod : public TimeStepper {
  public:
-  ThetaMethod(const LcsProblem& model, double theta);
+  // `sparse`: large circuits with a sparse LCS step on the sparse system (else always dense).
+  ThetaMethod(const LcsProblem& model, double theta, bool sparse = true);
   ~ThetaMethod() override;
   StepperStats stats() const override;
 
@@ -28,9 +30,7 @@ class ThetaMethod : public TimeStepper {
   // Large circuits: the step's LCP solved on the sparse system (sparse_active_set.h), per h.
   struct SparseStep;
   SparseStep* sparse_step(double h);
-  bool sparse_ = false;  // decided once: enough pairs, and A, B, C, D sparse enough
-  struct SparseLcs;
-  std::unique_ptr<SparseLcs> sparse_lcs_;
+  std::unique_ptr<SparseLcs> sparse_lcs_;  // null: the dense path (small or dense LCS)
 
   double theta_;
   std::map<double, std::unique_ptr<StepFactors>> cache_;

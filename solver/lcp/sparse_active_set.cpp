@@ -171,6 +171,7 @@ bool SparseActiveSetLcp::solve(const Eigen::VectorXd& a, const Eigen::VectorXd& 
       mode_ = mode;  // zero-level z kept in the mode: the basis that worked (degenerate vertices)
       return true;
     }
+    if (warm_only_) break;
     const int count = static_cast<int>(violating.size());
     if (count < best) {
       best = count;

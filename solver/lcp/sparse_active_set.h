@@ -60,6 +60,10 @@ class SparseActiveSetLcp {
 
   // The first mode tried next: the pairs with z_i > 0 (a previous solution).
   void prefer(const Eigen::VectorXd& z);
+  // Only the previous mode is tried; a change of mode is left to the caller (Lemke's method).
+  // For LCPs that may have several solutions (transistor feedback, 5.4.7), where the solution
+  // Lemke's path reaches is the regenerative switching and the nearest mode is not.
+  void set_warm_only(bool warm_only) { warm_only_ = warm_only; }
   // Solves for (y, z); w = P y + Q z + b. False when the mode search fails (then y, z are
   // unspecified and the previous mode is kept).
   bool solve(const Eigen::VectorXd& a, const Eigen::VectorXd& b, Eigen::VectorXd& y,
@@ -80,6 +84,7 @@ class SparseActiveSetLcp {
   std::vector<int> diagonal_slot_; // per pair: the slot of its (n + i, n + i) entry
   Eigen::SparseMatrix<double, Eigen::RowMajor> PQ_;  // [P Q], for w
   std::vector<char> mode_;         // the last accepted mode (1: z free, w = 0)
+  bool warm_only_ = false;
   SparseActiveSetStats stats_;
   std::size_t budget_;
   struct Cache;

@@ -1,4 +1,7 @@
 #include "solver/model/operating_point.h"
+
+#include "solver/lcp/sparse_active_set.h"
+#include "solver/model/sparse_lcs.h"
 #include "solver/model/empty_safe.h"
 
 #include <algorithm>
@@ -260,9 +263,32 @@ OperatingPoint choose_among(const CircuitModel& model, const StaticProblem& p, d
   return op;
 }
 
+
+// The operating point of a large circuit without transistors on the sparse system (issue 12):
+// the DC equations A x + B z = -e, w = C x + D z + f as a mixed LCP whose modes are sparse
+// linear systems (sparse_active_set.h), each solved exactly, as polish does for the dense path.
+// False (the dense path decides) when the LCS is small or dense, or A or a mode's system is
+// singular: then states may be undetermined, and least_energy chooses them.
+bool sparse_operating_point(const CircuitModel& model, double t, OperatingPoint& op) {
+  const DcForm f = dc_form(model, t);
+  const std::unique_ptr<SparseLcs> s =
+      sparse_lcs_if_worth(f.A, f.B, f.C, f.D, Eigen::MatrixXd(0, 0), Eigen::MatrixXd(0, 0));
+  if (!s) return false;
+  SparseActiveSetLcp lcp(s->A, s->B, s->C, s->D);
+  Eigen::VectorXd w;
+  if (!lcp.solve(-f.e, f.f, op.x, op.z, w)) return false;
+  return true;
+}
 }  // namespace
 
 OperatingPoint solve_operating_point(const CircuitModel& model, double t) {
+  if (!model.has_transfer_pairs()) {
+    OperatingPoint op;
+    if (sparse_operating_point(model, t, op)) {
+      finish(model, op);
+      return op;
+    }
+  }
   StaticProblem p = static_problem(model, t);
   const int m = static_cast<int>(p.M.rows());
   std::vector<std::string> notes;

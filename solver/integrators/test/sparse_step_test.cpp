@@ -1,0 +1,119 @@
+// Large circuits step on the sparse system (issue 12): the same waveforms as the dense LCP to
+// rounding, on generated circuits of 100-300 diodes; the operating point of a rectifier bank in
+// closed form.
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "netlist/netlist.h"
+#include "solver/integrators/transient.h"
+#include "solver/model/circuit_model.h"
+#include "solver/model/operating_point.h"
+
+namespace lcs {
+namespace {
+
+// An RC ladder of `n` sections with a diode clamp to 3 V at every node, driven by a 10 V sine.
+std::string clamped_ladder(int n) {
+  std::string s = "clamped ladder\nV1 in 0 SIN(0 10 1k)\nR0 in n1 100\nVC clamp 0 DC 3\n";
+  for (int k = 1; k <= n; ++k) {
+    const std::string node = "n" + std::to_string(k);
+    s += "C" + std::to_string(k) + " " + node + " 0 100n\n";
+    if (k < n) s += "R" + std::to_string(k) + " " + node + " n" + std::to_string(k + 1) + " 100\n";
+    s += "D" + std::to_string(k) + " " + node + " clamp dclamp\n";
+  }
+  s += "RL n" + std::to_string(n) + " 0 1k\n.model dclamp D(VON=0.6 RON=0.5)\n.tran 10u 2m\n.end\n";
+  return s;
+}
+
+// `n` half-wave rectifiers (series resistance, diode, capacitor and load) on one source.
+std::string rectifier_bank(int n, const std::string& source) {
+  std::string s = "rectifier bank\nV1 in 0 " + source + "\n";
+  for (int k = 1; k <= n; ++k) {
+    const std::string id = std::to_string(k);
+    s += "RS" + id + " in a" + id + " " + std::to_string(5 + k % 7) + "\n";
+    s += "D" + id + " a" + id + " o" + id + " drect\n";
+    s += "C" + id + " o" + id + " 0 " + std::to_string(1 + k % 3) + "u\n";
+    s += "R" + id + " o" + id + " 0 " + std::to_string(500 + 10 * k) + "\n";
+  }
+  s += ".model drect D(VON=0.7 RON=0.2)\n.tran 10u 3m\n.end\n";
+  return s;
+}
+
+struct SimulatedRun {
+  MemorySink sink;
+  TransientSummary summary;
+};
+
+SimulatedRun simulate(const std::string& text, double theta, bool sparse) {
+  const Netlist netlist = parse_netlist_string(text, "generated.cir");
+  ModelOptions mo;
+  mo.t1 = netlist.tran->tstop;
+  const CircuitModel model = CircuitModel::build(netlist, mo);
+  TransientOptions o;
+  o.method = theta == 1.0 ? "euler" : "theta";
+  o.method_options.theta = theta;
+  o.method_options.sparse = sparse;
+  o.step = netlist.tran->tstep;
+  o.tstop = netlist.tran->tstop;
+  SimulatedRun r;
+  r.summary = run_transient(model, model.output_map(model.default_probes()), o, r.sink);
+  return r;
+}
+
+// Largest difference between the two runs' rows over the largest value: rounding is ~1e-13.
+double relative_difference(const MemorySink& a, const MemorySink& b) {
+  EXPECT_EQ(a.rows.size(), b.rows.size());
+  double diff = 0, size = 0;
+  for (size_t r = 0; r < std::min(a.rows.size(), b.rows.size()); ++r) {
+    diff = std::max(diff, (a.rows[r] - b.rows[r]).cwiseAbs().maxCoeff());
+    size = std::max(size, a.rows[r].cwiseAbs().maxCoeff());
+  }
+  return diff / size;
+}
+
+struct Case {
+  const char* name;
+  std::string netlist;
+  double theta;
+};
+
+TEST(SparseStep, SameWaveformsAsTheDenseLcpToRounding) {
+  const Case cases[] = {
+      {"ladder 120, euler", clamped_ladder(120), 1.0},
+      {"ladder 300, trapezoidal", clamped_ladder(300), 0.5},
+      {"rectifiers 150, euler", rectifier_bank(150, "SIN(0 10 1k)"), 1.0},
+      {"rectifiers 250, theta 0.7", rectifier_bank(250, "SIN(0 10 1k)"), 0.7},
+  };
+  for (const Case& c : cases) {
+    const SimulatedRun sparse = simulate(c.netlist, c.theta, true), dense = simulate(c.netlist, c.theta, false);
+    EXPECT_GT(sparse.summary.stepper.sparse.solves, 0) << c.name;  // the sparse path was taken
+    EXPECT_EQ(sparse.summary.stepper.sparse_fallbacks, 0) << c.name;
+    EXPECT_LE(dense.summary.stepper.sparse.solves, 1) << c.name;  // the start's LCP only
+    EXPECT_GT(dense.summary.stepper.lcp.lemke_calls, 0) << c.name;  // modes changed: a real test
+    EXPECT_LT(relative_difference(sparse.sink, dense.sink), 1e-10) << c.name;
+  }
+}
+
+// DC 12 V on the bank: every diode conducts, i_k = (12 - 0.7) / (RS_k + 0.2 + R_k), and the
+// output is R_k i_k. Solved on the sparse system (no pivots: Lemke was not used).
+TEST(SparseStep, OperatingPointOfARectifierBankInClosedForm) {
+  const int n = 200;
+  const Netlist netlist = parse_netlist_string(rectifier_bank(n, "DC 12"), "bank.cir");
+  ModelOptions mo;
+  mo.t1 = netlist.tran->tstop;
+  const CircuitModel model = CircuitModel::build(netlist, mo);
+  const OperatingPoint op = solve_operating_point(model, 0.0);
+  EXPECT_EQ(op.pivots, 0);
+  for (int k = 1; k <= n; ++k) {
+    const double rs = 5 + k % 7, r = 500 + 10 * k;
+    const double i = (12 - 0.7) / (rs + 0.2 + r);
+    const int node = model.graph().node_index("o" + std::to_string(k));
+    EXPECT_NEAR(model.evaluate_dc(model.node_voltage(node), op.x, op.z, 0.0), r * i, 1e-9 * r * i) << k;
+  }
+}
+
+}  // namespace
+}  // namespace lcs

@@ -1,0 +1,23 @@
+#include "solver/model/sparse_lcs.h"
+
+namespace lcs {
+
+std::unique_ptr<SparseLcs> sparse_lcs_if_worth(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B,
+                                               const Eigen::MatrixXd& C, const Eigen::MatrixXd& D,
+                                               const Eigen::MatrixXd& E, const Eigen::MatrixXd& F) {
+  const Eigen::Index n = A.rows(), m = D.rows();
+  if (m < kSparsePairs) return nullptr;
+  auto s = std::make_unique<SparseLcs>();
+  s->A = A.sparseView();
+  s->B = B.sparseView();
+  s->C = C.sparseView();
+  s->D = D.sparseView();
+  const double nnz = static_cast<double>(s->A.nonZeros() + s->B.nonZeros() + s->C.nonZeros() +
+                                         s->D.nonZeros());
+  if (nnz > kSparseDensity * static_cast<double>(n + m) * static_cast<double>(n + m)) return nullptr;
+  s->E = E;
+  s->F = F;
+  return s;
+}
+
+}  // namespace lcs

@@ -1,0 +1,37 @@
+// The LCS of a large circuit stored sparse (issue 12). A diode ladder's or rectifier bank's A, B,
+// C and D hold a few entries per row, and its time steps, start and operating point are then
+// solved on the sparse system (solver/lcp/sparse_active_set.h) in time that grows like the
+// circuit. Small circuits, and circuits whose LCS is dense (a multiplier's capacitor loop couples
+// every stage), keep the dense path.
+#pragma once
+
+#include <memory>
+
+#include <Eigen/Dense>
+#include <Eigen/Sparse>
+
+#include "solver/model/lcs_problem.h"
+
+namespace lcs {
+
+struct SparseLcs {
+  Eigen::SparseMatrix<double> A, B, C, D;  // exact zeros dropped: the same numbers as the dense
+  Eigen::MatrixXd E, F;                    // few input columns: dense
+};
+
+// Measured with `lcspice bench --scale` (implicit Euler, this machine): below this many pairs the
+// dense LCP with its warm start is as fast; the sparse system's cost grows like the circuit,
+// the dense one's like its square.
+constexpr int kSparsePairs = 48;
+// Nonzeros of A, B, C and D over (n + m)^2 above which the LCS counts as dense.
+constexpr double kSparseDensity = 0.05;
+
+// The sparse form of (A, B, C, D) when it pays (enough pairs, sparse enough), else null.
+std::unique_ptr<SparseLcs> sparse_lcs_if_worth(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B,
+                                               const Eigen::MatrixXd& C, const Eigen::MatrixXd& D,
+                                               const Eigen::MatrixXd& E, const Eigen::MatrixXd& F);
+inline std::unique_ptr<SparseLcs> sparse_lcs_if_worth(const Lcs& s) {
+  return sparse_lcs_if_worth(s.A, s.B, s.C, s.D, s.E, s.F);
+}
+
+}  // namespace lcs
