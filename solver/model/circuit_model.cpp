@@ -252,7 +252,7 @@ CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& opt
     }
   const int ns = static_cast<int>(statics.size());
   SparseMatrixD EqP(ns, nb);
-  Eigen::MatrixXd EqR = Eigen::MatrixXd::Zero(ns, ncol);
+  Triplets eqr;  // EqR, then the state columns of EqP: the right-hand side
   {
     Triplets eq;
     auto add_row = [&](int r, const RowSparse& map, int b, double coeff) {
@@ -265,11 +265,11 @@ CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& opt
         if (t.in_tree[b]) {                // v - RON i + z - VON = 0
           add_row(r, Vmap, b, 1.0);
           add_row(r, Imap, b, -law[b].ron);
-          EqR(r, col_z(pair_of[b])) = 1;
-          EqR(r, col_u(0)) = -law[b].von;
+          eqr.emplace_back(r, col_z(pair_of[b]), 1.0);
+          if (law[b].von != 0) eqr.emplace_back(r, col_u(0), -law[b].von);
         } else {                           // i - z = 0
           eq.emplace_back(r, b, 1.0);
-          EqR(r, col_z(pair_of[b])) = -1;
+          eqr.emplace_back(r, col_z(pair_of[b]), -1.0);
         }
         continue;
       }
@@ -277,7 +277,7 @@ CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& opt
         switch (term.of) {
           case Term::Of::Voltage: add_row(r, Vmap, term.index, term.coeff); break;
           case Term::Of::Current: add_row(r, Imap, term.index, term.coeff); break;
-          case Term::Of::Input: EqR(r, col_u(term.index)) += term.coeff; break;
+          case Term::Of::Input: eqr.emplace_back(r, col_u(term.index), term.coeff); break;
         }
       }
     }
@@ -285,31 +285,35 @@ CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& opt
   }
   // Split EqP into the static unknowns (solved for) and the states; by the cycle property the
   // forced unknowns never appear here.
-  SparseMatrixD Es(ns, ns);
-  Eigen::MatrixXd rhs = EqR;
+  SparseMatrixD Es(ns, ns), rhs(ns, ncol);
   {
     Triplets es;
     for (int b = 0; b < EqP.outerSize(); ++b)
       for (SparseMatrixD::InnerIterator it(EqP, b); it; ++it) {
         if (role[b] == Role::Static) es.emplace_back(it.row(), static_of[b], it.value());
-        else if (role[b] == Role::State) rhs(it.row(), state_of[b]) += it.value();
+        else if (role[b] == Role::State) eqr.emplace_back(it.row(), state_of[b], it.value());
         else if (it.value() != 0) throw std::logic_error("circuit model: forced branch in a static equation");
       }
     Es.setFromTriplets(es.begin(), es.end());
+    rhs.setFromTriplets(eqr.begin(), eqr.end());
   }
-  // P: every primary unknown as a row over [x_phys | z | u | du]; forced rows filled below.
-  Eigen::MatrixXd P = Eigen::MatrixXd::Zero(nb, ncol);
+  // P: every primary unknown as a row over [x_phys | z | u | du]; forced rows added below.
+  Triplets p_entries;
   if (ns > 0) {
-    Eigen::MatrixXd sol;
+    SparseMatrixD sol;
     if (!solve_scaled(Es, rhs, true, sol)) {
       std::vector<int> elements;
       for (int b : statics) elements.push_back(g.branches[b].element);
       throw TopologyError("the resistive part of the circuit has no unique solution", elements);
     }
-    for (int r = 0; r < ns; ++r) P.row(statics[r]) = -sol.row(r);
+    for (int c = 0; c < sol.outerSize(); ++c)
+      for (SparseMatrixD::InnerIterator it(sol, c); it; ++it)
+        p_entries.emplace_back(statics[it.row()], c, -it.value());
   }
   for (int b = 0; b < nb; ++b)
-    if (role[b] == Role::State) P(b, state_of[b]) = 1;
+    if (role[b] == Role::State) p_entries.emplace_back(b, state_of[b], 1.0);
+  SparseMatrixD P(nb, ncol);
+  P.setFromTriplets(p_entries.begin(), p_entries.end());
 
   // Capacitor and inductor voltages/currents in terms of states and sources:
   //   v_cap = Tc x + Tcu u,   i_ind = Tl x + Tlu u.
@@ -393,7 +397,7 @@ CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& opt
     }
     Rp.setFromTriplets(rp.begin(), rp.end());
   }
-  Eigen::MatrixXd Rfull = Rp * P;  // forced rows of P are still zero and Rp never uses them
+  SparseMatrixD Rfull = Rp * P;  // forced rows of P are still zero and Rp never uses them
 
   // Perfectly coupled inductors (k = 1): Mdyn is singular and the flux-free currents are
   // algebraic (perfect_coupling.h). Change to the kept states xi, x = T xi + N eta(xi, z, u):
@@ -402,13 +406,17 @@ CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& opt
   std::vector<bool> inductor_state(n, false);
   for (int j = 0; j < n; ++j) inductor_state[j] = !m.states_[j].capacitor;
   const FluxReduction flux = flux_reduction(Mdyn, uncancelled_diagonal(Tc, Cd, Tl, Lf), inductor_state);
-  if (!flux.empty()) {
+  if (!flux.empty()) {  // small circuits (transformers): dense
     Eigen::MatrixXd Cmap;
-    if (!substitute_flux_free(flux, Rfull, n, Cmap))
+    const Eigen::MatrixXd Rdense(Rfull);
+    if (!substitute_flux_free(flux, Rdense, n, Cmap))
       throw flux_free_current_undetermined(netlist, g, inds, Eigen::MatrixXd(Tl * flux.N));
     const Eigen::MatrixXd& T = flux.T;
-    P = P * Cmap;
-    Rfull = T.transpose() * Rfull * Cmap;
+    P = (Eigen::MatrixXd(P) * Cmap).sparseView();
+    p_entries.clear();
+    for (int c = 0; c < P.outerSize(); ++c)
+      for (SparseMatrixD::InnerIterator it(P, c); it; ++it) p_entries.emplace_back(it.row(), c, it.value());
+    Rfull = (T.transpose() * Rdense * Cmap).sparseView();
     Mdyn = T.transpose() * Mdyn * T;
     MdynS = Mdyn.sparseView();
     Kdu = T.transpose() * Kdu;
@@ -421,16 +429,25 @@ CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& opt
   // Stored energy over the (kept) states: the flux-free currents of a perfect coupling store none.
   m.energy_xx_ = Mdyn;
   m.energy_xu_ = -Kdu;
-  Eigen::MatrixXd Xdot = Eigen::MatrixXd::Zero(n, ncol);  // physical x' = A x + B z + E u + Gamma u'
+  // Physical x' = A x + B z + E u + Gamma u': Mdyn x' = Rfull, whose du columns are Kdu (Rp never
+  // reads du).
+  SparseMatrixD Xdot(n, ncol);
   if (n > 0) {
-    Rfull.rightCols(nu) = Kdu;  // Rp never reads du: those columns take the source derivatives
+    Triplets r;
+    for (int c = 0; c < ncol - nu; ++c)
+      for (SparseMatrixD::InnerIterator it(Rfull, c); it; ++it) r.emplace_back(it.row(), c, it.value());
+    for (int c = 0; c < nu; ++c)
+      for (int j = 0; j < n; ++j)
+        if (Kdu(j, c) != 0) r.emplace_back(j, ncol - nu + c, Kdu(j, c));
+    SparseMatrixD R(n, ncol);
+    R.setFromTriplets(r.begin(), r.end());
     bool invertible;
     if (n < kSparseSolveSize) {  // small circuits keep the unscaled dense solve they always had
       Eigen::FullPivLU<Eigen::MatrixXd> m_lu(Mdyn);
       invertible = m_lu.isInvertible();
-      if (invertible) Xdot = solve_or_empty(m_lu, Rfull);
+      if (invertible) Xdot = Eigen::MatrixXd(solve_or_empty(m_lu, Eigen::MatrixXd(R))).sparseView();
     } else {
-      invertible = solve_scaled(MdynS, Rfull, false, Xdot);
+      invertible = solve_scaled(MdynS, R, false, Xdot);
     }
     if (!invertible) {  // not expected once perfect couplings are reduced
       std::vector<int> elements;
@@ -445,21 +462,30 @@ CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& opt
   s.Gamma = Xdot.rightCols(nu);
 
   // Forced unknowns: link capacitor currents C v', tree inductor voltages Lf i'.
-  Eigen::MatrixXd du_sel = Eigen::MatrixXd::Zero(nu, ncol);
-  du_sel.rightCols(nu).setIdentity();
-  const RowSparse TcRows = Tc;
-  Eigen::MatrixXd inductor_rates;  // Tl x' + Tlu u' over [x z u du], when a tree inductor needs it
-  for (int b = 0; b < nb; ++b) {
-    if (role[b] != Role::Forced) continue;
-    if (g.branches[b].cls == BranchClass::Capacitor) {
-      const int k = cap_index[b];
-      P.row(b) = Cd(k) * (Tcu.row(k) * du_sel);
-      for (RowSparse::InnerIterator it(TcRows, k); it; ++it) P.row(b) += Cd(k) * it.value() * Xdot.row(it.col());
-    } else {
-      const int k = ind_index[b];
-      if (inductor_rates.size() == 0) inductor_rates = Tl * Xdot + Tlu * du_sel;
-      P.row(b) = Lf.row(k) * inductor_rates;
+  {
+    const RowSparse TcRows = Tc, LfRows = Lf, XdotRows = Xdot;
+    RowSparse TlRows = Tl;
+    Eigen::RowVectorXd row(ncol);
+    for (int b = 0; b < nb; ++b) {
+      if (role[b] != Role::Forced) continue;
+      row.setZero();
+      if (g.branches[b].cls == BranchClass::Capacitor) {
+        const int k = cap_index[b];
+        row.tail(nu) = Cd(k) * Tcu.row(k);
+        for (RowSparse::InnerIterator it(TcRows, k); it; ++it)
+          row += Cd(k) * it.value() * Eigen::RowVectorXd(XdotRows.row(it.col()));
+      } else {  // Lf_k (Tl x' + Tlu u')
+        const int k = ind_index[b];
+        for (RowSparse::InnerIterator l(LfRows, k); l; ++l) {
+          row.tail(nu) += l.value() * Tlu.row(l.col());
+          for (RowSparse::InnerIterator it(TlRows, l.col()); it; ++it)
+            row += l.value() * it.value() * Eigen::RowVectorXd(XdotRows.row(it.col()));
+        }
+      }
+      for (int c = 0; c < ncol; ++c)
+        if (row(c) != 0) p_entries.emplace_back(b, c, row(c));
     }
+    P.setFromTriplets(p_entries.begin(), p_entries.end());
   }
   m.branch_v_ = Vmap * P;
   m.branch_i_ = Imap * P;
@@ -471,7 +497,7 @@ CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& opt
     if (pr.voltage_type) {
       W.row(k) = m.branch_i_.row(b);
     } else {
-      W.row(k) = law[b].ron * m.branch_i_.row(b) - m.branch_v_.row(b);
+      W.row(k) = law[b].ron * Eigen::RowVectorXd(m.branch_i_.row(b)) - Eigen::RowVectorXd(m.branch_v_.row(b));
       W(k, col_u(0)) += law[b].von;
     }
   }
@@ -487,8 +513,8 @@ CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& opt
     Eigen::RowVectorXd r = Eigen::RowVectorXd::Zero(ncol);
     for (const Term& term : terms) {
       switch (term.of) {
-        case Term::Of::Voltage: r += term.coeff * m.branch_v_.row(term.index); break;
-        case Term::Of::Current: r += term.coeff * m.branch_i_.row(term.index); break;
+        case Term::Of::Voltage: r += term.coeff * Eigen::RowVectorXd(m.branch_v_.row(term.index)); break;
+        case Term::Of::Current: r += term.coeff * Eigen::RowVectorXd(m.branch_i_.row(term.index)); break;
         case Term::Of::Input: r(col_u(term.index)) += term.coeff; break;
       }
     }
@@ -518,31 +544,36 @@ OutputRow CircuitModel::row_from_physical(const Eigen::RowVectorXd& r) const {
 }
 
 OutputRow CircuitModel::branch_voltage(int branch) const {
-  return row_from_physical(branch_v_.row(branch));
+  return row_from_physical(Eigen::RowVectorXd(branch_v_.row(branch)));
 }
 
 OutputRow CircuitModel::branch_current(int branch) const {
-  return row_from_physical(branch_i_.row(branch));
+  return row_from_physical(Eigen::RowVectorXd(branch_i_.row(branch)));
 }
 
 // v(node) = v(parent) + sign * v(the tree branch from the parent), memoised: summing each node's
 // whole tree path cost O(depth * columns) per node, O(n^3) for a chain-like tree (a multiplier).
-const Eigen::RowVectorXd& CircuitModel::node_row(int node) const {
-  if (node_rows_.empty()) node_rows_.resize(graph_.nodes.size());
+Eigen::RowVectorXd CircuitModel::node_row(int node) const {
+  if (node_rows_.empty()) {
+    node_rows_.assign(graph_.nodes.size(), Eigen::SparseVector<double>(branch_v_.cols()));
+    node_row_known_.assign(graph_.nodes.size(), false);
+    node_row_known_[0] = true;  // ground
+  }
   std::vector<int> pending;  // node, then its ancestors, up to the first known one
-  for (int v = node; v != 0 && node_rows_.at(v).size() == 0;) {
+  for (int v = node; !node_row_known_.at(v);) {
     pending.push_back(v);
     const Branch& br = graph_.branches[tree_.node_paths[v].back().branch];
     v = br.from == v ? br.to : br.from;
   }
-  if (node_rows_[0].size() == 0) node_rows_[0] = Eigen::RowVectorXd::Zero(branch_v_.cols());
   for (auto it = pending.rbegin(); it != pending.rend(); ++it) {
     const LoopTerm& last = tree_.node_paths[*it].back();
     const Branch& br = graph_.branches[last.branch];
     const int parent = br.from == *it ? br.to : br.from;
-    node_rows_[*it] = node_rows_[parent] + last.sign * branch_v_.row(last.branch);
+    node_rows_[*it] = node_rows_[parent] + static_cast<double>(last.sign) *
+                                               Eigen::SparseVector<double>(branch_v_.row(last.branch).transpose());
+    node_row_known_[*it] = true;
   }
-  return node_rows_[node];
+  return Eigen::RowVectorXd(node_rows_[node].transpose());
 }
 
 OutputRow CircuitModel::node_voltage(int node) const {
@@ -586,7 +617,7 @@ OutputRow CircuitModel::terminal_current(const Probe& p) const {
     for (int b = 0; b < static_cast<int>(graph_.branches.size()) && first < 0; ++b)
       if (graph_.branches[b].element == d->element_index()) first = b;
     Eigen::RowVectorXd r = Eigen::RowVectorXd::Zero(branch_i_.cols());
-    for (auto [local, coeff] : terms) r += coeff * branch_i_.row(first + local);
+    for (auto [local, coeff] : terms) r += coeff * Eigen::RowVectorXd(branch_i_.row(first + local));
     return row_from_physical(r);
   }
   throw NetlistError(p.loc, "probe " + p.name() + ": no transistor '" + p.a + "'");

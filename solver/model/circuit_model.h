@@ -24,6 +24,7 @@
 #include <vector>
 
 #include <Eigen/Dense>
+#include <Eigen/Sparse>
 
 #include "graph/circuit_graph.h"
 #include "graph/spanning_tree.h"
@@ -94,17 +95,20 @@ class CircuitModel : public LcsProblem {
 
  private:
   OutputRow row_from_physical(const Eigen::RowVectorXd& r) const;  // [x z u du] -> shifted row
-  const Eigen::RowVectorXd& node_row(int node) const;              // physical, memoised
+  Eigen::RowVectorXd node_row(int node) const;                     // physical, memoised
 
   Netlist netlist_;
   CircuitGraph graph_;
   SpanningTree tree_;
   std::vector<std::shared_ptr<Device>> devices_;
   std::vector<std::optional<StorageInfo>> storage_;
-  // Branch voltages and currents as rows over [x_phys | z | u | du] (physical state).
-  Eigen::MatrixXd branch_v_, branch_i_;
+  // Branch voltages and currents as rows over [x_phys | z | u | du] (physical state), sparse: a
+  // branch reads a few states, pairs and inputs.
+  Eigen::SparseMatrix<double, Eigen::RowMajor> branch_v_, branch_i_;
   Eigen::MatrixXd energy_xx_, energy_xu_;
-  mutable std::vector<Eigen::RowVectorXd> node_rows_;  // node_row's memo (empty: not yet)
+  // node_row's memo, sparse like the branch rows (an empty vector: not yet). Not thread-safe.
+  mutable std::vector<Eigen::SparseVector<double>> node_rows_;
+  mutable std::vector<bool> node_row_known_;
 };
 
 }  // namespace lcs

@@ -52,6 +52,59 @@ void clear_structural_zeros_sparse(const SparseMatrixD& E, const Eigen::MatrixXd
   }
 }
 
+
+// 1 / (the largest entry of each row) (1 for an empty row).
+Eigen::VectorXd unit_row_scale(const SparseMatrixD& E) {
+  Eigen::VectorXd row_scale = Eigen::VectorXd::Zero(E.rows());
+  for (int k = 0; k < E.outerSize(); ++k)
+    for (SparseMatrixD::InnerIterator it(E, k); it; ++it)
+      row_scale(it.row()) = std::max(row_scale(it.row()), std::abs(it.value()));
+  for (Eigen::Index r = 0; r < E.rows(); ++r) row_scale(r) = row_scale(r) > 0 ? 1.0 / row_scale(r) : 1.0;
+  return row_scale;
+}
+
+double max_abs(const SparseMatrixD& S) {
+  double out = 0;
+  for (int k = 0; k < S.outerSize(); ++k)
+    for (SparseMatrixD::InnerIterator it(S, k); it; ++it) out = std::max(out, std::abs(it.value()));
+  return out;
+}
+
+bool all_finite(const SparseMatrixD& S) {
+  for (int k = 0; k < S.outerSize(); ++k)
+    for (SparseMatrixD::InnerIterator it(S, k); it; ++it)
+      if (!std::isfinite(it.value())) return false;
+  return true;
+}
+
+// clear_structural_zeros_sparse for a sparse X: only X's stored entries can be cleared.
+void clear_structural_zeros_sparse(const SparseMatrixD& E, const SparseMatrixD& R, SparseMatrixD& X) {
+  std::mt19937_64 rng(0x5eed);
+  std::uniform_real_distribution<double> magnitude(1.0, 2.0);
+  auto draw = [&] { return (rng() & 1 ? 1.0 : -1.0) * magnitude(rng); };
+  SparseMatrixD random = E, random_rhs = R;
+  for (int k = 0; k < random.outerSize(); ++k)
+    for (SparseMatrixD::InnerIterator it(random, k); it; ++it) it.valueRef() = draw();
+  for (int k = 0; k < random_rhs.outerSize(); ++k)
+    for (SparseMatrixD::InnerIterator it(random_rhs, k); it; ++it) it.valueRef() = draw();
+  Eigen::SparseLU<SparseMatrixD, Eigen::COLAMDOrdering<int>> lu;
+  lu.compute(random);
+  if (lu.info() != Eigen::Success) return;
+  const SparseMatrixD reach = lu.solve(random_rhs);
+  for (int c = 0; c < X.outerSize(); ++c) {
+    double reach_scale = 0, column = 0;
+    for (SparseMatrixD::InnerIterator it(reach, c); it; ++it) reach_scale = std::max(reach_scale, std::abs(it.value()));
+    for (SparseMatrixD::InnerIterator it(X, c); it; ++it) column = std::max(column, std::abs(it.value()));
+    SparseMatrixD::InnerIterator r(reach, c);
+    for (SparseMatrixD::InnerIterator it(X, c); it; ++it) {
+      while (r && r.row() < it.row()) ++r;
+      const double reached = r && r.row() == it.row() ? std::abs(r.value()) : 0.0;
+      if (reached <= 1e-9 * reach_scale && std::abs(it.value()) <= 1e-9 * column) it.valueRef() = 0;
+    }
+  }
+  X.prune([](const Eigen::Index&, const Eigen::Index&, const double& v) { return v != 0; });
+}
+
 }  // namespace
 
 // Measured on generated RC-diode ladders and rectifier banks (`analyze`, Release, this machine):
@@ -65,11 +118,7 @@ bool solve_scaled(const SparseMatrixD& E, const Eigen::MatrixXd& R, bool clear_s
     X = Eigen::MatrixXd::Zero(n, R.cols());
     return true;
   }
-  Eigen::VectorXd row_scale = Eigen::VectorXd::Zero(n);
-  for (int k = 0; k < E.outerSize(); ++k)
-    for (SparseMatrixD::InnerIterator it(E, k); it; ++it)
-      row_scale(it.row()) = std::max(row_scale(it.row()), std::abs(it.value()));
-  for (Eigen::Index r = 0; r < n; ++r) row_scale(r) = row_scale(r) > 0 ? 1.0 / row_scale(r) : 1.0;
+  const Eigen::VectorXd row_scale = unit_row_scale(E);
   if (n < kSparseSolveSize) return solve_dense(E, row_scale, R, clear_structural, X);
 
   const SparseMatrixD scaled = row_scale.asDiagonal() * E;
@@ -87,6 +136,40 @@ bool solve_scaled(const SparseMatrixD& E, const Eigen::MatrixXd& R, bool clear_s
   const bool ill_conditioned = X.cwiseAbs().maxCoeff() > 1e12 * Rs.cwiseAbs().maxCoeff();
   if (!X.allFinite() || !(residual <= 1e-9 * size) || ill_conditioned)
     return solve_dense(E, row_scale, R, clear_structural, X);
+  if (clear_structural) clear_structural_zeros_sparse(E, R, X);
+  return true;
+}
+
+bool solve_scaled(const SparseMatrixD& E, const SparseMatrixD& R, bool clear_structural,
+                  SparseMatrixD& X) {
+  const Eigen::Index n = E.rows();
+  if (n == 0 || R.cols() == 0) {
+    X = SparseMatrixD(n, R.cols());
+    return true;
+  }
+  if (n < kSparseSolveSize) {
+    Eigen::MatrixXd dense;
+    if (!solve_scaled(E, Eigen::MatrixXd(R), clear_structural, dense)) return false;
+    X = dense.sparseView();
+    return true;
+  }
+  const Eigen::VectorXd row_scale = unit_row_scale(E);
+  const SparseMatrixD scaled = row_scale.asDiagonal() * E;
+  const SparseMatrixD Rs = row_scale.asDiagonal() * R;
+  Eigen::SparseLU<SparseMatrixD, Eigen::COLAMDOrdering<int>> lu;
+  lu.compute(scaled);
+  if (lu.info() != Eigen::Success) return false;
+  X = lu.solve(Rs);
+  X.prune([](const Eigen::Index&, const Eigen::Index&, const double& v) { return v != 0; });
+  // As for a dense right-hand side: a numerically singular E goes to the rank-revealing LU.
+  const double rs = max_abs(Rs), xs = max_abs(X);
+  const double residual = max_abs(SparseMatrixD(scaled * X - Rs));
+  if (!all_finite(X) || !(residual <= 1e-9 * std::max(1.0, rs) * std::max(1.0, xs)) || xs > 1e12 * rs) {
+    Eigen::MatrixXd dense;
+    if (!solve_dense(E, row_scale, Eigen::MatrixXd(R), clear_structural, dense)) return false;
+    X = dense.sparseView();
+    return true;
+  }
   if (clear_structural) clear_structural_zeros_sparse(E, R, X);
   return true;
 }

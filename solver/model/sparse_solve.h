@@ -25,5 +25,8 @@ constexpr int kSparseSolveSize = 96;
 // unspecified). E is square; R has E.rows() rows.
 bool solve_scaled(const SparseMatrixD& E, const Eigen::MatrixXd& R, bool clear_structural,
                   Eigen::MatrixXd& X);
+// The same with a sparse right-hand side and a sparse X (only exact zeros left out).
+bool solve_scaled(const SparseMatrixD& E, const SparseMatrixD& R, bool clear_structural,
+                  SparseMatrixD& X);
 
 }  // namespace lcs
