@@ -8,6 +8,7 @@
 #include <Eigen/SparseLU>
 
 #include "solver/model/empty_safe.h"
+#include "solver/model/singleton_rows.h"
 #include "solver/model/structural_zeros.h"
 
 namespace lcs {
@@ -156,6 +157,11 @@ bool solve_scaled(const SparseMatrixD& E, const SparseMatrixD& R, bool clear_str
   const Eigen::VectorXd row_scale = unit_row_scale(E);
   const SparseMatrixD scaled = row_scale.asDiagonal() * E;
   const SparseMatrixD Rs = row_scale.asDiagonal() * R;
+  if (solve_by_singleton_rows(scaled, Rs, X)) {
+    // Substitution combines entries only along the structure's paths: no rounding fill to clear,
+    // but a row whose pivot is tiny against the rest of its row amplifies like any triangle does.
+    if (all_finite(X) && !(max_abs(X) > 1e12 * std::max(1.0, max_abs(Rs)))) return true;
+  }
   Eigen::SparseLU<SparseMatrixD, Eigen::COLAMDOrdering<int>> lu;
   lu.compute(scaled);
   if (lu.info() != Eigen::Success) return false;
