@@ -78,9 +78,11 @@ struct LcpWarmStats {
   long warm_hits = 0;          // answered by the previous active set (one solve + sign check)
   long lemke_calls = 0;
   long lemke_pivots = 0;
+  long polished = 0;           // Lemke's numerical failures repaired by principal pivoting
 
   LcpWarmStats& operator+=(const LcpWarmStats& o) {
     solves += o.solves;
+    polished += o.polished;
     warm_hits += o.warm_hits;
     lemke_calls += o.lemke_calls;
     lemke_pivots += o.lemke_pivots;
@@ -125,6 +127,7 @@ class LcpWarmSolver {
 
  private:
   const LcpSolution& solve_once(const Eigen::VectorXd& q);
+  void polish_by_principal_pivoting(const Eigen::VectorXd& q);
   bool several_possible_ = false, several_seen_ = false, preferred_ = false;
   Multiplicity multiplicity_ = Multiplicity::Unknown;
   int solutions_ = 0;

@@ -19,6 +19,7 @@
 #include "solver/lcp/lcp.h"
 #include "solver/lcp/lcp_internal.h"
 #include "solver/lcp/p_matrix.h"
+#include "solver/lcp/sparse_active_set.h"
 
 namespace lcs {
 
@@ -158,6 +159,27 @@ const LcpSolution& LcpWarmSolver::solve(const Eigen::VectorXd& q) {
   return last_;
 }
 
+// Lemke's tableau drifts on an ill-conditioned M (a 30-stage multiplier's step: entries from
+// 0.1 to 1e3 over long capacitor chains) and can end on a complementary basis whose solution
+// misses the tolerance. From that basis, block principal pivoting with fresh LU solves of M_JJ
+// (sparse_active_set.h, here with no free variables) reaches the solution when one exists; its
+// answer is accepted only on the residual check, as Lemke's would be.
+void LcpWarmSolver::polish_by_principal_pivoting(const Eigen::VectorXd& q) {
+  const int n = static_cast<int>(M_.rows());
+  const SparseActiveSetLcp::Sparse none(0, 0), L(0, n), P(n, 0);
+  const SparseActiveSetLcp::Sparse Q = M_.sparseView();
+  SparseActiveSetLcp pivoting(none, L, P, Q);
+  pivoting.prefer(last_.z);
+  Eigen::VectorXd y, z, w;
+  if (!pivoting.solve(Eigen::VectorXd(0), q, y, z, w)) return;
+  if (!(lcp_residual(M_, q, z) <= options_.feas_tol * std::max(1.0, std::max(q.cwiseAbs().maxCoeff(), z.cwiseAbs().maxCoeff()))))
+    return;
+  last_.z = z;
+  last_.w = w;
+  last_.status = LcpStatus::Solved;
+  ++stats_.polished;
+}
+
 const LcpSolution& LcpWarmSolver::solve_once(const Eigen::VectorXd& q) {
   const int n = static_cast<int>(M_.rows());
   lcp_detail::check_square(M_, q, "LcpWarmSolver::solve");
@@ -211,6 +233,7 @@ const LcpSolution& LcpWarmSolver::solve_once(const Eigen::VectorXd& q) {
   impl_->engine.solve(M_, q, options_, last_);
   ++stats_.lemke_calls;
   stats_.lemke_pivots += last_.pivots;
+  if (last_.status == LcpStatus::NumericalFailure) polish_by_principal_pivoting(q);
   if (last_.status == LcpStatus::Solved && n <= kMaxWarmN) {
     // The final complementary basis, not the support of z (see the warm-hit branch).
     std::uint64_t mask = impl_->engine.basic_z_mask();
