@@ -233,8 +233,8 @@ ScaleStudy study_scale(ScaleFamily family, const ScaleSettings& settings, const 
       if (progress) progress(who + " N=" + std::to_string(n), done++ / total);
       double predicted = 0;
       if (predicted_too_long(finished, p.diodes, settings.timeout_seconds, &predicted)) {
-        char buf[160];
-        std::snprintf(buf, sizeof buf, "not run: the last two runs predict about %.0f s, over twice the %.0f s limit",
+        char buf[160];  // the status says it was not run
+        std::snprintf(buf, sizeof buf, "the last two runs predict about %.0f s of wall clock, over twice the %.0f s limit",
                       predicted, settings.timeout_seconds);
         p.status = "skipped";
         p.failure = buf;
@@ -380,7 +380,7 @@ void write_scale_chart(const ScaleStudy& study, const std::string& png) {
   script += "set title 'CPU per simulated second (lcspice: parse + form + run; ngspice: its analysis)'\n";
   script += "set ylabel 'CPU seconds per simulated second'\n" + plot(2, false);
   script += "set title " + gnuplot_string("peak resident set of each run's own process") + "\n";
-  script += "set ylabel 'peak memory [MB]'\nset key bottom right\n" + plot(3, true);
+  script += "set ylabel 'peak memory [MB]'\n" + plot(3, true);
   script += "unset multiplot\n";
   run_gnuplot(script, "'" + png + "'");
   file.commit();
