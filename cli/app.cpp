@@ -101,16 +101,29 @@ int run_cli(int argc, char** argv) {
   bench_cmd->add_option("-o", bench.output_dir, "output directory (default bench-results)");
   bench_cmd->add_flag("--quick", bench.quick, "two settings per method, one ngspice run: seconds, for tests");
   bench_cmd->add_flag("--no-ngspice", bench.no_ngspice, "leave ngspice out");
-  bench_cmd->add_option("--method", bench.methods, "comma-separated methods (default: all)");
+  bench_cmd->add_option("--method,--methods", bench.methods,
+                        "comma-separated methods (default: all; --scaling and --scale: euler)");
   bench_cmd->add_option("--probe", bench.probes, "comma-separated probes for the netlists given");
   bench_cmd->add_option("--ngspice-option", bench.ngspice_options, "extra ngspice .options word (repeatable)");
   add_number(bench_cmd, "--ngspice-timeout", bench.ngspice_timeout, "seconds of wall time per ngspice run (default 300)");
   bench_cmd->add_flag("--scaling", bench.scaling,
                       "cost scaling instead: a fixed-step method (default euler) and ngspice at step h over "
                       "TSTOP, 2 TSTOP, 4 TSTOP, ...; CPU against steps, log-log slopes; <circuit>_scaling.csv/.png");
-  add_number(bench_cmd, "--tstop", bench.tstop, "--scaling: the first run's TSTOP (default: the netlist's)");
+  add_number(bench_cmd, "--tstop", bench.tstop, "--scaling: the first run's TSTOP (default: the netlist's); "
+             "--scale: every run's TSTOP (default: five source periods)");
   bench_cmd->add_option("--scaling-max", bench.scaling_max,
                         "--scaling: longest run / first run, a power of two (default: up to 64, at most ~4e4 steps)");
+  bench_cmd->add_option("--scale", bench.scale,
+                        "circuit-size study instead: generated circuits of one family (cw, ladder, rectifiers) at "
+                        "growing N, CPU per simulated second and peak memory against diodes for the methods and "
+                        "ngspice, each run in its own process; growth exponents; scale_<family>.csv/.png");
+  bench_cmd->add_option("--sizes", bench.sizes,
+                        "--scale: comma-separated, increasing N: stages (cw, 2N diodes), sections (ladder) or "
+                        "rectifiers (default: 10 to 1000 diodes)");
+  add_number(bench_cmd, "--run-timeout", bench.run_timeout,
+             "--scale: wall-clock seconds per run; a run killed at the limit ends its series (default 120)");
+  bench_cmd->add_option("--fit-from", bench.fit_from,
+                        "--scale: fit the growth exponents over runs with at least this many diodes (default 100)");
 
   PlotArgs plot;
   CLI::App* plot_cmd = app.add_subcommand("plot", "plot a waveform CSV against time (PNG, gnuplot)");

@@ -3,16 +3,19 @@
 // ngspice at 1e-3, CPU time).
 #include <sys/stat.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <iostream>
+#include <optional>
 #include <sstream>
 
 #include "cli/atomic_file.h"
 #include "cli/bench_chart.h"
+#include "cli/bench_scale.h"
 #include "cli/bench_scaling.h"
 #include "cli/bench_study.h"
 #include "cli/commands.h"
@@ -147,9 +150,53 @@ int scaling_command(const BenchArgs& args) {
   return kExitOk;
 }
 
+// `bench --scale FAMILY`: one circuit-size study of a generated family.
+int scale_command(const BenchArgs& args) {
+  const std::optional<ScaleFamily> family = find_scale_family(args.scale);
+  if (!family)
+    throw CliError(kExitUsage, "error: unknown circuit family '" + args.scale + "' (known: " + scale_family_names() + ")");
+  if (!args.netlists.empty()) throw CliError(kExitUsage, "error: --scale generates its circuits: give no netlists");
+  if (args.scaling || args.quick || args.scaling_max != 0)
+    throw CliError(kExitUsage, "error: --scale goes with none of --scaling, --quick, --scaling-max");
+  ScaleSettings settings;
+  if (!args.methods.empty()) settings.methods = split(args.methods, ',');
+  settings.ngspice = !args.no_ngspice;
+  settings.ngspice_options = args.ngspice_options;
+  for (const std::string& n : split(args.sizes, ',')) {
+    char* end = nullptr;
+    const long v = std::strtol(n.c_str(), &end, 10);
+    if (end == n.c_str() || *end != '\0') throw CliError(kExitUsage, "error: --sizes: '" + n + "' is not a whole number");
+    settings.sizes.push_back(static_cast<int>(std::clamp(v, -1L, 1000000L)));
+  }
+  settings.timeout_seconds = args.run_timeout;
+  settings.fit_min_diodes = args.fit_from;
+  if (args.tstop) {
+    if (!(*args.tstop > 0)) throw CliError(kExitUsage, "error: --tstop must be positive");
+    settings.tstop = *args.tstop;
+  }
+  std::string why;
+  if (!settings.IsValid(&why)) throw CliError(kExitUsage, "error: " + why);
+  if (mkdir(args.output_dir.c_str(), 0777) != 0 && errno != EEXIST)
+    throw CliError(kExitUsage, "error: cannot create " + args.output_dir + ": " + std::strerror(errno));
+  ScaleStudy study;
+  {
+    ProgressLine line(std::string("bench --scale ") + scale_family_name(*family));
+    study = study_scale(*family, settings, [&](const std::string& what, double f) { line.update(f, what); });
+  }
+  const std::string base = args.output_dir + "/scale_" + scale_family_name(*family);
+  write_scale_csv(study, base + ".csv");
+  write_scale_chart(study, base + ".png");
+  print_scale(study);
+  std::printf("wrote %s.csv and %s.png\n", base.c_str(), base.c_str());
+  return kExitOk;
+}
+
 }  // namespace
 
 int bench_command(const BenchArgs& args) {
+  if (!args.scale.empty()) return scale_command(args);
+  if (!args.sizes.empty() || args.run_timeout != 120 || args.fit_from != 100)
+    throw CliError(kExitUsage, "error: --sizes, --run-timeout and --fit-from belong to --scale");
   if (args.scaling) return scaling_command(args);
   if (args.tstop || args.scaling_max != 0)
     throw CliError(kExitUsage, "error: --tstop and --scaling-max belong to --scaling");

@@ -58,6 +58,11 @@ struct BenchArgs {
   bool scaling = false;
   std::optional<double> tstop;  // the first run's TSTOP (default: the netlist's)
   int scaling_max = 0;          // longest run / first run (0: from the netlist's TSTOP/TSTEP)
+  // --scale FAMILY: CPU and peak memory against circuit size instead (cli/bench_scale.h).
+  std::string scale;            // cw, ladder or rectifiers; empty: not this study
+  std::string sizes;            // comma-separated N (empty: the family's defaults)
+  double run_timeout = 120;     // wall-clock seconds per run
+  int fit_from = 100;           // the growth exponents are fitted over runs with this many diodes
 };
 int bench_command(const BenchArgs& args);
 

@@ -42,7 +42,11 @@ std::string ngspice_node_vector(const std::string& node) { return node == "0" ? 
 
 TranslatedDeck translate_to_ngspice(const CircuitModel& model, const std::vector<Probe>& probes,
                                     const TranslationOptions& options) {
-  const Netlist& netlist = model.netlist();
+  return translate_to_ngspice(model.netlist(), model.devices(), probes, options);
+}
+
+TranslatedDeck translate_to_ngspice(const Netlist& netlist, const std::vector<std::shared_ptr<Device>>& devices,
+                                    const std::vector<Probe>& probes, const TranslationOptions& options) {
   if (!netlist.tran) throw std::invalid_argument("the netlist has no .tran card");
   const TranSpec& tran = *netlist.tran;
   TranslatedDeck deck;
@@ -64,7 +68,7 @@ TranslatedDeck translate_to_ngspice(const CircuitModel& model, const std::vector
   context.saturation_current = options.saturation_current;
   context.fresh = [&names](const std::string& wanted) { return names.fresh(wanted); };
   std::vector<std::string> models, after;  // cards of devices without branches (K) come last
-  for (const std::shared_ptr<Device>& device : model.devices()) {
+  for (const std::shared_ptr<Device>& device : devices) {
     context.current_probed = current_probes.count(device->name()) > 0;
     context.reversed = options.reversed_diodes.count(device->name()) > 0;
     context.open = options.open_diodes.count(device->name()) > 0;

@@ -65,6 +65,11 @@ struct TranslatedDeck {
 // comparison needs. Throws std::invalid_argument for a netlist without .tran.
 TranslatedDeck translate_to_ngspice(const CircuitModel& model, const std::vector<Probe>& probes,
                                     const TranslationOptions& options);
+// The same from the netlist and its devices alone (solver/devices/device_registry.h), with no
+// model formed: what `bench --scale` uses, so that an ngspice run does not pay for forming
+// lcspice's model of a large circuit.
+TranslatedDeck translate_to_ngspice(const Netlist& netlist, const std::vector<std::shared_ptr<Device>>& devices,
+                                    const std::vector<Probe>& probes, const TranslationOptions& options);
 
 // The ngspice vector name of a node ("0" is not a vector: ground).
 std::string ngspice_node_vector(const std::string& node);

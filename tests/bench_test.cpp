@@ -182,5 +182,88 @@ TEST(Bench, ScalingNeedsAFixedStepMethodAndANetlist) {
   EXPECT_EQ(r.err_line(0), "error: --tstop and --scaling-max belong to --scaling");
 }
 
+// --scale on two tiny sizes: one row per series and size, every run in its own process with a
+// positive CPU time and peak memory, the exponents printed (fitted from 1 diode on, so that two
+// runs are enough). No timings are compared (shared machines are noisy).
+TEST(Bench, ScaleStudyRunsEverySizeInItsOwnProcess) {
+  const fs::path dir = scratch_dir("bench_scale");
+  const Result r =
+      run_lcspice("bench --scale rectifiers --sizes 2,4 --methods euler --fit-from 1 -o '" + (dir / "out").string() + "'",
+                  dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const Csv csv = parse_csv(read_file(dir / "out" / "scale_rectifiers.csv"));
+  ASSERT_EQ(csv.header, (std::vector<std::string>{"family", "who", "size", "diodes", "status", "tstop", "steps",
+                                                  "cpu_seconds", "cpu_per_sim_second", "formation_cpu_seconds",
+                                                  "peak_rss_mb", "baseline_rss_mb", "wall_seconds", "failure"}));
+  ASSERT_EQ(csv.raw.size(), 4u);
+  const char* who[] = {"euler", "euler", "ngspice", "ngspice"};
+  for (size_t k = 0; k < 4; ++k) {
+    SCOPED_TRACE(k);
+    const std::vector<std::string>& row = csv.raw[k];
+    const std::vector<double>& v = csv.rows[k];
+    EXPECT_EQ(row[0], "rectifiers");
+    EXPECT_EQ(row[1], who[k]);
+    EXPECT_EQ(row[2], k % 2 ? "4" : "2");
+    EXPECT_EQ(row[3], row[2]);
+    EXPECT_EQ(row[4], "ok") << row[13];
+    EXPECT_NEAR(v[5], 0.1, 1e-12);  // five periods of 50 Hz
+    EXPECT_GT(v[6], 0);
+    EXPECT_GT(v[7], 0);
+    EXPECT_NEAR(v[8], v[7] / v[5], 1e-6 * v[8]);
+    if (k < 2) EXPECT_GT(v[9], 0);   // forming lcspice's model
+    else EXPECT_EQ(row[9], "");      // ngspice: none
+    EXPECT_GT(v[10], 0);
+    EXPECT_GE(v[10], v[11] * 0.99);  // a peak holds the idle child's
+    EXPECT_GT(v[12], 0);
+    EXPECT_EQ(row[13], "");
+  }
+  EXPECT_EQ(csv.raw[0][6], "1000");  // euler: 200 steps a period
+  EXPECT_NE(r.out.find("growth exponent euler: CPU/sim-s ~ diodes^"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("growth exponent ngspice: CPU/sim-s ~ diodes^"), std::string::npos) << r.out;
+  const std::string png = read_file(dir / "out" / "scale_rectifiers.png");
+  ASSERT_GT(png.size(), 8u);
+  EXPECT_EQ(png.substr(1, 3), "PNG");
+  EXPECT_EQ(r.err, "") << r.err;
+}
+
+// A run over the wall-clock limit is killed and recorded, and its series stops there; the study
+// still succeeds. (5000 s of simulated time, 5e7 steps, cannot finish in half a second.)
+TEST(Bench, ScaleStudyKillsARunOverTheLimitAndStopsItsSeries) {
+  const fs::path dir = scratch_dir("bench_scale_timeout");
+  const Result r = run_lcspice("bench --scale cw --sizes 1,2 --methods euler --no-ngspice --tstop 5000 --run-timeout 0.5 -o '" +
+                                   (dir / "out").string() + "'",
+                               dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const Csv csv = parse_csv(read_file(dir / "out" / "scale_cw.csv"));
+  ASSERT_EQ(csv.raw.size(), 1u);
+  EXPECT_EQ(csv.raw[0][4], "timeout");
+  EXPECT_EQ(csv.raw[0][13], "timed out after 0.5 s (wall clock)");
+  EXPECT_EQ(csv.raw[0][7], "");
+  EXPECT_LT(csv.rows[0][12], 10.0);
+  EXPECT_NE(r.out.find("growth exponent euler: n/a"), std::string::npos) << r.out;
+  EXPECT_FALSE(fs::exists(dir / "out" / "scale_cw.png"));  // nothing to draw
+}
+
+TEST(Bench, ScaleArgumentsAreChecked) {
+  const fs::path dir = scratch_dir("bench_scale_errors");
+  const std::string out = " -o '" + (dir / "out").string() + "'";
+  Result r = run_lcspice("bench --scale bridge" + out, dir);
+  EXPECT_EQ(r.code, 1);
+  EXPECT_EQ(r.err_line(0), "error: unknown circuit family 'bridge' (known: cw, ladder, rectifiers)");
+  r = run_lcspice("bench --scale cw --sizes 4,2" + out, dir);
+  EXPECT_EQ(r.code, 1);
+  EXPECT_EQ(r.err_line(0), "error: --sizes must be increasing");
+  r = run_lcspice("bench --scale cw --sizes 2,x" + out, dir);
+  EXPECT_EQ(r.code, 1);
+  EXPECT_EQ(r.err_line(0), "error: --sizes: 'x' is not a whole number");
+  r = run_lcspice("bench --scale cw --methods rk4" + out, dir);
+  EXPECT_EQ(r.code, 1);
+  EXPECT_EQ(r.err_line(0), "error: unknown method 'rk4' (known: euler, event, radau3, radau5, smooth, theta)");
+  r = run_lcspice("bench --quick --sizes 2 '" + source_path("circuits/lc_tank_bridge.cir").string() + "'" + out, dir);
+  EXPECT_EQ(r.code, 1);
+  EXPECT_EQ(r.err_line(0), "error: --sizes, --run-timeout and --fit-from belong to --scale");
+  EXPECT_FALSE(fs::exists(dir / "out" / "scale_cw.csv"));
+}
+
 }  // namespace
 }  // namespace lcs::cli_testing
