@@ -10,6 +10,7 @@
 #include <unsupported/Eigen/MatrixFunctions>
 
 #include "solver/integrators/dyadic_time.h"
+#include "solver/integrators/exponential_cache.h"
 #include "solver/integrators/mode_dynamics.h"
 #include "solver/integrators/pairs_at_zero_lcp.h"
 #include "solver/integrators/source_system.h"
@@ -75,7 +76,6 @@ struct Mode {
   Eigen::MatrixXd Z;                // z = Z [x; σ]
   Eigen::MatrixXd Pc;               // index-one constraints as rows over [x; σ]
   int level = 0;                    // coarsest step level: h <= 0.5 / (largest oscillation)
-  std::array<Eigen::MatrixXd, kMaxLevel + 1> E;  // exp(M h0 / 2^j), computed on first use
 };
 
 struct EventDriven::Impl {
@@ -83,6 +83,7 @@ struct EventDriven::Impl {
   EventOptions options;
   StepperStats stats;
   std::map<std::string, std::unique_ptr<Mode>> modes;
+  ExponentialCache exponentials;  // exp(M h0 / 2^j) per mode and j, computed on first use
   std::unique_ptr<SourceSystem> sources;
   double h0 = 0;
   int stop_level = 43;
@@ -110,7 +111,8 @@ struct EventDriven::Impl {
   Eigen::VectorXd scale, slope_scale;
   std::array<Eigen::VectorXd, kMaxLevel + 1> Xb, gb, db, sc;
 
-  Impl(const LcsProblem& mdl, const EventOptions& o) : model(mdl), options(o) {}
+  Impl(const LcsProblem& mdl, const EventOptions& o)
+      : model(mdl), options(o), exponentials(o.exponential_cache_bytes) {}
 
   Mode& mode(const std::vector<bool>& active, const std::string& signature);
   const Eigen::MatrixXd& exponential(Mode& md, int j);
@@ -189,11 +191,10 @@ Mode& EventDriven::Impl::mode(const std::vector<bool>& active, const std::string
 }
 
 const Eigen::MatrixXd& EventDriven::Impl::exponential(Mode& md, int j) {
-  if (md.E[j].size() == 0 && md.q > 0) {
-    md.E[j] = (md.M * std::ldexp(h0, -j)).exp();
+  return exponentials.get(&md, j, [&] {
     ++stats.factorisations;
-  }
-  return md.E[j];
+    return md.q > 0 ? Eigen::MatrixXd((md.M * std::ldexp(h0, -j)).exp()) : Eigen::MatrixXd();
+  });
 }
 
 void EventDriven::Impl::prepare(double tstep, double tstop) {
@@ -201,6 +202,7 @@ void EventDriven::Impl::prepare(double tstep, double tstop) {
   n = s.states();
   m = s.pairs();
   h0 = tstep;
+  exponentials.clear();
   modes.clear();
   sources = std::make_unique<SourceSystem>(model, tstop);
   stop_level = 1;
@@ -610,6 +612,9 @@ EventDriven::~EventDriven() = default;
 StepperStats EventDriven::stats() const {
   StepperStats s = impl_->stats;
   if (impl_->selector) s.lcp = impl_->selector->stats();
+  s.cache_budget_bytes = static_cast<long>(impl_->exponentials.budget());
+  s.cache_peak_bytes = static_cast<long>(impl_->exponentials.peak_bytes());
+  s.cache_evictions = impl_->exponentials.evictions();
   return s;
 }
 

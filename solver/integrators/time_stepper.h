@@ -24,6 +24,9 @@ struct StepperStats {
   long residual_evals = 0;  // DAE residual evaluations (smooth)
   long jacobian_evals = 0;  // Jacobian evaluations (smooth)
   long newton_iterations = 0;
+  long cache_budget_bytes = 0;  // event: the exponential cache's budget (0: no cache)
+  long cache_peak_bytes = 0;    // and the most it held
+  long cache_evictions = 0;     // exponentials dropped for the budget
 };
 
 // Advances (x, z) of a circuit's LCS. Step() is the non-virtual entry point (Drake style).
