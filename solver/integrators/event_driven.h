@@ -11,6 +11,7 @@
 // step, every bisection and every later visit (a periodic circuit pays setup once per mode).
 #pragma once
 
+#include <cstddef>
 #include <memory>
 
 #include <Eigen/Dense>
@@ -25,6 +26,9 @@ struct EventOptions {
   // Consecutive events without progress (more than this at one instant) are reported as
   // chattering (exit 3) rather than looping.
   int max_events_at_one_time = 64;
+  // Bytes of exponentials exp(M h0 / 2^j) kept (exponential_cache.h); the least recently used
+  // are recomputed past it.
+  std::size_t exponential_cache_bytes = std::size_t(256) << 20;
 };
 
 class EventDriven : public ContinuousMethod {

@@ -72,6 +72,12 @@ std::string TransientSummary::BriefReport() const {
                   stepper.modes);
     out += buf;
   }
+  if (stepper.cache_budget_bytes > 0) {
+    std::snprintf(buf, sizeof buf, "\nexponential cache: peak %.1f MB of a %.1f MB budget, %ld evictions",
+                  stepper.cache_peak_bytes / 1048576.0, stepper.cache_budget_bytes / 1048576.0,
+                  stepper.cache_evictions);
+    out += buf;
+  }
   if (stepper.residual_evals > 0) {
     std::snprintf(buf, sizeof buf,
                   "\nresidual evaluations %ld, Jacobians %ld, Newton iterations %ld, rejected steps %ld",
