@@ -25,7 +25,9 @@ class NgspiceLibrary {
   // every entry point below. Throws NgspiceLibraryError listing each candidate tried and why it
   // failed (dlerror(): not found, a dependency missing, a symbol missing).
   explicit NgspiceLibrary(const std::vector<std::string>& candidates);
-  ~NgspiceLibrary();  // dlclose
+  // dlclose. If this was the last handle, libngspice is unmapped and LeakSanitizer can no longer
+  // attribute its allocations to it (scripts/lsan.supp suppresses them by module name).
+  ~NgspiceLibrary();
   NgspiceLibrary(const NgspiceLibrary&) = delete;
   NgspiceLibrary& operator=(const NgspiceLibrary&) = delete;
 
