@@ -22,6 +22,7 @@
 #include "cli/csv_writer.h"
 #include "cli/exit_codes.h"
 #include "cli/progress.h"
+#include "cli/require_ngspice.h"
 #include "solver/integrators/method_registry.h"
 
 #ifndef LCSPICE_CIRCUITS_DIR
@@ -132,6 +133,7 @@ int scaling_command(const BenchArgs& args) {
     throw CliError(kExitUsage, "error: --scaling-max must be at least 2");
   settings.max_multiple = args.scaling_max;
   if (!(args.ngspice_timeout > 0)) throw CliError(kExitUsage, "error: --ngspice-timeout must be positive");
+  if (settings.ngspice) require_ngspice("bench needs ngspice (--no-ngspice runs without it)");
   if (mkdir(args.output_dir.c_str(), 0777) != 0 && errno != EEXIST)
     throw CliError(kExitUsage, "error: cannot create " + args.output_dir + ": " + std::strerror(errno));
   for (const std::string& netlist : args.netlists) {
@@ -216,6 +218,7 @@ int bench_command(const BenchArgs& args) {
   for (const std::string& m : settings.methods)
     if (!find_method(m)) throw CliError(kExitUsage, "error: unknown method '" + m + "' (known: " + method_names() + ")");
   if (!(args.ngspice_timeout > 0)) throw CliError(kExitUsage, "error: --ngspice-timeout must be positive");
+  if (settings.ngspice) require_ngspice("bench needs ngspice (--no-ngspice runs without it)");
   if (mkdir(args.output_dir.c_str(), 0777) != 0 && errno != EEXIST)
     throw CliError(kExitUsage, "error: cannot create " + args.output_dir + ": " + std::strerror(errno));
 

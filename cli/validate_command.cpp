@@ -20,6 +20,7 @@
 #include "cli/exit_codes.h"
 #include "cli/gnuplot.h"
 #include "cli/load_circuit.h"
+#include "cli/require_ngspice.h"
 #include "cli/validate_tube.h"
 #include "ngspice/deck_translation.h"
 #include "ngspice/ngspice_session.h"
@@ -409,6 +410,7 @@ int validate_with_faults(const ValidateArgs& args, const NgspiceDeckFaults& faul
     for (const std::string& line : deck.lines) std::cout << line << "\n";
     return kExitOk;
   }
+  require_ngspice("validate needs ngspice");
 
   const MemorySink ours = run_ours(ours_model, outputs, run);
   // The gap of each ideal diode at its own peak current, and lcspice again with every such

@@ -18,6 +18,7 @@
 #include <utility>
 
 #include "ngspice/ngspice_deck.h"
+#include "ngspice/ngspice_library.h"
 #include "ngspice/ngspice_messages.h"
 #include "ngspice/passwd_fallback.h"
 
@@ -28,6 +29,7 @@ NgspiceError::NgspiceError(Kind kind, const std::string& what, std::vector<std::
 
 const char* to_string(NgspiceError::Kind kind) {
   switch (kind) {
+    case NgspiceError::Kind::NoLibrary: return "no-library";
     case NgspiceError::Kind::Unavailable: return "unavailable";
     case NgspiceError::Kind::Load: return "load";
     case NgspiceError::Kind::Convergence: return "convergence";
@@ -118,6 +120,15 @@ std::string format_seconds(double s) {
   return os.str();
 }
 
+// The process's libngspice, or NoLibrary with the loader's reasons.
+const NgspiceLibrary& loaded_library() {
+  try {
+    return ngspice_library();
+  } catch (const NgspiceLibraryError& e) {
+    throw NgspiceError(NgspiceError::Kind::NoLibrary, e.what(), {});
+  }
+}
+
 // The single ngspice of this process.
 class Engine {
  public:
@@ -205,6 +216,7 @@ class Engine {
   long bg_starts_ = 0;
   long bg_ends_ = 0;
 
+  const NgspiceLibrary* ngspice_ = nullptr;  // set once the library is loaded
   bool initialised_ = false;
   std::string unusable_;  // why ngspice cannot be used any more (empty: usable)
   NgspiceInfo info_;
@@ -248,6 +260,7 @@ void Engine::ensure_initialised() {
     throw NgspiceError(Kind::Unavailable, "ngspice is unavailable in this process: " + unusable_,
                        {});
   if (initialised_) return;
+  ngspice_ = &loaded_library();
 
   // The user init file ngSpice_Init will source: ./.spiceinit if it exists, else the one in the
   // passwd home of the current uid (HOME is not consulted).
@@ -268,8 +281,8 @@ void Engine::ensure_initialised() {
   {
     SignalGuard signals;
     ngspice_passwd::PasswdFallback fallback;
-    rc = ngSpice_Init(&Engine::on_char, nullptr, &Engine::on_exit, nullptr, nullptr,
-                      &Engine::on_bg_thread, this);
+    rc = ngspice_->ngSpice_Init(&Engine::on_char, nullptr, &Engine::on_exit, nullptr, nullptr,
+                                &Engine::on_bg_thread, this);
     stand_in_home = fallback.used();
   }
   info_.init_messages = log_texts();
@@ -302,7 +315,7 @@ void Engine::ensure_initialised() {
 void Engine::command(const std::string& cmd) {
   std::string buffer = cmd;  // ngSpice_Command takes a char*
   SignalGuard signals;
-  ngSpice_Command(buffer.data());
+  ngspice_->ngSpice_Command(buffer.data());
 }
 
 // Leaves no circuit and no plot but `const`. `remcirc` removes the current circuit and warns
@@ -331,10 +344,10 @@ bool Engine::wait_for_thread_end(long ends_before, Clock::time_point deadline) {
 }
 
 std::optional<std::string> Engine::tran_plot() {
-  const char* current = ngSpice_CurPlot();
+  const char* current = ngspice_->ngSpice_CurPlot();
   if (current && starts_with_ci(current, "tran")) return std::string(current);
   // e.g. a deck with .tran and a later .op: the tran plot is not the current one
-  if (char** plots = ngSpice_AllPlots())
+  if (char** plots = ngspice_->ngSpice_AllPlots())
     for (size_t i = 0; plots[i]; ++i)
       if (starts_with_ci(plots[i], "tran")) return std::string(plots[i]);
   return std::nullopt;
@@ -344,7 +357,7 @@ double Engine::simulated_time_reached() {
   std::optional<std::string> plot = tran_plot();
   if (!plot) return std::numeric_limits<double>::quiet_NaN();
   std::string name = *plot + ".time";
-  const pvector_info info = ngGet_Vec_Info(name.data());
+  const pvector_info info = ngspice_->ngGet_Vec_Info(name.data());
   if (!info || !info->v_realdata || info->v_length <= 0) return std::numeric_limits<double>::quiet_NaN();
   return info->v_realdata[info->v_length - 1];
 }
@@ -352,17 +365,17 @@ double Engine::simulated_time_reached() {
 void Engine::read_plot(const std::string& plot, NgspiceResult& result) {
   std::string plot_name = plot;
   std::vector<std::string> names;
-  if (char** vecs = ngSpice_AllVecs(plot_name.data()))  // array reused by the next call: copy
+  if (char** vecs = ngspice_->ngSpice_AllVecs(plot_name.data()))  // array reused by the next call: copy
     for (size_t i = 0; vecs[i]; ++i) names.emplace_back(vecs[i]);
 
   std::map<std::string, std::vector<double>> vectors;
   std::optional<std::vector<double>> time;
   for (const std::string& name : names) {
     std::string qualified = plot + "." + name;
-    pvector_info info = ngGet_Vec_Info(qualified.data());
+    pvector_info info = ngspice_->ngGet_Vec_Info(qualified.data());
     if (!info) {
       std::string bare = name;
-      info = ngGet_Vec_Info(bare.data());
+      info = ngspice_->ngGet_Vec_Info(bare.data());
     }
     if (!info || info->v_length < 0 || (info->v_length > 0 && !info->v_realdata && !info->v_compdata))
       fail(Kind::NoData, "ngspice listed the vector \"" + name + "\" of plot " + plot +
@@ -429,7 +442,7 @@ NgspiceResult Engine::run(const NgspiceRun& run) {
   int rc;
   {
     SignalGuard signals;
-    rc = ngSpice_Circ(lines.data());
+    rc = ngspice_->ngSpice_Circ(lines.data());
   }
   if (rc != 0 || exit_requested()) fail_aborted("loading the deck", log_since(0));
   {
@@ -467,12 +480,12 @@ NgspiceResult Engine::run(const NgspiceRun& run) {
     const auto now = Clock::now();
     // ngSpice_running() is true from the thread's start callback until it ends; a thread that
     // started and no longer runs has ended even if its end callback is still on its way.
-    if (started && !ngSpice_running()) {
+    if (started && !ngspice_->ngSpice_running()) {
       wait_for_thread_end(ends_before, now + kHaltLimit);
       finished = true;
       break;
     }
-    if (!started && now - start > kThreadStartLimit && !ngSpice_running())
+    if (!started && now - start > kThreadStartLimit && !ngspice_->ngSpice_running())
       fail(Kind::Unavailable, with_evidence("ngspice did not start the analysis (bg_run)",
                                             texts_since(run_mark)));
     if (now >= deadline) break;
@@ -484,7 +497,7 @@ NgspiceResult Engine::run(const NgspiceRun& run) {
     // (bg_halt clears ngspice's running flag once the thread has stopped; a thread that never
     // started leaves nothing to stop)
     const bool stopped =
-        wait_for_thread_end(ends_before, Clock::now() + kHaltLimit) || !ngSpice_running();
+        wait_for_thread_end(ends_before, Clock::now() + kHaltLimit) || !ngspice_->ngSpice_running();
     std::string what = "ngspice exceeded the time limit of " + format_seconds(run.timeout_seconds);
     if (!stopped) {
       unusable_ = "an analysis that exceeded its time limit could not be stopped";
@@ -533,5 +546,7 @@ NgspiceResult Engine::run(const NgspiceRun& run) {
 NgspiceResult run_ngspice_transient(const NgspiceRun& run) { return Engine::instance().run(run); }
 
 NgspiceInfo ngspice_info() { return Engine::instance().info(); }
+
+void require_ngspice_library() { loaded_library(); }
 
 }  // namespace lcs

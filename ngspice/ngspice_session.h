@@ -2,12 +2,13 @@
 // library) and read every vector of the resulting plot back as numbers.
 //
 // libngspice is one global simulator per process. The bridge owns it as a singleton: it is
-// initialised on first use, every call is serialised by one mutex, and each run starts and ends
-// with no circuit and no plot left behind (`remcirc`, `destroy all`), so repeated runs in one
-// process neither mix nor pile up results. The deck is handed over in memory (ngSpice_Circ), the
-// analysis runs in ngspice's background thread (`bg_run`) under a wall-clock limit, and the data
-// is read through ngSpice_CurPlot / ngSpice_AllVecs / ngGet_Vec_Info -- printed output is only
-// read for the verdict. See ngspice/README.md for what ngspice needs to behave.
+// loaded (dlopen, ngspice_library.h) and initialised on first use, every call is serialised by
+// one mutex, and each run starts and ends with no circuit and no plot left behind (`remcirc`,
+// `destroy all`), so repeated runs in one process neither mix nor pile up results. The deck is
+// handed over in memory (ngSpice_Circ), the analysis runs in ngspice's background thread
+// (`bg_run`) under a wall-clock limit, and the data is read through ngSpice_CurPlot /
+// ngSpice_AllVecs / ngGet_Vec_Info -- printed output is only read for the verdict. See
+// ngspice/README.md for what ngspice needs to behave.
 #pragma once
 
 #include <map>
@@ -38,6 +39,8 @@ struct NgspiceResult {
 class NgspiceError : public std::runtime_error {
  public:
   enum class Kind {
+    NoLibrary,    // libngspice could not be loaded (not installed, or not the library expected);
+                  // what() names each file tried and the loader's reason
     Unavailable,  // ngspice cannot be used in this process (init failed, or an earlier Aborted /
                   // unstoppable run left it unusable)
     Load,         // the deck did not load: syntax error, unknown model, missing include, .control
@@ -58,7 +61,7 @@ class NgspiceError : public std::runtime_error {
   std::vector<std::string> messages_;
 };
 
-// "unavailable", "load", "convergence", "timeout", "aborted", "no-data".
+// "no-library", "unavailable", "load", "convergence", "timeout", "aborted", "no-data".
 const char* to_string(NgspiceError::Kind kind);
 
 // Loads `run.deck`, runs the analysis its `.tran` card defines, returns the tran plot. Thread-safe
@@ -72,5 +75,9 @@ struct NgspiceInfo {
   std::vector<std::string> init_messages;
 };
 NgspiceInfo ngspice_info();
+
+// Loads libngspice if it is not loaded yet, without initialising it (ngspice_library.h). For
+// commands that need ngspice, to fail before any other work. Throws NgspiceError (NoLibrary).
+void require_ngspice_library();
 
 }  // namespace lcs

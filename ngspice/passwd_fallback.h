@@ -5,8 +5,9 @@
 // In containers and CI runners started with an arbitrary uid (`docker run --user 12345`) there is
 // no such entry and the process dies with SIGSEGV inside ngSpice_Init. HOME plays no part.
 //
-// The bridge defines getpwuid() itself (passwd_fallback.cpp). An executable that links the bridge
-// exports that definition, so libngspice's call binds to it. It forwards to the C library's
+// The bridge defines getpwuid() itself (passwd_fallback.cpp). Every executable that links the
+// bridge exports that definition (ngspice/CMakeLists.txt), and libngspice, opened with dlopen,
+// finds the executable's symbols before the C library's, so its call binds to it. It forwards to the C library's
 // getpwuid, and only while a PasswdFallback is alive (the bridge holds one around ngSpice_Init,
 // under its mutex) does it answer a failed lookup of the current uid with a stand-in entry whose
 // home is "/nonexistent" (so no user init file is read). At all other times, and for every other

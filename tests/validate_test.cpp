@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <set>
 #include <sstream>
 
@@ -282,6 +283,35 @@ TEST(ValidationErrors, NgspiceTimeoutIsAClearError) {
                          dir);
   EXPECT_EQ(r.code, 3) << r.out << r.err;
   EXPECT_EQ(r.err_line(0).rfind("lcspice: error: ngspice failed: ", 0), 0u) << r.err;
+}
+
+// libngspice is opened when a command needs it: without it `validate` and `bench` stop at once
+// with exit 1 naming the file and the loader's reason; `run` and `validate --print-deck` never
+// touch it.
+TEST(ValidationErrors, WithoutLibngspiceValidateAndBenchExitOneAndRunWorks) {
+  const fs::path dir = scratch_dir("validate_no_library");
+  const std::string circuit = "'" + source_path("circuits/half_wave_rectifier.cir").string() + "'";
+  setenv("LCSPICE_NGSPICE_LIB", "/nonexistent/libngspice.so.0", 1);
+  const Result validate = run_lcspice("validate " + circuit, dir);
+  const Result bench = run_lcspice("bench --quick " + circuit + " -o '" + (dir / "bench").string() + "'", dir);
+  const Result bench_without = run_lcspice("bench --quick --no-ngspice --method event " + circuit +
+                                           " -o '" + (dir / "bench_without").string() + "'", dir);
+  const Result deck = run_lcspice("validate --print-deck " + circuit, dir);
+  const Result run = run_lcspice("run " + circuit + " --method event -o '" + (dir / "run.csv").string() + "'", dir);
+  unsetenv("LCSPICE_NGSPICE_LIB");
+  const std::string reason =
+      "cannot load libngspice, the ngspice shared library (Debian: libngspice0; LCSPICE_NGSPICE_LIB "
+      "names another file): /nonexistent/libngspice.so.0: cannot open shared object file";
+  EXPECT_EQ(validate.code, kExitUsage) << validate.err;
+  EXPECT_EQ(validate.err_line(0).rfind("lcspice: error: validate needs ngspice: " + reason, 0), 0u) << validate.err;
+  EXPECT_EQ(bench.code, kExitUsage) << bench.err;
+  EXPECT_NE(bench.err.find("lcspice: error: bench needs ngspice (--no-ngspice runs without it): " + reason),
+            std::string::npos) << bench.err;
+  EXPECT_FALSE(fs::exists(dir / "bench" / "bench.csv"));
+  EXPECT_EQ(bench_without.code, 0) << bench_without.err;
+  EXPECT_TRUE(fs::exists(dir / "bench_without" / "bench.csv"));
+  EXPECT_EQ(deck.code, 0) << deck.err;
+  EXPECT_EQ(run.code, 0) << run.err;
 }
 
 TEST(ValidationErrors, PrintDeckShowsTheTranslation) {
