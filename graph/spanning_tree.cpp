@@ -87,7 +87,7 @@ SpanningTree build_normal_tree(const CircuitGraph& graph) {
   }
 
   // Fundamental loop of link e (a = n+, b = n-): a -e-> b, then back from b to a in the tree.
-  t.B = Eigen::MatrixXd::Zero(static_cast<int>(t.tree.size()), static_cast<int>(t.links.size()));
+  std::vector<Eigen::Triplet<double>> b_entries;
   t.loops.resize(t.links.size());
   for (int j = 0; j < static_cast<int>(t.links.size()); ++j) {
     const int e = t.links[j];
@@ -107,9 +107,11 @@ SpanningTree build_normal_tree(const CircuitGraph& graph) {
     std::vector<LoopTerm> loop{{e, +1}};
     loop.insert(loop.end(), up_from_b.begin(), up_from_b.end());
     loop.insert(loop.end(), up_from_a.rbegin(), up_from_a.rend());
-    for (size_t k = 1; k < loop.size(); ++k) t.B(t.position[loop[k].branch], j) = loop[k].sign;
+    for (size_t k = 1; k < loop.size(); ++k) b_entries.emplace_back(t.position[loop[k].branch], j, loop[k].sign);
     t.loops[j] = std::move(loop);
   }
+  t.B.resize(static_cast<int>(t.tree.size()), static_cast<int>(t.links.size()));
+  t.B.setFromTriplets(b_entries.begin(), b_entries.end());
   return t;
 }
 

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include <Eigen/Dense>
+#include <Eigen/Sparse>
 
 #include "graph/circuit_graph.h"
 
@@ -20,8 +21,8 @@ struct SpanningTree {
   std::vector<int> links;      // link (co-tree) branches, in branch order
   std::vector<int> position;   // branch -> its index in `tree` or in `links`
   // b_{f,e} of (5.34): rows are tree branches, columns links. KCL: i_tree = B i_link;
-  // KVL: v_link = -B^T v_tree.
-  Eigen::MatrixXd B;
+  // KVL: v_link = -B^T v_tree. Sparse: one column per fundamental loop.
+  Eigen::SparseMatrix<double> B;
   // Per link: its fundamental loop, the link itself first with sign +1, then the tree path.
   std::vector<std::vector<LoopTerm>> loops;
   // Per node: tree branches from ground to the node, so that v(node) = sum sign * v_branch.

@@ -70,7 +70,7 @@ TEST(SpanningTree, LoopsSatisfyKvlAndNodePathsGivePotentials) {
       EXPECT_NEAR(kvl, 0.0, 1e-12);
       // KVL in matrix form: v_link = -B^T v_tree.
       double from_b = 0;
-      for (size_t i = 0; i < t.tree.size(); ++i) from_b -= t.B(i, j) * v(t.tree[i]);
+      for (size_t i = 0; i < t.tree.size(); ++i) from_b -= t.B.coeff(i, j) * v(t.tree[i]);
       EXPECT_NEAR(from_b, v(t.links[j]), 1e-12);
     }
     for (size_t n = 0; n < g.nodes.size(); ++n) {

@@ -100,19 +100,19 @@ class RowWriter {
   RowWriter(const LcsProblem& model, const OutputMap& outputs, OutputSink& sink)
       : model_(model), outputs_(outputs), sink_(sink), y_(outputs.names.size()),
         u_(model.lcs().inputs()), has_k_(outputs.K.size() > 0 && !outputs.K.isZero()) {
-    // A large circuit's probes each read a few states and pairs: stored sparse, a row costs
-    // O(probes), not O(probes * (states + pairs)). Exact zeros only are dropped.
-    if (outputs.G.size() + outputs.H.size() >= kSparseOutputSize) {
-      Gs_ = outputs.G.sparseView();
-      Hs_ = outputs.H.sparseView();
-      sparse_ = Gs_.nonZeros() + Hs_.nonZeros() <= (outputs.G.size() + outputs.H.size()) / 10;
+    // Small output maps are multiplied dense (faster at a handful of entries); large ones sparse,
+    // O(probes) per row.
+    dense_ = outputs.G.rows() * (outputs.G.cols() + outputs.H.cols()) < kSparseOutputSize;
+    if (dense_) {
+      Gd_ = Eigen::MatrixXd(outputs.G);
+      Hd_ = Eigen::MatrixXd(outputs.H);
     }
   }
   void write(double t, const Eigen::VectorXd& x, const Eigen::VectorXd& z) {
     model_.input_values(t, u_);
-    if (sparse_) {
-      y_.noalias() = Gs_ * x;
-      y_.noalias() += Hs_ * z;
+    if (dense_) {
+      y_.noalias() = Gd_ * x;
+      y_.noalias() += Hd_ * z;
     } else {
       y_.noalias() = outputs_.G * x;
       y_.noalias() += outputs_.H * z;
@@ -131,8 +131,8 @@ class RowWriter {
   const LcsProblem& model_;
   static constexpr Eigen::Index kSparseOutputSize = 1 << 16;
   const OutputMap& outputs_;
-  Eigen::SparseMatrix<double, Eigen::RowMajor> Gs_, Hs_;
-  bool sparse_ = false;
+  Eigen::MatrixXd Gd_, Hd_;
+  bool dense_ = true;
   OutputSink& sink_;
   Eigen::VectorXd y_, u_;
   bool has_k_;

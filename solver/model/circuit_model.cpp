@@ -627,8 +627,7 @@ OutputMap CircuitModel::output_map(const std::vector<Probe>& probes) const {
   const int n = lcs_.states(), mp = lcs_.pairs(), nu = lcs_.inputs();
   const int rows = static_cast<int>(probes.size());
   OutputMap out;
-  out.G = Eigen::MatrixXd::Zero(rows, n);
-  out.H = Eigen::MatrixXd::Zero(rows, mp);
+  std::vector<Eigen::Triplet<double>> g_entries, h_entries;
   out.J = Eigen::MatrixXd::Zero(rows, nu);
   out.K = Eigen::MatrixXd::Zero(rows, nu);
   auto node = [&](const Probe& p, const std::string& name) {
@@ -663,11 +662,17 @@ OutputMap CircuitModel::output_map(const std::vector<Probe>& probes) const {
     }
     out.names.push_back(p.name());
     // Row blocks of a 0-column matrix point at null (UBSan): only non-empty ones are copied.
-    if (n > 0) out.G.row(r) = row.g;
-    if (mp > 0) out.H.row(r) = row.h;
+    for (int c = 0; c < n; ++c)
+      if (row.g(c) != 0) g_entries.emplace_back(r, c, row.g(c));
+    for (int c = 0; c < mp; ++c)
+      if (row.h(c) != 0) h_entries.emplace_back(r, c, row.h(c));
     out.J.row(r) = row.j;  // nu >= 1: u[0] = 1 is always an input
     out.K.row(r) = row.k;
   }
+  out.G.resize(rows, n);
+  out.G.setFromTriplets(g_entries.begin(), g_entries.end());
+  out.H.resize(rows, mp);
+  out.H.setFromTriplets(h_entries.begin(), h_entries.end());
   return out;
 }
 

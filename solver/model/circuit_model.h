@@ -41,7 +41,10 @@ struct OutputRow {
 
 struct OutputMap {
   std::vector<std::string> names;
-  Eigen::MatrixXd G, H, J, K;
+  // Sparse: a probe reads a few states and pairs (a 1000-diode circuit's 3000 default probes made
+  // dense G and H a quarter of its set-up). J, K: the few inputs.
+  Eigen::SparseMatrix<double, Eigen::RowMajor> G, H;
+  Eigen::MatrixXd J, K;
 };
 
 // An energy-storing branch as its device stamped it (capacitance or inductance, IC=).
