@@ -158,6 +158,8 @@ void print_text(const Report& r) {
   std::printf("\n");
   if (s.Gamma.size() > 0 && s.Gamma.cwiseAbs().maxCoeff() > 0)
     std::printf("  state shift: x = x_phys - Gamma u (capacitor/source loops or inductor/source cutsets)\n");
+  if (r.index.markov.empty() && s.pairs() > kPrintedMarkovPairs)
+    std::printf("  Markov parameters D, CB, CAB: not printed above %d pairs\n", kPrintedMarkovPairs);
   const char* names[] = {"D", "CB", "CAB"};
   for (size_t k = 0; k < r.index.markov.size(); ++k) {
     std::ostringstream os;

@@ -1,8 +1,55 @@
 #include "solver/model/lcs_index.h"
 
 #include <Eigen/SVD>
+#include <Eigen/SparseLU>
+
+#include "solver/model/sparse_lcs.h"
 
 namespace lcs {
+
+namespace {
+
+double max_abs(const Eigen::SparseMatrix<double>& S) {
+  double out = 0;
+  for (int k = 0; k < S.outerSize(); ++k)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(S, k); it; ++it) out = std::max(out, std::abs(it.value()));
+  return out;
+}
+
+// A large sparse LCS whose D is nonsingular has index 0; the pairs' indices come from the
+// diagonals of sparse products C A^(k-1) B, each O(nnz) for a circuit's few-entry rows, where the
+// dense Markov parameters cost O(n^2 m) each and the rank test O(m^3). False: D is singular (the
+// dense test decides).
+bool sparse_index(const SparseLcs& s, int m, LcsIndex& r) {
+  Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> lu;
+  lu.compute(s.D);
+  if (lu.info() != Eigen::Success) return false;
+  const Eigen::VectorXd probe = Eigen::VectorXd::LinSpaced(m, 1.0, 2.0);
+  const Eigen::VectorXd x = lu.solve(probe);
+  const double d = max_abs(s.D);
+  // The same relative singularity margin as the dense SVD test (1e-10), from below.
+  if (!x.allFinite() || (s.D * x - probe).cwiseAbs().maxCoeff() > 1e-9 * 2 ||
+      x.cwiseAbs().maxCoeff() * d > 1e10 * 2)
+    return false;
+  r.index = 0;
+  Eigen::SparseMatrix<double> AkB = s.B, G = s.D;
+  int unresolved = m;
+  for (int k = 0; k <= 8 && unresolved > 0; ++k) {
+    if (k > 0) {
+      G = s.C * AkB;
+      AkB = s.A * AkB;
+    }
+    const double scale = max_abs(G);
+    for (int i = 0; i < m; ++i)
+      if (r.pair_index[i] < 0 && scale > 0 && std::abs(G.coeff(i, i)) > 1e-12 * scale) {
+        r.pair_index[i] = k;
+        --unresolved;
+      }
+  }
+  return true;
+}
+
+}  // namespace
 
 LcsIndex lcs_index(const Lcs& s) {
   LcsIndex r;
@@ -11,6 +58,11 @@ LcsIndex lcs_index(const Lcs& s) {
   if (m == 0) {
     r.index = 0;
     return r;
+  }
+  if (m > kPrintedMarkovPairs) {
+    const std::unique_ptr<SparseLcs> sparse = sparse_lcs_if_worth(s);
+    if (sparse && sparse_index(*sparse, m, r)) return r;
+    r.pair_index.assign(m, -1);
   }
   // G_0 = D, G_k = C A^(k-1) B, generated one at a time and only as far as needed: the
   // index and every pair's index are found within the first few (k <= 2 for the circuits
@@ -26,7 +78,7 @@ LcsIndex lcs_index(const Lcs& s) {
       G = s.C * AkB;
       AkB = s.A * AkB;
     }
-    if (k < 3) r.markov.push_back(G);
+    if (k < 3 && m <= kPrintedMarkovPairs) r.markov.push_back(G);
     const double scale = G.size() > 0 ? G.cwiseAbs().maxCoeff() : 0.0;
     for (int i = 0; i < m; ++i)
       if (r.pair_index[i] < 0 && scale > 0 && std::abs(G(i, i)) > 1e-12 * scale) {

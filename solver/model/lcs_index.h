@@ -11,8 +11,11 @@ namespace lcs {
 struct LcsIndex {
   int index = -1;               // -1: G(s) singular for large s (no unique solutions)
   std::vector<int> pair_index;  // per pair: first k with a nonzero diagonal (G_k)_ii, -1 if none
-  std::vector<Eigen::MatrixXd> markov;  // G_0 = D, G_1 = CB, G_2 = CAB
+  std::vector<Eigen::MatrixXd> markov;  // G_0 = D, G_1 = CB, G_2 = CAB; up to kPrintedMarkovPairs
 };
+
+// Above this many pairs the Markov parameters are not kept (nor printed by `analyze`).
+constexpr int kPrintedMarkovPairs = 24;
 
 LcsIndex lcs_index(const Lcs& lcs);
 

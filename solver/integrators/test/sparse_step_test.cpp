@@ -11,6 +11,7 @@
 #include "solver/integrators/transient.h"
 #include "solver/model/circuit_model.h"
 #include "solver/model/operating_point.h"
+#include "solver/model/lcs_index.h"
 
 namespace lcs {
 namespace {
@@ -149,6 +150,38 @@ TEST(SparseStep, MultiplierStepsThroughLemkesNumericalFailures) {
   ASSERT_GE(out, 0);
   EXPECT_NEAR(coarse.sink.rows.back()(out), 20.7, 0.1);
   EXPECT_NEAR(coarse.sink.rows.back()(out), fine.sink.rows.back()(out), 1e-3);
+}
+
+}  // namespace
+}  // namespace lcs
+
+namespace lcs {
+namespace {
+
+// analyze's index report on a large sparse LCS (sparse products, no dense Markov parameters):
+// every junction has its own resistance (D_ii = RON + RS > 0, D nonsingular): index 0, each
+// pair's index 0; one with RON = RS = 0 fed by an inductor has D_ii = 0 and w = -v_L, whose
+// first nonzero diagonal is C B (index 1 for that pair), and makes D singular: the dense rank
+// test decides the LCS index then (the inductor current is a state: index 1).
+TEST(SparseStep, IndexReportOfALargeBank) {
+  const Netlist bank = parse_netlist_string(rectifier_bank(120, "SIN(0 10 1k)"), "bank.cir");
+  ModelOptions mo;
+  mo.t1 = bank.tran->tstop;
+  const LcsIndex r = lcs_index(CircuitModel::build(bank, mo).lcs());
+  EXPECT_EQ(r.index, 0);
+  EXPECT_TRUE(r.markov.empty());
+  for (int k : r.pair_index) EXPECT_EQ(k, 0);
+
+  std::string text = rectifier_bank(120, "SIN(0 10 1k)");
+  text.insert(text.find(".model"), "L1 in li 1m\nDL li lo dideal\nCL lo 0 1u\nRLL lo 0 1k\n.model dideal D(VON=0.7 RON=0)\n");
+  const Netlist with_inductor = parse_netlist_string(text, "bank_l.cir");
+  const CircuitModel model = CircuitModel::build(with_inductor, mo);
+  const LcsIndex s = lcs_index(model.lcs());
+  int zero = 0, one = 0;
+  for (int k : s.pair_index) (k == 0 ? zero : k == 1 ? one : zero) += 1;
+  EXPECT_EQ(one, 1);
+  EXPECT_EQ(zero, 120);
+  EXPECT_EQ(s.index, 1);
 }
 
 }  // namespace
