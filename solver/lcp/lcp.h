@@ -93,7 +93,8 @@ struct LcpWarmStats {
 // For a fixed matrix M and a sequence of q (one per time step): first tries the previous
 // solution's active set J = {i : z_i > 0} -- solve M_JJ z_J = -q_J, accept if z_J >= 0 and
 // w >= 0 within tolerance -- and falls back to Lemke. Factorisations of M_JJ are cached per
-// active set (n <= 64), so a periodic circuit factorises each mode once.
+// active set (any n; the cache is dropped when it would pass kWarmCacheBytes), so a periodic
+// circuit factorises each mode once.
 // Warm hits do not allocate once the active set's factorisation is cached. Copies of a solver
 // share the cache and work vectors (shared_ptr): do not use copies from different threads.
 class LcpWarmSolver {
@@ -137,7 +138,7 @@ class LcpWarmSolver {
   LemkeOptions options_;
   LcpWarmStats stats_;
   LcpSolution last_;
-  std::uint64_t active_ = 0;   // bitmask of the last active set
+  std::string active_;         // the last active set: active_[i] = 1 for i in J (any n)
   std::shared_ptr<Impl> impl_; // factorisation cache
 };
 

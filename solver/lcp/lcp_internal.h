@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include <Eigen/Dense>
@@ -47,7 +48,8 @@ class LemkeEngine {
   // After a Solved result (n <= 64): bit i set when z_i is basic in the final complementary
   // basis, including a basic z_i at zero level (degenerate vertex). That basis matrix is
   // nonsingular, unlike the block of the support {z_i > 0} when solutions are not unique.
-  std::uint64_t basic_z_mask() const;
+  // The final basis's basic z variables: set[i] = 1 for z_i basic (any n).
+  void basic_z(std::string& set) const;
 
  private:
   void pivot(int row, int entering);

@@ -150,11 +150,10 @@ int LemkeEngine::lexicographic_leaving_row(double pivot_tol) {
   return best;
 }
 
-std::uint64_t LemkeEngine::basic_z_mask() const {
-  std::uint64_t mask = 0;
-  for (int i = 0; i < n_ && i < 64; ++i)
-    if (basis_[i] >= n_ && basis_[i] < 2 * n_) mask |= std::uint64_t{1} << (basis_[i] - n_);
-  return mask;
+void LemkeEngine::basic_z(std::string& set) const {
+  set.assign(n_, 0);
+  for (int i = 0; i < n_; ++i)
+    if (basis_[i] >= n_ && basis_[i] < 2 * n_) set[basis_[i] - n_] = 1;
 }
 
 void LemkeEngine::finish(const Eigen::MatrixXd& M, const Eigen::VectorXd& q, double qn,

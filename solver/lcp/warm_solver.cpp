@@ -1,7 +1,7 @@
 // Warm-started LCP solver for a fixed M and a sequence of q (one LCP per integrator step).
 //
 // Hot path (warm hit): the previous basis J (Lemke's basic z set, or the J of the last warm hit;
-// a bitmask) selects a cached
+// one char per pair, any number of pairs) selects a cached
 // LU factorisation of the equilibrated S_JJ; one triangular solve gives y_J, then
 //   y_J >= -tol  and  v_i = (S y + qt)_i >= -tol for i not in J,   tol = feas_tol * max(1, |y|_inf)
 // (normalised units, see lcp_internal.h) accepts the answer. Negative y_J within tol are clamped
@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <string>
 #include <stdexcept>
 #include <unordered_map>
 #include <utility>
@@ -24,8 +25,10 @@
 namespace lcs {
 
 namespace {
-constexpr int kMaxWarmN = 64;            // active sets are 64-bit masks
 constexpr std::size_t kMaxModes = 4096;  // cache cap; cleared when exceeded
+// Bytes of cached LU factors (8 k^2 per mode of k active pairs) past which the cache is cleared:
+// 64 modes of 1000 pairs, or every mode of a small circuit.
+constexpr std::size_t kWarmCacheBytes = std::size_t{512} << 20;
 constexpr double kMinRcond = 1e-13;      // S_JJ treated as singular below (then Lemke)
 }  // namespace
 
@@ -38,19 +41,25 @@ struct LcpWarmSolver::Impl {
   };
 
   lcp_detail::LemkeEngine engine;
-  std::unordered_map<std::uint64_t, Mode> cache;
+  std::unordered_map<std::string, Mode> cache;  // keyed by the active set, one char per pair
+  std::size_t cache_bytes = 0;
   Mode* last_mode = nullptr;
-  std::uint64_t last_key = 0;
+  std::string last_key;
 
-  Mode& mode(std::uint64_t key, int n) {
+  // No allocation when `key` is the last mode's or already cached (the warm hit's path).
+  Mode& mode(const std::string& key, int n) {
     if (last_mode != nullptr && key == last_key) return *last_mode;
     auto it = cache.find(key);
     if (it == cache.end()) {
-      if (cache.size() >= kMaxModes) cache.clear();
       const Eigen::MatrixXd& S = engine.equilibration().S;
       Mode m;
-      for (int i = 0; i < n; ++i) ((key >> i) & 1u ? m.J : m.rest).push_back(i);
+      for (int i = 0; i < n; ++i) (key[i] ? m.J : m.rest).push_back(i);
       const int k = static_cast<int>(m.J.size());
+      const std::size_t bytes = 8 * static_cast<std::size_t>(k) * k + 16 * static_cast<std::size_t>(n);
+      if (cache.size() >= kMaxModes || cache_bytes + bytes > kWarmCacheBytes) {
+        cache.clear();
+        cache_bytes = 0;
+      }
       m.rhs.resize(k);
       m.y.resize(k);
       if (k == 0) {
@@ -63,6 +72,7 @@ struct LcpWarmSolver::Impl {
         const double rc = m.lu.rcond();
         m.usable = m.lu.matrixLU().allFinite() && rc > kMinRcond;
       }
+      cache_bytes += bytes;
       it = cache.emplace(key, std::move(m)).first;
     }
     last_mode = &it->second;  // node-based map: stays valid until erased/cleared
@@ -77,6 +87,7 @@ LcpWarmSolver::LcpWarmSolver(Eigen::MatrixXd M, LemkeOptions options)
   impl_->engine.set_matrix(M_);
   last_.z = Eigen::VectorXd::Zero(M_.rows());
   last_.w = Eigen::VectorXd::Zero(M_.rows());
+  active_.assign(M_.rows(), 0);
 }
 
 void LcpWarmSolver::watch_multiplicity() {
@@ -86,11 +97,8 @@ void LcpWarmSolver::watch_multiplicity() {
 
 void LcpWarmSolver::prefer(const Eigen::VectorXd& z, bool always) {
   const int n = static_cast<int>(M_.rows());
-  if ((stats_.solves > 0 && !always) || z.size() != n || n > kMaxWarmN) return;
-  std::uint64_t mask = 0;
-  for (int i = 0; i < n; ++i)
-    if (z(i) > 0.0) mask |= std::uint64_t{1} << i;
-  active_ = mask;
+  if ((stats_.solves > 0 && !always) || z.size() != n) return;
+  for (int i = 0; i < n; ++i) active_[i] = z(i) > 0.0;
   preferred_ = true;
 }
 
@@ -152,10 +160,7 @@ const LcpSolution& LcpWarmSolver::solve(const Eigen::VectorXd& q) {
   multiplicity_ = Multiplicity::SeveralTookStable;
   last_.z = *stable.front();
   last_.w = M_ * last_.z + q;
-  std::uint64_t mask = 0;
-  for (int i = 0; i < n && n <= kMaxWarmN; ++i)
-    if (last_.z(i) > 0.0) mask |= std::uint64_t{1} << i;
-  active_ = mask;
+  for (int i = 0; i < n; ++i) active_[i] = last_.z(i) > 0.0;
   return last_;
 }
 
@@ -185,7 +190,7 @@ const LcpSolution& LcpWarmSolver::solve_once(const Eigen::VectorXd& q) {
   lcp_detail::check_square(M_, q, "LcpWarmSolver::solve");
   ++stats_.solves;
 
-  if (n <= kMaxWarmN) {
+  {
     Impl::Mode& m = impl_->mode(active_, n);
     if (m.usable) {
       const lcp_detail::Equilibration& eq = impl_->engine.equilibration();
@@ -234,12 +239,11 @@ const LcpSolution& LcpWarmSolver::solve_once(const Eigen::VectorXd& q) {
   ++stats_.lemke_calls;
   stats_.lemke_pivots += last_.pivots;
   if (last_.status == LcpStatus::NumericalFailure) polish_by_principal_pivoting(q);
-  if (last_.status == LcpStatus::Solved && n <= kMaxWarmN) {
+  if (last_.status == LcpStatus::Solved) {
     // The final complementary basis, not the support of z (see the warm-hit branch).
-    std::uint64_t mask = impl_->engine.basic_z_mask();
+    impl_->engine.basic_z(active_);
     for (int i = 0; i < n; ++i)
-      if (last_.z(i) > 0.0) mask |= std::uint64_t{1} << i;
-    active_ = mask;
+      if (last_.z(i) > 0.0) active_[i] = 1;
   }
   return last_;
 }
