@@ -113,8 +113,8 @@ Eigen::VectorXd consistent_start_z(const LcsProblem& model, double t0, double h_
   // w+ = C W^-1 x + (C W^-1 h E + F) u+  +  (D + C W^-1 h B) z.
   const Lcs& s = model.lcs();
   const int n = s.states();
-  const std::unique_ptr<SparseLcs> sparse =
-      model.has_history() || model.has_transfer_pairs() ? nullptr : sparse_lcs_if_worth(s);
+  const SparseLcs* sparse =
+      model.has_history() || model.has_transfer_pairs() ? nullptr : model.sparse_lcs().get();
   if (sparse) {
     Eigen::VectorXd z;
     if (sparse_start_z(model, *sparse, t0, h_run, x, stats, prefer, z)) return z;

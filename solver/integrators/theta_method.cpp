@@ -21,7 +21,7 @@ struct ThetaMethod::SparseStep {
 
 ThetaMethod::ThetaMethod(const LcsProblem& model, double theta, bool sparse)
     : TimeStepper(model), theta_(theta) {
-  if (sparse && !model.has_history()) sparse_lcs_ = sparse_lcs_if_worth(model.lcs());
+  if (sparse && !model.has_history()) sparse_lcs_ = model.sparse_lcs();
 }
 
 ThetaMethod::SparseStep* ThetaMethod::sparse_step(double h) {

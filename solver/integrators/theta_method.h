@@ -30,7 +30,7 @@ class ThetaMethod : public TimeStepper {
   // Large circuits: the step's LCP solved on the sparse system (sparse_active_set.h), per h.
   struct SparseStep;
   SparseStep* sparse_step(double h);
-  std::unique_ptr<SparseLcs> sparse_lcs_;  // null: the dense path (small or dense LCS)
+  std::shared_ptr<const SparseLcs> sparse_lcs_;  // null: the dense path (small or dense LCS)
 
   double theta_;
   std::map<double, std::unique_ptr<StepFactors>> cache_;

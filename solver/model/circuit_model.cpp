@@ -11,6 +11,7 @@
 #include "solver/model/line_dc_loops.h"
 #include "solver/model/netlist_options.h"
 #include "solver/model/perfect_coupling.h"
+#include "solver/model/sparse_lcs.h"
 #include "solver/model/sparse_solve.h"
 #include "solver/model/structural_zeros.h"
 
@@ -530,6 +531,7 @@ CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& opt
   }
   if (m.dc_relations_.size() != m.delayed_.size())
     throw std::logic_error("circuit model: devices with history owe one DC relation per history input");
+  m.sparse_lcs_ = sparse_lcs_if_worth(m.lcs_);
   return m;
 }
 

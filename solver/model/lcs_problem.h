@@ -19,6 +19,7 @@
 namespace lcs {
 
 class Device;
+struct SparseLcs;
 
 struct Lcs {
   Eigen::MatrixXd A, B, E, C, D, F;
@@ -85,6 +86,9 @@ class LcsProblem {
   }
   void accept(double t, const Eigen::VectorXd& x, const Eigen::VectorXd& z) const;
   double max_step() const;
+  // The LCS stored sparse when it pays (sparse_lcs.h), made once by formation; null for small or
+  // dense systems.
+  const std::shared_ptr<const SparseLcs>& sparse_lcs() const { return sparse_lcs_; }
 
  protected:
   Lcs lcs_;
@@ -94,6 +98,7 @@ class LcsProblem {
   std::vector<DelayedWave> delayed_;  // one per history input, in DelayHistory order
   std::vector<DelayedWave> dc_relations_;  // as many: rows that vanish at DC (g, h, j; input unused)
   double max_step_ = std::numeric_limits<double>::infinity();
+  std::shared_ptr<const SparseLcs> sparse_lcs_;
 };
 
 }  // namespace lcs

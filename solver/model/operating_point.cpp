@@ -270,14 +270,12 @@ OperatingPoint choose_among(const CircuitModel& model, const StaticProblem& p, d
 // False (the dense path decides) when the LCS is small or dense, or A or a mode's system is
 // singular: then states may be undetermined, and least_energy chooses them.
 bool sparse_operating_point(const CircuitModel& model, double t, OperatingPoint& op) {
-  const DcForm f = dc_form(model, t);
-  const std::unique_ptr<SparseLcs> s =
-      sparse_lcs_if_worth(f.A, f.B, f.C, f.D, Eigen::MatrixXd(0, 0), Eigen::MatrixXd(0, 0));
-  if (!s) return false;
+  const SparseLcs* s = model.sparse_lcs().get();
+  if (s == nullptr || model.has_history()) return false;  // lines: their DC waves are unknowns too
+  const Eigen::VectorXd u = model.input_values(t);
   SparseActiveSetLcp lcp(s->A, s->B, s->C, s->D);
   Eigen::VectorXd w;
-  if (!lcp.solve(-f.e, f.f, op.x, op.z, w)) return false;
-  return true;
+  return lcp.solve(-(s->E * u), s->F * u, op.x, op.z, w);
 }
 }  // namespace
 
