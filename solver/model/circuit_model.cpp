@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <set>
 #include <stdexcept>
+#include <unordered_map>
 
 #include "graph/topology.h"
 #include "solver/devices/device_registry.h"
@@ -630,6 +631,7 @@ OutputMap CircuitModel::output_map(const std::vector<Probe>& probes) const {
   const int rows = static_cast<int>(probes.size());
   OutputMap out;
   std::vector<Eigen::Triplet<double>> g_entries, h_entries;
+  std::unordered_map<std::string, int> branch_by_name;  // made at the first current probe
   out.J = Eigen::MatrixXd::Zero(rows, nu);
   out.K = Eigen::MatrixXd::Zero(rows, nu);
   auto node = [&](const Probe& p, const std::string& name) {
@@ -653,9 +655,10 @@ OutputMap CircuitModel::output_map(const std::vector<Probe>& probes) const {
         row = terminal_current(p);
         break;
       case Probe::Kind::ElementCurrent: {
-        int branch = -1;
-        for (int b = 0; b < static_cast<int>(graph_.branches.size()); ++b)
-          if (graph_.branches[b].name == p.a) branch = b;
+        if (branch_by_name.empty())  // the last branch of a name, as a scan from the front finds
+          for (int b = 0; b < static_cast<int>(graph_.branches.size()); ++b) branch_by_name[graph_.branches[b].name] = b;
+        const auto found = branch_by_name.find(p.a);
+        const int branch = found == branch_by_name.end() ? -1 : found->second;
         if (branch < 0)
           throw NetlistError(p.loc, "probe " + p.name() + ": no two-terminal element '" + p.a + "'");
         row = branch_current(branch);
