@@ -492,16 +492,22 @@ CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& opt
   m.branch_v_ = Vmap * P;
   m.branch_i_ = Imap * P;
 
-  // Complementarity outputs w.
-  Eigen::MatrixXd W(mp, ncol);
-  for (const PairInfo& pr : m.pairs_) {
-    const int b = pr.branch, k = pair_of[b];
-    if (pr.voltage_type) {
-      W.row(k) = m.branch_i_.row(b);
-    } else {
-      W.row(k) = law[b].ron * Eigen::RowVectorXd(m.branch_i_.row(b)) - Eigen::RowVectorXd(m.branch_v_.row(b));
-      W(k, col_u(0)) += law[b].von;
+  // Complementarity outputs w, sparse like the branch rows.
+  SparseMatrixD W(mp, ncol);
+  {
+    Triplets w;
+    for (const PairInfo& pr : m.pairs_) {
+      const int b = pr.branch, k = pair_of[b];
+      if (pr.voltage_type) {
+        for (RowSparse::InnerIterator it(m.branch_i_, b); it; ++it) w.emplace_back(k, it.col(), it.value());
+      } else {
+        for (RowSparse::InnerIterator it(m.branch_i_, b); it; ++it) w.emplace_back(k, it.col(), law[b].ron * it.value());
+        for (RowSparse::InnerIterator it(m.branch_v_, b); it; ++it) w.emplace_back(k, it.col(), -it.value());
+        if (law[b].von != 0) w.emplace_back(k, col_u(0), law[b].von);
+      }
     }
+    W.setFromTriplets(w.begin(), w.end());
+    W.prune([](const Eigen::Index&, const Eigen::Index&, const double& v) { return v != 0; });
   }
   s.C = W.leftCols(n);
   s.D = W.middleCols(n, mp);
@@ -532,7 +538,8 @@ CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& opt
   }
   if (m.dc_relations_.size() != m.delayed_.size())
     throw std::logic_error("circuit model: devices with history owe one DC relation per history input");
-  m.sparse_lcs_ = sparse_lcs_if_worth(m.lcs_);
+  m.sparse_lcs_ = sparse_lcs_if_worth(SparseMatrixD(Xdot.leftCols(n)), SparseMatrixD(Xdot.middleCols(n, mp)),
+                                      SparseMatrixD(W.leftCols(n)), SparseMatrixD(W.middleCols(n, mp)), s.E, s.F);
   return m;
 }
 
