@@ -513,8 +513,9 @@ CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& opt
   s.D = W.middleCols(n, mp);
   s.F = W.middleCols(n + mp, nu);
   // The shift x_lcs = x_phys - Gamma u: x_lcs' = A x_lcs + B z + (E + A Gamma) u.
-  s.E += s.A * s.Gamma;
-  s.F += s.C * s.Gamma;
+  const SparseMatrixD A_sparse = Xdot.leftCols(n), C_sparse = W.leftCols(n);
+  s.E += A_sparse * s.Gamma;
+  s.F += C_sparse * s.Gamma;
 
   // The waves the line ports send, and the lines' DC relations, as rows like the probes'.
   auto row_of = [&](const std::vector<Term>& terms) {
@@ -538,8 +539,8 @@ CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& opt
   }
   if (m.dc_relations_.size() != m.delayed_.size())
     throw std::logic_error("circuit model: devices with history owe one DC relation per history input");
-  m.sparse_lcs_ = sparse_lcs_if_worth(SparseMatrixD(Xdot.leftCols(n)), SparseMatrixD(Xdot.middleCols(n, mp)),
-                                      SparseMatrixD(W.leftCols(n)), SparseMatrixD(W.middleCols(n, mp)), s.E, s.F);
+  m.sparse_lcs_ = sparse_lcs_if_worth(A_sparse, SparseMatrixD(Xdot.middleCols(n, mp)), C_sparse,
+                                      SparseMatrixD(W.middleCols(n, mp)), s.E, s.F);
   return m;
 }
 
