@@ -1,6 +1,7 @@
 #include "solver/model/circuit_model.h"
 #include "solver/model/empty_safe.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <set>
@@ -379,7 +380,6 @@ CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& opt
   //   Tl^T Lf (Tl x' + Tlu u')      = -sum over V, C, R, D tree branches f of b_{f,e} v_f
   const SparseMatrixD CdTc = Cd.asDiagonal() * Tc, LfTl = Lf * Tl;
   SparseMatrixD MdynS = SparseMatrixD(Tc.transpose() * CdTc) + SparseMatrixD(Tl.transpose() * LfTl);
-  Eigen::MatrixXd Mdyn(MdynS);
   Eigen::MatrixXd Kdu = -(CdTc.transpose() * Tcu + LfTl.transpose() * Tlu);
   SparseMatrixD Rp(n, nb);
   {
@@ -407,7 +407,10 @@ CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& opt
   // on T^T. Lf Tl N = 0 and Tc N = 0, so the forced rows below need only xi'.
   std::vector<bool> inductor_state(n, false);
   for (int j = 0; j < n; ++j) inductor_state[j] = !m.states_[j].capacitor;
-  const FluxReduction flux = flux_reduction(Mdyn, uncancelled_diagonal(Tc, Cd, Tl, Lf), inductor_state);
+  // Without inductor states nothing can be flux-free (capacitances are positive): no dense Mdyn.
+  const bool inductors = std::find(inductor_state.begin(), inductor_state.end(), true) != inductor_state.end();
+  const FluxReduction flux = inductors ? flux_reduction(Eigen::MatrixXd(MdynS), uncancelled_diagonal(Tc, Cd, Tl, Lf), inductor_state)
+                                       : FluxReduction{};
   if (!flux.empty()) {  // small circuits (transformers): dense
     Eigen::MatrixXd Cmap;
     const Eigen::MatrixXd Rdense(Rfull);
@@ -419,8 +422,7 @@ CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& opt
     for (int c = 0; c < P.outerSize(); ++c)
       for (SparseMatrixD::InnerIterator it(P, c); it; ++it) p_entries.emplace_back(it.row(), c, it.value());
     Rfull = (T.transpose() * Rdense * Cmap).sparseView();
-    Mdyn = T.transpose() * Mdyn * T;
-    MdynS = Mdyn.sparseView();
+    MdynS = (T.transpose() * Eigen::MatrixXd(MdynS) * T).sparseView();
     Kdu = T.transpose() * Kdu;
     Tc = Eigen::MatrixXd(Tc * T).sparseView();
     Tl = Eigen::MatrixXd(Tl * T).sparseView();
@@ -429,7 +431,7 @@ CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& opt
     ncol = n + mp + 2 * nu;
   }
   // Stored energy over the (kept) states: the flux-free currents of a perfect coupling store none.
-  m.energy_xx_ = Mdyn;
+  m.energy_xx_ = MdynS;
   m.energy_xu_ = -Kdu;
   // Physical x' = A x + B z + E u + Gamma u': Mdyn x' = Rfull, whose du columns are Kdu (Rp never
   // reads du).
@@ -445,7 +447,7 @@ CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& opt
     R.setFromTriplets(r.begin(), r.end());
     bool invertible;
     if (n < kSparseSolveSize) {  // small circuits keep the unscaled dense solve they always had
-      Eigen::FullPivLU<Eigen::MatrixXd> m_lu(Mdyn);
+      Eigen::FullPivLU<Eigen::MatrixXd> m_lu{Eigen::MatrixXd(MdynS)};
       invertible = m_lu.isInvertible();
       if (invertible) Xdot = Eigen::MatrixXd(solve_or_empty(m_lu, Eigen::MatrixXd(R))).sparseView();
     } else {

@@ -77,7 +77,7 @@ class CircuitModel : public LcsProblem {
   // Energy stored in capacitors and inductors over the physical state x (u the inputs):
   //   W(x) = 1/2 x^T energy_xx x + x^T energy_xu u + (terms in u alone),
   // since every capacitor voltage and inductor current is Tc x + Tcu u, Tl x + Tlu u.
-  const Eigen::MatrixXd& energy_xx() const { return energy_xx_; }
+  const Eigen::SparseMatrix<double>& energy_xx() const { return energy_xx_; }
   const Eigen::MatrixXd& energy_xu() const { return energy_xu_; }
 
   OutputRow branch_voltage(int branch) const;
@@ -108,7 +108,8 @@ class CircuitModel : public LcsProblem {
   // Branch voltages and currents as rows over [x_phys | z | u | du] (physical state), sparse: a
   // branch reads a few states, pairs and inputs.
   Eigen::SparseMatrix<double, Eigen::RowMajor> branch_v_, branch_i_;
-  Eigen::MatrixXd energy_xx_, energy_xu_;
+  Eigen::SparseMatrix<double> energy_xx_;  // Mdyn: as sparse as the capacitor and inductor loops
+  Eigen::MatrixXd energy_xu_;
   // node_row's memo, sparse like the branch rows (an empty vector: not yet). Not thread-safe.
   mutable std::vector<Eigen::SparseVector<double>> node_rows_;
   mutable std::vector<bool> node_row_known_;
