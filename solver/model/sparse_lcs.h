@@ -19,9 +19,9 @@ struct SparseLcs {
   Eigen::MatrixXd E, F;                    // few input columns: dense
 };
 
-// Measured with `lcspice bench --scale` (implicit Euler, this machine): below this many pairs the
-// dense LCP with its warm start is as fast; the sparse system's cost grows like the circuit,
-// the dense one's like its square.
+// Chosen, not measured as a crossover (to do): small circuits keep the dense LCP, whose warm
+// start costs well under a microsecond per step (README, "Speed"); the dense step grows like
+// m^2 and the sparse one like the circuit.
 constexpr int kSparsePairs = 48;
 // Nonzeros of A, B, C and D over (n + m)^2 above which the LCS counts as dense.
 constexpr double kSparseDensity = 0.05;

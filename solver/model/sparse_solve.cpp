@@ -108,10 +108,9 @@ void clear_structural_zeros_sparse(const SparseMatrixD& E, const SparseMatrixD& 
 
 }  // namespace
 
-// Measured on generated RC-diode ladders and rectifier banks (`analyze`, Release, this machine):
-// SparseLU overtakes the dense FullPivLU at about 100 unknowns; KLU (SuiteSparse) was not
-// faster than SparseLU on these right-hand-side-dominated solves, where the triangular solves
-// with hundreds of dense columns dominate, so no second library is linked.
+// The size threshold is a choice, not a measurement: small circuits keep the dense results they
+// always had, and the circuits where formation cost mattered (hundreds of diodes) take the sparse
+// path, where the singleton rows usually leave no LU at all. KLU was not tried.
 bool solve_scaled(const SparseMatrixD& E, const Eigen::MatrixXd& R, bool clear_structural,
                   Eigen::MatrixXd& X) {
   const Eigen::Index n = E.rows();

@@ -5,8 +5,7 @@
 // column per state, pair and input), so a solve costs O(columns * nnz(LU)), against the O(n^3)
 // of a dense factorisation. Below kSparseSolveSize unknowns the dense full-pivoting LU is
 // faster and is kept (the results of small circuits do not change); above it Eigen's SparseLU
-// (COLAMD ordering) is used. KLU was measured against it on the circuits here: see the note in
-// sparse_solve.cpp.
+// (COLAMD ordering) is used, after the singleton rows (singleton_rows.h). KLU was not tried.
 #pragma once
 
 #include <Eigen/Dense>
@@ -16,7 +15,7 @@ namespace lcs {
 
 using SparseMatrixD = Eigen::SparseMatrix<double>;
 
-// Systems with at least this many unknowns take the sparse path (measured: sparse_solve.cpp).
+// Systems with at least this many unknowns take the sparse path (a choice: sparse_solve.cpp).
 constexpr int kSparseSolveSize = 96;
 
 // X = E^-1 R with E's rows scaled to unit size first (a 1e16 ohm resistor next to a 1 V source is
