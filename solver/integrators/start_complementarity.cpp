@@ -80,11 +80,9 @@ bool sparse_start_z(const LcsProblem& model, const SparseLcs& s, double t0, doub
   const Eigen::VectorXd a = x + h * (s.E * u), b = s.F * u;
   Eigen::VectorXd y, w;
   const bool solved = lcp.solve(a, b, y, z, w);
-  stats.sparse.solves += lcp.stats().solves;
-  stats.sparse.warm_hits += lcp.stats().warm_hits;
-  stats.sparse.flips += lcp.stats().flips;
-  stats.sparse.factorisations += lcp.stats().factorisations;
-  stats.sparse.failures += lcp.stats().failures;
+  SparseActiveSetStats own = lcp.stats();
+  own.cache_bytes = 0;  // freed on return: only the steppers' caches stay
+  stats.sparse += own;
   ++stats.factorisations;
   if (!solved) return false;
   Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> free_flow(W);

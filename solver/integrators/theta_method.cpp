@@ -118,16 +118,7 @@ void ThetaMethod::DoStep(double t, double h, Eigen::VectorXd& x, Eigen::VectorXd
 StepperStats ThetaMethod::stats() const {
   StepperStats s = stats_;  // s.lcp holds the start LCP (consistent_start_z)
   for (const auto& [h, f] : cache_) s.lcp += f->lcp->stats();
-  for (const auto& [h, step] : sparse_cache_) {
-    const SparseActiveSetStats& t = step->lcp->stats();
-    s.sparse.solves += t.solves;
-    s.sparse.warm_hits += t.warm_hits;
-    s.sparse.flips += t.flips;
-    s.sparse.factorisations += t.factorisations;
-    s.sparse.failures += t.failures;
-    s.sparse.evictions += t.evictions;
-    s.sparse.cache_bytes += t.cache_bytes;
-  }
+  for (const auto& [h, step] : sparse_cache_) s.sparse += step->lcp->stats();
   return s;
 }
 

@@ -46,6 +46,17 @@ struct SparseActiveSetStats {
   long failures = 0;           // solves that returned false
   long evictions = 0;          // cached factorisations dropped to stay within the budget
   std::size_t cache_bytes = 0; // the cache's current estimate
+
+  SparseActiveSetStats& operator+=(const SparseActiveSetStats& o) {
+    solves += o.solves;
+    warm_hits += o.warm_hits;
+    flips += o.flips;
+    factorisations += o.factorisations;
+    failures += o.failures;
+    evictions += o.evictions;
+    cache_bytes += o.cache_bytes;
+    return *this;
+  }
 };
 
 class SparseActiveSetLcp {

@@ -25,35 +25,6 @@ bool solve_dense(const SparseMatrixD& E, const Eigen::VectorXd& row_scale, const
   return true;
 }
 
-// The sparse counterpart of clear_structural_zeros: the pattern of E^-1 R is read off one solve
-// with random values on E's and R's patterns (Schwartz-Zippel, as there), and an entry is cleared
-// only where that random solve is negligible in its column and X's entry is negligible too.
-void clear_structural_zeros_sparse(const SparseMatrixD& E, const Eigen::MatrixXd& R,
-                                   Eigen::MatrixXd& X) {
-  std::mt19937_64 rng(0x5eed);  // fixed: formation stays reproducible
-  std::uniform_real_distribution<double> magnitude(1.0, 2.0);
-  auto draw = [&] { return (rng() & 1 ? 1.0 : -1.0) * magnitude(rng); };
-  SparseMatrixD random = E;
-  for (int k = 0; k < random.outerSize(); ++k)
-    for (SparseMatrixD::InnerIterator it(random, k); it; ++it) it.valueRef() = draw();
-  Eigen::MatrixXd random_rhs = Eigen::MatrixXd::Zero(R.rows(), R.cols());
-  for (Eigen::Index c = 0; c < R.cols(); ++c)
-    for (Eigen::Index r = 0; r < R.rows(); ++r)
-      if (R(r, c) != 0) random_rhs(r, c) = draw();
-  Eigen::SparseLU<SparseMatrixD, Eigen::COLAMDOrdering<int>> lu;
-  lu.compute(random);
-  if (lu.info() != Eigen::Success) return;  // structurally singular: E was not invertible either
-  const Eigen::MatrixXd reach = lu.solve(random_rhs);
-  for (Eigen::Index c = 0; c < X.cols(); ++c) {
-    const double reach_scale = reach.col(c).cwiseAbs().maxCoeff();
-    const double column = X.col(c).cwiseAbs().maxCoeff();
-    for (Eigen::Index r = 0; r < X.rows(); ++r)
-      if (std::abs(reach(r, c)) <= 1e-9 * reach_scale && std::abs(X(r, c)) <= 1e-9 * column)
-        X(r, c) = 0;
-  }
-}
-
-
 // 1 / (the largest entry of each row) (1 for an empty row).
 Eigen::VectorXd unit_row_scale(const SparseMatrixD& E) {
   Eigen::VectorXd row_scale = Eigen::VectorXd::Zero(E.rows());
@@ -78,7 +49,9 @@ bool all_finite(const SparseMatrixD& S) {
   return true;
 }
 
-// clear_structural_zeros_sparse for a sparse X: only X's stored entries can be cleared.
+// The sparse counterpart of clear_structural_zeros: the pattern of E^-1 R is read off one solve
+// with random values on E's and R's patterns (Schwartz-Zippel, as there); an entry of X is cleared
+// only where that random solve is negligible in its column and X's entry is negligible too.
 void clear_structural_zeros_sparse(const SparseMatrixD& E, const SparseMatrixD& R, SparseMatrixD& X) {
   std::mt19937_64 rng(0x5eed);
   std::uniform_real_distribution<double> magnitude(1.0, 2.0);
@@ -111,35 +84,6 @@ void clear_structural_zeros_sparse(const SparseMatrixD& E, const SparseMatrixD& 
 // The size threshold is a choice, not a measurement: small circuits keep the dense results they
 // always had, and the circuits where formation cost mattered (hundreds of diodes) take the sparse
 // path, where the singleton rows usually leave no LU at all. KLU was not tried.
-bool solve_scaled(const SparseMatrixD& E, const Eigen::MatrixXd& R, bool clear_structural,
-                  Eigen::MatrixXd& X) {
-  const Eigen::Index n = E.rows();
-  if (n == 0 || R.cols() == 0) {
-    X = Eigen::MatrixXd::Zero(n, R.cols());
-    return true;
-  }
-  const Eigen::VectorXd row_scale = unit_row_scale(E);
-  if (n < kSparseSolveSize) return solve_dense(E, row_scale, R, clear_structural, X);
-
-  const SparseMatrixD scaled = row_scale.asDiagonal() * E;
-  Eigen::SparseLU<SparseMatrixD, Eigen::COLAMDOrdering<int>> lu;
-  lu.compute(scaled);
-  if (lu.info() != Eigen::Success) return false;
-  // SparseLU reports only exact zero pivots; a numerically singular E shows in the solution (not
-  // finite, not solving the system, or amplifying the scaled right-hand side by more than 1e12,
-  // an estimate of the condition number from below): then the dense rank-revealing LU decides.
-  X = lu.solve(row_scale.asDiagonal() * R);
-  const Eigen::MatrixXd Rs = row_scale.asDiagonal() * R;
-  const double residual = (scaled * X - Rs).cwiseAbs().maxCoeff();
-  const double size = std::max(1.0, Rs.cwiseAbs().maxCoeff()) *
-                      std::max(1.0, X.cwiseAbs().maxCoeff());
-  const bool ill_conditioned = X.cwiseAbs().maxCoeff() > 1e12 * Rs.cwiseAbs().maxCoeff();
-  if (!X.allFinite() || !(residual <= 1e-9 * size) || ill_conditioned)
-    return solve_dense(E, row_scale, R, clear_structural, X);
-  if (clear_structural) clear_structural_zeros_sparse(E, R, X);
-  return true;
-}
-
 bool solve_scaled(const SparseMatrixD& E, const SparseMatrixD& R, bool clear_structural,
                   SparseMatrixD& X) {
   const Eigen::Index n = E.rows();
@@ -147,13 +91,13 @@ bool solve_scaled(const SparseMatrixD& E, const SparseMatrixD& R, bool clear_str
     X = SparseMatrixD(n, R.cols());
     return true;
   }
+  const Eigen::VectorXd row_scale = unit_row_scale(E);
   if (n < kSparseSolveSize) {
     Eigen::MatrixXd dense;
-    if (!solve_scaled(E, Eigen::MatrixXd(R), clear_structural, dense)) return false;
+    if (!solve_dense(E, row_scale, Eigen::MatrixXd(R), clear_structural, dense)) return false;
     X = dense.sparseView();
     return true;
   }
-  const Eigen::VectorXd row_scale = unit_row_scale(E);
   const SparseMatrixD scaled = row_scale.asDiagonal() * E;
   const SparseMatrixD Rs = row_scale.asDiagonal() * R;
   if (solve_by_singleton_rows(scaled, Rs, X)) {

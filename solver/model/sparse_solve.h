@@ -19,12 +19,9 @@ using SparseMatrixD = Eigen::SparseMatrix<double>;
 constexpr int kSparseSolveSize = 96;
 
 // X = E^-1 R with E's rows scaled to unit size first (a 1e16 ohm resistor next to a 1 V source is
-// not a singular system). Entries of X that E's structure makes exactly zero are set to 0
-// (structural_zeros.h) when `clear_structural` is set. Returns false when E is singular (X
-// unspecified). E is square; R has E.rows() rows.
-bool solve_scaled(const SparseMatrixD& E, const Eigen::MatrixXd& R, bool clear_structural,
-                  Eigen::MatrixXd& X);
-// The same with a sparse right-hand side and a sparse X (only exact zeros left out).
+// not a singular system), sparse (only exact zeros left out). Entries of X that E's structure
+// makes exactly zero are set to 0 (structural_zeros.h) when `clear_structural` is set. Returns
+// false when E is singular (X unspecified). E is square; R has E.rows() rows.
 bool solve_scaled(const SparseMatrixD& E, const SparseMatrixD& R, bool clear_structural,
                   SparseMatrixD& X);
 
