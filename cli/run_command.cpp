@@ -1,3 +1,5 @@
+#include <cmath>
+#include <cstdio>
 #include <iostream>
 
 #include "cli/commands.h"
@@ -5,6 +7,7 @@
 #include "cli/exit_codes.h"
 #include "cli/load_circuit.h"
 #include "cli/progress.h"
+#include "cli/source_sampling.h"
 #include "solver/integrators/transient.h"
 #include "solver/model/netlist_options.h"
 #include "solver/model/smooth_netlist.h"
@@ -13,6 +16,9 @@
 namespace lcs {
 
 namespace {
+
+// The most steps the aliasing guard subdivides to before it refuses instead.
+constexpr double kMaxGuardedSteps = 1e7;
 
 // `.options method=` and `theta=` (read_netlist_options: registry names and ngspice's trap,
 // theta 0.5; gear is accepted with a warning and the default method).
@@ -24,9 +30,49 @@ void apply_netlist_options(const Netlist& netlist, TransientOptions& options) {
     throw CliError(kExitNetlist, e.formatted());
   }
   if (!read.method.empty()) options.method = read.method;
-  if (read.gear)
-    warn(".options method=gear: lcspice has no Gear method; using implicit Euler (" + options.method + ")");
+  if (read.gear) warn(".options method=gear: lcspice has no Gear method; using the default method");
   if (read.theta) options.method_options.theta = *read.theta;
+}
+
+bool netlist_names_method(const Netlist& netlist) {
+  try {
+    return !read_netlist_options(netlist).method.empty();
+  } catch (const NetlistError&) {
+    return false;  // apply_netlist_options has reported it
+  }
+}
+
+void note(const std::string& message) { std::cerr << "lcspice: note: " << message << "\n"; }
+
+std::string seconds(double t) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g s", t);
+  return buf;
+}
+
+// The aliasing guard (cli/source_sampling.h). A step the user chose (--step) is kept, with a
+// warning; TSTEP from the .tran card is the print step, and the method steps a fraction of it.
+void guard_source_sampling(const Netlist& netlist, const RunArgs& args, TransientOptions& options) {
+  const std::optional<SourceFeature> finest = finest_source_feature(netlist);
+  if (!finest || options.step <= finest->max_step * (1 + 1e-9)) return;
+  const std::string source = "source " + finest->element + "'s " + finest->what;
+  if (args.step) {
+    warn("--step " + seconds(options.step) + " is longer than " + seconds(finest->max_step) + " (" + source +
+         "): " + options.method + " samples that source too coarsely to resolve it");
+    return;
+  }
+  const double k = std::ceil(options.step / finest->max_step * (1 - 1e-12));
+  if (k * (options.tstop / options.step) > kMaxGuardedSteps) {
+    const std::string message = "TSTEP " + seconds(options.step) + " cannot resolve " + source + ": " +
+                                options.method + " would need steps of " + seconds(finest->max_step) +
+                                ", more than " + std::to_string(static_cast<long>(kMaxGuardedSteps)) +
+                                " steps; use --method event (exact between events) or give --step";
+    if (netlist.tran) throw CliError(kExitNetlist, NetlistError(netlist.tran->loc, message).formatted());
+    throw CliError(kExitUsage, "error: " + message);
+  }
+  options.substeps = static_cast<int>(k);
+  note(options.method + " steps at " + seconds(options.step / k) + " (" + std::to_string(options.substeps) +
+       " per TSTEP " + seconds(options.step) + ", to resolve " + source + "); rows every TSTEP");
 }
 
 const MethodEntry& method_of(const TransientOptions& options) { return *find_method(options.method); }
@@ -128,6 +174,14 @@ int run_command(const RunArgs& args) {
     netlist = smooth_netlist(netlist, smoothing);
   }
   CircuitModel model = build_model(netlist, 0.0, options.tstop);
+  // SPEC §1: event wherever it applies, unless a method is named (--method, .options method=,
+  // --diode shockley).
+  if (args.method.empty() && args.diode != "shockley" && !netlist_names_method(netlist)) {
+    std::string why;
+    options.method = default_method_for(model, &why).name;
+    if (!why.empty()) note("method " + options.method + ": the default method does not apply (" + why + ")");
+  }
+  if (method_of(options).fixed_step()) guard_source_sampling(netlist, args, options);
   const std::vector<Probe> probes = probes_for(netlist, model, args.probes);
   OutputMap outputs = output_map_or_exit(model, probes);
   for (const std::string& w : floating_probe_warnings(model, probes)) warn(w);

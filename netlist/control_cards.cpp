@@ -1,3 +1,5 @@
+#include <algorithm>
+#include <cmath>
 #include "netlist/control_cards.h"
 
 #include <cstdio>
@@ -63,12 +65,20 @@ TranSpec parse_tran(const Card& card, const ParamScope& scope) {
   spec.tstop = v[1];
   spec.tstart = v[2];
   spec.tmax = v[3];
-  if (!(spec.tstep > 0)) throw NetlistError(card.at(values[0]), "'.tran' step must be positive");
+  if (spec.tstep < 0 || !std::isfinite(spec.tstep))
+    throw NetlistError(card.at(values[0]), "'.tran' step must be positive");
   if (spec.tstart < 0) throw NetlistError(card.at(values[2]), "'.tran' start time must not be negative");
   if (!(spec.tstop > spec.tstart))
     throw NetlistError(card.at(values[1]), values.size() > 2 ? "'.tran' stop time must be greater than the start time"
                                                              : "'.tran' stop time must be positive");
   if (spec.tmax < 0) throw NetlistError(card.at(values[3]), "'.tran' maximum step must not be negative");
+  // `.tran 0 TSTOP` (LTspice, PSpice): the simulator picks the step. TSTEP is lcspice's print
+  // step and the fixed methods' default step: a thousandth of the span, as a plot needs.
+  if (spec.tstep == 0) {
+    spec.tstep = (spec.tstop - spec.tstart) / kPickedStepsPerSpan;
+    if (spec.tmax > 0) spec.tstep = std::min(spec.tstep, spec.tmax);
+    spec.step_picked = true;
+  }
   return spec;
 }
 

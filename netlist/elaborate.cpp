@@ -1,6 +1,7 @@
 #include "netlist/elaborate.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <memory>
 #include <set>
 
@@ -11,6 +12,12 @@
 
 namespace lcs::parse {
 namespace {
+
+std::string short_number(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", x);
+  return buf;
+}
 
 // Bounds that keep hostile input from exhausting memory or the stack.
 // Elements plus instances after expansion. Dense model formation is cubic in the branches: a
@@ -124,6 +131,11 @@ class Elaborator {
         if (net_.tran)
           throw NetlistError(card.at(0), "duplicate '.tran' card (first at " + where(net_.tran->loc, card.at(0)) + ")");
         net_.tran = parse_tran(card, *in.scope);
+        if (net_.tran->step_picked)
+          net_.warnings.push_back(warning_line(
+              card.at(0), "'.tran 0 TSTOP' (LTspice/PSpice): lcspice picks TSTEP = TSTOP/" +
+                              std::to_string(kPickedStepsPerSpan) + " = " + short_number(net_.tran->tstep) +
+                              " s, the print step and the fixed-step methods' default step"));
         return;
       case DotCard::Ic:
         for (NodeIc& ic : parse_ic(card, *in.scope)) net_.node_ics.push_back(std::move(ic));

@@ -88,8 +88,10 @@ struct LineModel {
 struct TranSpec {
   double tstep = 0, tstop = 0, tstart = 0, tmax = 0;  // tmax 0: not given
   bool uic = false;
+  bool step_picked = false;  // written as `.tran 0 TSTOP`: tstep is lcspice's choice
   SourceLocation loc;
 };
+constexpr int kPickedStepsPerSpan = 1000;  // `.tran 0 TSTOP`: TSTEP = (TSTOP - TSTART) / 1000
 
 struct NodeIc {                        // one entry of `.ic v(node)=value`
   std::string node;                    // lower-case, "0" for ground

@@ -190,7 +190,7 @@ TEST(ParseDiagnostics, Subcircuits) {
 
 TEST(ParseDiagnostics, ControlCards) {
   check({
-      {"t\n.tran 0 1m\n", "t.cir:2:7: error: '.tran' step must be positive\n.tran 0 1m\n      ^"},
+      {"t\n.tran -1u 1m\n", "t.cir:2:7: error: '.tran' step must be positive\n.tran -1u 1m\n      ^~~"},
       {"t\n.tran 1u\n", "t.cir:2:9: error: '.tran' needs TSTEP and TSTOP\n.tran 1u\n        ^"},
       {"t\n.tran 1u 1m 2m\n",
        "t.cir:2:10: error: '.tran' stop time must be greater than the start time\n.tran 1u 1m 2m\n         ^~"},

@@ -316,3 +316,25 @@ TEST(ParseNetlist, FileAndEmptyInputs) {
 
 }  // namespace
 }  // namespace lcs
+
+namespace lcs {
+namespace {
+
+// `.tran 0 TSTOP` (LTspice/PSpice): lcspice picks TSTEP = (TSTOP - TSTART)/1000 and says so.
+TEST(ParseControl, TranWithZeroStepPicksTheStep) {
+  Netlist n = parse("t\nV1 a 0 SIN(0 1 1k)\nR1 a 0 1k\n.tran 0 2m 1m\n");
+  ASSERT_TRUE(n.tran);
+  EXPECT_DOUBLE_EQ(n.tran->tstep, 1e-6);
+  EXPECT_TRUE(n.tran->step_picked);
+  ASSERT_EQ(n.warnings.size(), 1u);
+  EXPECT_EQ(n.warnings[0], "t.cir:4:1: warning: '.tran 0 TSTOP' (LTspice/PSpice): lcspice picks TSTEP = TSTOP/1000 = "
+                           "1e-06 s, the print step and the fixed-step methods' default step");
+  Netlist capped = parse("t\nR1 a 0 1k\n.tran 0 1 0 1m\n");  // TMAX bounds the picked step
+  EXPECT_DOUBLE_EQ(capped.tran->tstep, 1e-3);
+  Netlist written = parse("t\nR1 a 0 1k\n.tran 1u 1m\n");
+  EXPECT_FALSE(written.tran->step_picked);
+  EXPECT_TRUE(written.warnings.empty());
+}
+
+}  // namespace
+}  // namespace lcs

@@ -41,7 +41,13 @@ struct MethodEntry {
   BenchSweep bench_sweep = BenchSweep::StepSize;
   bool exact_reference = false;  // bench's reference for the ideal circuit (exact: event)
   bool smooth_reference = false; // bench's reference for the smoothed circuit
-  bool is_default = false;       // the method when none is given (`run`, `validate`)
+  bool is_default = false;       // the method when none is given (`run`), where it applies
+  // Where the default does not apply: the fixed-step method `run` takes instead (and the method
+  // of a TransientOptions that names none).
+  bool is_fixed_step_default = false;
+  // Whether this method serves as the default for a circuit; unset: it serves every circuit.
+  // On false, *why says what rules it out ("128 complementarity pairs, more than ...").
+  std::function<bool(const LcsProblem&, std::string* why)> serves_as_default;
   // Degree of the polynomial through recorded steps that reads a line's past between them
   // (DelayHistory): the method's order less one, at least linear, so the history is as
   // accurate as the steps. (The event method reads its exact past instead.)
@@ -55,6 +61,10 @@ const std::vector<MethodEntry>& method_registry();
 const MethodEntry* find_method(const std::string& name);  // nullptr when unknown
 std::string method_names();                                // "euler, event, ..."
 const MethodEntry& default_method();                       // the entry with is_default
+const MethodEntry& fixed_step_default_method();            // the entry with is_fixed_step_default
+// `run` without a method (SPEC §1: event wherever it applies): the default method if it serves
+// this circuit, else the fixed-step default with *why saying why the default does not apply.
+const MethodEntry& default_method_for(const LcsProblem& model, std::string* why);
 const MethodEntry& exact_reference_method();               // the entry with exact_reference
 const MethodEntry* smooth_reference_method();  // the entry with smooth_reference; nullptr: none
 

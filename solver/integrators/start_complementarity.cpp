@@ -85,9 +85,14 @@ bool sparse_start_z(const LcsProblem& model, const SparseLcs& s, double t0, doub
   stats.sparse += own;
   ++stats.factorisations;
   if (!solved) return false;
-  Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> free_flow(W);
-  if (free_flow.info() != Eigen::Success) return true;
-  const Eigen::VectorXd q = s.C * Eigen::VectorXd(free_flow.solve(a)) + b;
+  // Eigen's SparseLU divides by the size: a circuit without states (resistors and diodes only)
+  // has q = b.
+  Eigen::VectorXd q = b;
+  if (n > 0) {
+    Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> free_flow(W);
+    if (free_flow.info() != Eigen::Success) return true;
+    q += s.C * Eigen::VectorXd(free_flow.solve(a));
+  }
   Eigen::VectorXd diagonal(m), row_size = Eigen::VectorXd::Zero(m);
   for (int i = 0; i < m; ++i) diagonal(i) = s.D.coeff(i, i);
   for (int k = 0; k < s.D.outerSize(); ++k)

@@ -28,6 +28,7 @@ bool TransientOptions::IsValid(std::string* why) const {
   const MethodEntry* entry = find_method(method);
   if (!entry) return fail("unknown method '" + method + "' (known: " + method_names() + ")");
   if (!(step > 0) || !std::isfinite(step)) return fail("the step must be positive");
+  if (substeps < 1) return fail("substeps per output step must be at least 1");
   if (!(tstop > 0) || !std::isfinite(tstop)) return fail("TSTOP must be positive");
   if (!(tstart >= 0) || tstart >= tstop) return fail("TSTART must be in [0, TSTOP)");
   if (entry->uses_theta && !(method_options.theta >= 0 && method_options.theta <= 1))
@@ -176,7 +177,7 @@ void run_adaptive(const CircuitModel& model, const OutputMap& outputs, const Tra
 
 // Fixed-step methods: step k ends at k*h (no accumulated rounding); a last shorter step lands
 // on tstop. Devices with history are told of every step, and a step longer than they allow is
-// taken as equal substeps (rows stay at the steps).
+// taken as equal substeps (rows stay at the steps), as are `options.substeps` steps per row.
 void run_fixed_step(const CircuitModel& model, const OutputMap& outputs, const TransientOptions& options,
                     const MethodEntry& entry, Eigen::VectorXd x, const Eigen::VectorXd& z0,
                     OutputSink& sink, TransientSummary& summary, double cpu0) {
@@ -208,7 +209,9 @@ void run_fixed_step(const CircuitModel& model, const OutputMap& outputs, const T
   const long full_steps = static_cast<long>(std::floor(options.tstop / h * (1 + 1e-12)));
   const bool partial = options.tstop - full_steps * h > 1e-9 * h;
   const long total = full_steps + (partial ? 1 : 0);
-  const int substeps = h > model.max_step() ? static_cast<int>(std::ceil(h / model.max_step())) : 1;
+  const double inner = h / options.substeps;
+  const int substeps =
+      options.substeps * (inner > model.max_step() ? static_cast<int>(std::ceil(inner / model.max_step())) : 1);
   const double loop0 = process_cpu_seconds();
   if (options.tstart <= 0) emit(0.0);
   double t = 0.0;
@@ -225,7 +228,7 @@ void run_fixed_step(const CircuitModel& model, const OutputMap& outputs, const T
         for (int j = 0; j < substeps; ++j) {
           const double tj = j + 1 == substeps ? t_next : t + (j + 1) * (step / substeps);
           stepper->Step(t + j * (step / substeps), step / substeps, x, z);
-          model.accept(tj, x, z);
+          if (history) model.accept(tj, x, z);
         }
       }
       t = t_next;

@@ -12,9 +12,12 @@
 namespace lcs {
 
 struct TransientOptions {
-  std::string method = default_method().name;
+  std::string method = fixed_step_default_method().name;
   MethodOptions method_options;
   double step = 0;     // fixed step h (> 0); for adaptive methods the output spacing (TSTEP)
+  // Fixed-step methods: equal steps per output step (rows at multiples of `step` only), so a
+  // source faster than TSTEP is resolved while rows stay at TSTEP (cli/source_sampling.h).
+  int substeps = 1;
   double tstart = 0;   // no output rows before tstart
   double tstop = 0;    // > tstart
   bool uic = false;    // start from zero state + IC= instead of the operating point

@@ -36,8 +36,8 @@ TEST(MethodRegistry, TraitsOfEachMethod) {
     bool adaptive, smooth_model, uses_theta, exact_reference, smooth_reference, is_default;
   };
   const std::vector<Expected> expected = {
-      {"euler", false, false, false, false, false, true},
-      {"event", true, false, false, true, false, false},
+      {"euler", false, false, false, false, false, false},
+      {"event", true, false, false, true, false, true},
       {"radau3", false, false, false, false, false, false},
       {"radau5", false, false, false, false, false, false},
       {"smooth", true, true, false, false, true, false},
@@ -62,9 +62,26 @@ TEST(MethodRegistry, ReferencesAndDefault) {
   EXPECT_EQ(exact_reference_method().name, "event");
   ASSERT_NE(smooth_reference_method(), nullptr);
   EXPECT_EQ(smooth_reference_method()->name, "smooth");
-  EXPECT_EQ(default_method().name, "euler");
+  EXPECT_EQ(default_method().name, "event");
+  EXPECT_EQ(fixed_step_default_method().name, "euler");
   EXPECT_EQ(TransientOptions().method, "euler");
   EXPECT_EQ(&exact_reference_method(), find_method("event"));
+}
+
+// SPEC §1: event is the default wherever it applies; a circuit with more pairs than its dense
+// exponentials serve gets the fixed-step default, with the reason.
+TEST(MethodRegistry, DefaultForACircuitFallsBackOnlyAboveThePairLimit) {
+  struct Sized : LcsProblem {
+    explicit Sized(int pairs) {
+      lcs_.D = Eigen::MatrixXd::Zero(pairs, pairs);
+    }
+  };
+  std::string why;
+  EXPECT_EQ(default_method_for(Sized(128), &why).name, "event");
+  EXPECT_TRUE(why.empty()) << why;
+  EXPECT_EQ(default_method_for(Sized(129), &why).name, "euler");
+  EXPECT_EQ(why, "129 complementarity pairs, more than the 128 up to which the event method's dense "
+                 "exponentials stay cheap");
 }
 
 TEST(MethodRegistry, UnknownNames) {

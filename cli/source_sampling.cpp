@@ -1,0 +1,59 @@
+#include "cli/source_sampling.h"
+
+#include <cmath>
+#include <cstdio>
+
+namespace lcs {
+
+namespace {
+
+constexpr double kStepsPerPeriod = 50;
+constexpr double kStepsPerPulseWidth = 5;
+
+std::string seconds(double t) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g s", t);
+  return buf;
+}
+
+void consider(std::optional<SourceFeature>& finest, const Element& e, const std::string& what,
+              double length, double steps) {
+  if (!(length > 0) || !std::isfinite(length)) return;
+  const double max_step = length / steps;
+  if (!finest || max_step < finest->max_step) finest = SourceFeature{e.name, what + " " + seconds(length), max_step};
+}
+
+void features_of(const Element& e, std::optional<SourceFeature>& finest) {
+  const Waveform& w = e.waveform;
+  const std::vector<double>& p = w.params;
+  const int written = w.written < 0 ? static_cast<int>(p.size()) : w.written;
+  switch (w.kind) {
+    case Waveform::Kind::Dc:
+      return;
+    case Waveform::Kind::Sin:  // SIN(VO VA FREQ TD THETA PHASE)
+      if (p.size() >= 3 && p[1] != 0 && p[2] > 0) consider(finest, e, "period", 1.0 / p[2], kStepsPerPeriod);
+      return;
+    case Waveform::Kind::Pulse:  // PULSE(V1 V2 TD TR TF PW PER)
+      if (p.size() < 7 || p[0] == p[1]) return;
+      if (written >= 4) consider(finest, e, "rise time", p[3], 1);
+      if (written >= 5) consider(finest, e, "fall time", p[4], 1);
+      if (written >= 6) consider(finest, e, "pulse width", p[5], kStepsPerPulseWidth);
+      if (written >= 7) consider(finest, e, "period", p[6], kStepsPerPeriod);
+      return;
+    case Waveform::Kind::Pwl:  // PWL(t1 v1 t2 v2 ...): a segment along which the value changes
+      for (std::size_t k = 2; k + 1 < p.size(); k += 2)
+        if (p[k + 1] != p[k - 1]) consider(finest, e, "PWL segment", p[k] - p[k - 2], 1);
+      return;
+  }
+}
+
+}  // namespace
+
+std::optional<SourceFeature> finest_source_feature(const Netlist& netlist) {
+  std::optional<SourceFeature> finest;
+  for (const Element& e : netlist.elements)
+    if (e.kind == ElementKind::VoltageSource || e.kind == ElementKind::CurrentSource) features_of(e, finest);
+  return finest;
+}
+
+}  // namespace lcs

@@ -1,0 +1,28 @@
+// The fixed-step aliasing guard (issue 13, SPEC §1 `--step`): a fixed step must resolve the
+// sources it samples. `.tran 1m 1.5` with a 1 kHz sine stepped at h = TSTEP samples the source at
+// its zero crossings, and implicit Euler then reports 0 V for the whole run without a word.
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "netlist/netlist.h"
+
+namespace lcs {
+
+// The finest feature of one independent source a fixed step must resolve, and the longest step
+// that does (`max_step`).
+struct SourceFeature {
+  std::string element;   // "v1"
+  std::string what;      // "period 1 ms" / "pulse width 2 us" / "PWL segment 1 us"
+  double max_step = 0;   // a step above this misrepresents the source
+};
+
+// Rules (the fractions are choices, stated here and in README): a periodic source (SIN, PULSE
+// period) needs 50 steps per period, so implicit Euler's phase lag per step ω·h stays near
+// 0.13 rad; a pulse width, a written PULSE edge and a PWL segment need one step each (a shorter
+// one is a jump the step cannot place anyway, so only features the deck wrote count).
+// nullopt: no source constrains the step (DC only).
+std::optional<SourceFeature> finest_source_feature(const Netlist& netlist);
+
+}  // namespace lcs

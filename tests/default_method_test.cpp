@@ -1,0 +1,142 @@
+// SPEC §1: `run` without a method uses `event` wherever it applies, and a fixed step resolves the
+// sources it samples (issue 13: `.tran 1m 1.5` with a 1 kHz source stepped at h = TSTEP sampled
+// the source at its zero crossings and reported 0 V for the whole run).
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+
+#include <gtest/gtest.h>
+
+#include "tests/cli_support.h"
+
+namespace lcs {
+namespace {
+
+using namespace cli_testing;
+
+// A peak detector at 1 kHz printed once per source period: the aliasing deck.
+constexpr const char* kAliasingDeck =
+    "peak detector printed once per period\n"
+    "V1 a 0 SIN(0 10 1k)\n"
+    "D1 a b dx\n"
+    "C1 b 0 10u\n"
+    "R1 b 0 10k\n"
+    ".model dx D(VON=0.7 RON=0)\n"
+    ".tran 1m 0.3\n"
+    ".end\n";
+
+fs::path write_deck(const fs::path& dir, const std::string& name, const std::string& text) {
+  const fs::path p = dir / name;
+  std::ofstream(p) << text;
+  return p;
+}
+
+std::pair<double, double> range_after(const Csv& csv, const std::string& probe, double t0) {
+  const int c = csv.column(probe);
+  EXPECT_GE(c, 0);
+  double lo = INFINITY, hi = -INFINITY;
+  for (const std::vector<double>& row : csv.rows)
+    if (row[0] >= t0) {
+      lo = std::min(lo, row[c]);
+      hi = std::max(hi, row[c]);
+    }
+  return {lo, hi};
+}
+
+// The ideal diode (RON = 0) holds v(b) = v(a) - 0.7 while it conducts. It turns off just past
+// the crest, where its current C v'(a) + v(b)/R reaches 0: 10 w R C cos(th) + 10 sin(th) - 0.7 = 0,
+// and the event method puts a row there, the envelope's top. Between peaks the capacitor
+// discharges through R for less than a period: v(b) > 9.3 exp(-1 ms / (R C)) = 9.3 exp(-0.01).
+TEST(DefaultMethod, TheAliasingDeckGivesTheEnvelopeByDefault) {
+  const fs::path dir = scratch_dir("default_aliasing");
+  const fs::path deck = write_deck(dir, "alias.cir", kAliasingDeck);
+  Result r = run_lcspice("run '" + deck.string() + "' --stats -o '" + (dir / "out.csv").string() + "'", dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(r.err_line(0).rfind("method event: ", 0), 0u) << r.err;
+  const Csv csv = parse_csv(read_file(dir / "out.csv"));
+  const auto [lo, hi] = range_after(csv, "v(b)", 1e-3);
+  const double wrc = 2 * M_PI * 1e3 * 10e3 * 10e-6;
+  double th = M_PI / 2;
+  for (int k = 0; k < 20; ++k)
+    th -= (10 * wrc * std::cos(th) + 10 * std::sin(th) - 0.7) / (-10 * wrc * std::sin(th) + 10 * std::cos(th));
+  EXPECT_NEAR(hi, 10 * std::sin(th) - 0.7, 1e-9);
+  EXPECT_LT(hi, 9.3 - 1e-5);  // 11 uV below the crest's 9.3 V
+  EXPECT_GT(lo, 9.3 * std::exp(-0.01) - 1e-9);
+  // Rows at every TSTEP multiple (and at the events between them).
+  EXPECT_GE(csv.rows.size(), 301u);
+}
+
+// Implicit Euler asked for by name, with the step left to TSTEP: 50 steps per source period,
+// rows still once per TSTEP, and a note that says so.
+TEST(DefaultMethod, FixedStepSubdividesATstepThatAliasesTheSource) {
+  const fs::path dir = scratch_dir("euler_subdivides");
+  const fs::path deck = write_deck(dir, "alias.cir", kAliasingDeck);
+  Result r = run_lcspice("run '" + deck.string() + "' --method euler --stats -o '" + (dir / "out.csv").string() + "'",
+                         dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(r.err_line(0),
+            "lcspice: note: euler steps at 2e-05 s (50 per TSTEP 0.001 s, to resolve source v1's period 0.001 s); "
+            "rows every TSTEP");
+  EXPECT_EQ(r.err_line(1).rfind("method euler: 15000 steps, 301 rows", 0), 0u) << r.err;
+  const Csv csv = parse_csv(read_file(dir / "out.csv"));
+  ASSERT_EQ(csv.rows.size(), 301u);
+  EXPECT_NEAR(csv.rows[200][0], 0.2, 1e-15);
+  // At 20 us steps the sine's crest is sampled within 1 - cos(pi/50) = 0.2 % of 10 V.
+  const auto [lo, hi] = range_after(csv, "v(b)", 1e-3);
+  EXPECT_GT(lo, 9.1);
+  EXPECT_LT(hi, 9.3 + 1e-9);
+}
+
+// A step the user gives is kept, with a warning naming the source it cannot resolve.
+TEST(DefaultMethod, AnExplicitCoarseStepIsKeptWithAWarning) {
+  const fs::path dir = scratch_dir("euler_explicit_step");
+  const fs::path deck = write_deck(dir, "alias.cir", kAliasingDeck);
+  Result r = run_lcspice("run '" + deck.string() + "' --method euler --step 1m -o '" + (dir / "out.csv").string() + "'",
+                         dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(r.err_line(0),
+            "lcspice: warning: --step 0.001 s is longer than 2e-05 s (source v1's period 0.001 s): euler samples "
+            "that source too coarsely to resolve it");
+}
+
+// Resolving a 1 ns edge written on the card over a 1 s run would take 1e9 steps: refused, at the
+// .tran card, with the remedies.
+TEST(DefaultMethod, AFixedStepThatCannotResolveASourceIsRefused) {
+  const fs::path dir = scratch_dir("euler_refused");
+  const fs::path deck = write_deck(dir, "edge.cir",
+                                   "edge\nV1 a 0 PULSE(0 1 0 1n 1n 0.5 1)\nR1 a b 1k\nD1 b 0 dx\n"
+                                   ".model dx D(VON=0.7)\n.tran 1u 1\n.end\n");
+  Result r = run_lcspice("run '" + deck.string() + "' --method euler -o '" + (dir / "out.csv").string() + "'", dir);
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_EQ(r.err_line(0), deck.string() +
+                               ":6:1: error: TSTEP 1e-06 s cannot resolve source v1's rise time 1e-09 s: euler would "
+                               "need steps of 1e-09 s, more than 10000000 steps; use --method event (exact between "
+                               "events) or give --step");
+  EXPECT_FALSE(fs::exists(dir / "out.csv"));
+}
+
+// Above 128 pairs the event method's dense exponentials cost too much to be the default: implicit
+// Euler runs instead, and says why.
+TEST(DefaultMethod, ALargeCircuitFallsBackToImplicitEulerWithANote) {
+  const fs::path dir = scratch_dir("default_large");
+  std::string text = "130 rectifiers\nV1 a 0 SIN(0 5 1k)\n";
+  for (int k = 0; k < 130; ++k) {
+    const std::string n = std::to_string(k);
+    text += "D" + n + " a o" + n + " dx\nR" + n + " o" + n + " 0 1k\n";
+  }
+  text += ".model dx D(VON=0.6)\n.tran 10u 1m\n.end\n";
+  const fs::path deck = write_deck(dir, "bank.cir", text);
+  Result r = run_lcspice("run '" + deck.string() + "' --probe 'v(o7)' -o '" + (dir / "out.csv").string() + "'", dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(r.err_line(0),
+            "lcspice: note: method euler: the default method does not apply (130 complementarity pairs, more than "
+            "the 128 up to which the event method's dense exponentials stay cheap)");
+  const Csv csv = parse_csv(read_file(dir / "out.csv"));
+  ASSERT_EQ(csv.rows.size(), 101u);
+  // Resistive: v(o7) = max(0, 5 sin(2 pi 1k t) - 0.6) at every row.
+  for (const std::vector<double>& row : csv.rows)
+    EXPECT_NEAR(row[1], std::max(0.0, 5 * std::sin(2 * M_PI * 1e3 * row[0]) - 0.6), 1e-9) << row[0];
+}
+
+}  // namespace
+}  // namespace lcs
