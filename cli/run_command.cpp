@@ -128,6 +128,11 @@ int run_command(const RunArgs& args) {
     netlist = smooth_netlist(netlist, smoothing);
   }
   CircuitModel model = build_model(netlist, 0.0, options.tstop);
+  // A method that cannot integrate this circuit is a usage error (the netlist is fine, as another
+  // method shows), like --diode shockley with a complementarity method.
+  std::string not_applicable;
+  if (method_of(options).applies && !method_of(options).applies(model, &not_applicable))
+    throw CliError(kExitUsage, "error: method " + options.method + ": " + not_applicable);
   const std::vector<Probe> probes = probes_for(netlist, model, args.probes);
   OutputMap outputs = output_map_or_exit(model, probes);
   for (const std::string& w : floating_probe_warnings(model, probes)) warn(w);

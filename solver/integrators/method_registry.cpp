@@ -3,6 +3,7 @@
 #include <stdexcept>
 
 #include "solver/integrators/event_driven.h"
+#include "solver/integrators/source_system.h"
 #include "solver/integrators/radau_iia.h"
 #include "solver/integrators/smooth_method.h"
 #include "solver/integrators/theta_method.h"
@@ -52,6 +53,9 @@ std::vector<MethodEntry> make_table() {
       });
   event.exact_reference = true;
   event.history_degree = 4;
+  event.applies = [](const LcsProblem& problem, std::string* why) {
+    return event_method_applies(problem.inputs(), why);
+  };
   table.push_back(event);
 
   MethodEntry radau3 = fixed_step(
