@@ -45,7 +45,8 @@ std::string exact(double x) {
 // through because ngspice's own keywords changed meaning: ngspice 39 (the library `validate`
 // may load) reads AM(VA VO MF FC TD) and SFFM(VO VA FC MDI FS PHASEC PHASES) with no TD, while
 // ngspice 40 and later, whose definitions lcspice follows, read AM(VO VMO VMA FM FC TD PHASEM
-// PHASEC) and SFFM(VO VA FC MDI FS TD PHASEM PHASEC). Empty for the other waveforms.
+// PHASEC) and SFFM(VO VA FC MDI FS TD PHASEM PHASEC). Empty for the other waveforms. Its value
+// from TD on (the caller gates it to 0 before a TD > 0: gate_pulse).
 std::string modulated_expression(const Waveform& w) {
   if ((w.kind != Waveform::Kind::Am && w.kind != Waveform::Kind::Sffm) || w.params.size() < 8) return "";
   const std::vector<double>& p = w.params;
@@ -61,8 +62,16 @@ std::string modulated_expression(const Waveform& w) {
     e = exact(p[0]) + "+" + exact(p[1]) + "*sin(" + exact(two_pi * p[2]) + "*" + tau + "+" +
         exact(p[7] * degree) + "+" + exact(p[3]) + "*" + sine(p[4], p[6]) + ")";
   }
-  if (p[5] != 0.0) e = "(" + e + ")*u(" + tau + ")";  // 0 before TD
   return e;
+}
+
+// A 0 -> 1 step at TD as an ngspice PULSE, which gives ngspice breakpoints at the jump (a
+// behavioural source has none, and ngspice would step across it and interpolate): its edge is
+// 1e-6 TSTOP long and ends at TD, as a zero PULSE edge is written.
+std::string gate_pulse(double td, double tstop) {
+  double edge = std::min(1e-6 * tstop, td / 2);
+  return "PULSE(0 1 " + exact(td - edge) + " " + exact(edge) + " " + exact(edge) + " " + exact(10 * tstop) + " " +
+         exact(20 * tstop) + ")";
 }
 
 }  // namespace
@@ -89,17 +98,28 @@ void IndependentSource::stamp(const StampContext& context, Stamps& stamps) const
 }
 
 NgspiceCards IndependentSource::ngspice(const NgspiceDeckContext& context) const {
-  const std::string expression = modulated_expression(element_.waveform);
+  std::string expression = modulated_expression(element_.waveform);
+  NgspiceCards gate;
+  if (!expression.empty() && element_.waveform.params.at(5) > 0) {  // 0 before TD
+    const std::string node = context.fresh("lcs_" + name() + "_gate");
+    gate.lines.push_back(context.fresh(deck_name('v', name() + "_gate")) + " " + node + " 0 " +
+                         gate_pulse(element_.waveform.params[5], context.tstop));
+    expression = "(" + expression + ")*v(" + node + ")";
+  }
   if (!expression.empty()) {
+    auto with_gate = [&](NgspiceCards cards) {
+      cards.lines.insert(cards.lines.begin(), gate.lines.begin(), gate.lines.end());
+      return cards;
+    };
     if (!voltage_)
-      return two_terminal_cards(deck_name('b', name()), element_.nodes.at(0), element_.nodes.at(1),
-                                "I=" + expression, name(), context);
+      return with_gate(two_terminal_cards(deck_name('b', name()), element_.nodes.at(0), element_.nodes.at(1),
+                                          "I=" + expression, name(), context));
     NgspiceCards cards;  // a 0 V source in series is the ammeter
     const std::string deck = deck_name('v', name()), mid = context.fresh("lcs_" + name() + "_b");
     cards.lines.push_back(deck + " " + element_.nodes.at(0) + " " + mid + " DC 0");
     cards.lines.push_back(deck_name('b', name()) + " " + mid + " " + element_.nodes.at(1) + " V=" + expression);
     cards.probes["i(" + name() + ")"] = {deck + "#branch", ""};
-    return cards;
+    return with_gate(cards);
   }
   const std::string wave = ngspice_waveform(element_.waveform, context.tstop);
   if (!voltage_)
