@@ -67,6 +67,17 @@ Waveform parse_source_waveform(const Card& card, std::size_t first, const ParamS
       i += 3;
       continue;
     }
+    // ngspice's PWL options after the list: TD=delay shifts every time point; R=time repeats.
+    if (have_function && w.kind == Waveform::Kind::Pwl && (t.is_word("td") || t.is_word("r")) && i + 1 < n &&
+        card[i + 1].is(Token::Kind::Equals)) {
+      if (t.is_word("r"))
+        throw NetlistError(card.at(t), "pwl repetition 'r=' of " + quote(name) + " is not supported (write the periods out)");
+      if (i + 2 >= n) throw NetlistError(card.after_last(), "missing value for 'td'");
+      const double td = value_of(card, i + 2, scope);
+      for (std::size_t k = 0; k < w.params.size(); k += 2) w.params[k] += td;
+      i += 3;
+      continue;
+    }
     if (t.is_word("ac")) {
       warnings.push_back(warning_line(card.at(t), "AC specification of " + quote(name) + " is ignored"));
       ++i;

@@ -69,6 +69,19 @@ TEST(ParseSources, ExpSffmAmAndSineCards) {
   EXPECT_EQ(s.params, (std::vector<double>{0, 0.3, 440, 0, 0, 0}));
 }
 
+// ngspice's PWL delay: value(t) = pwl(t - TD).
+TEST(ParseSources, PwlDelayShiftsEveryTimePoint) {
+  Netlist n = parse("t\nV1 a 0 PWL(0 0 1m 1) td=2m\nR1 a 0 1\n");
+  const std::vector<double>& p = element(n, "v1").waveform.params;
+  ASSERT_EQ(p.size(), 4u);
+  EXPECT_DOUBLE_EQ(p[0], 2e-3);
+  EXPECT_DOUBLE_EQ(p[2], 3e-3);
+  EXPECT_EQ(p[3], 1.0);
+  EXPECT_EQ(test::diag("t\nV1 a 0 PWL(0 0 1m 1) r=0\nR1 a 0 1\n"),
+            "t.cir:2:22: error: pwl repetition 'r=' of 'v1' is not supported (write the periods out)\n"
+            "V1 a 0 PWL(0 0 1m 1) r=0\n                     ^");
+}
+
 TEST(ParseSources, SffmModulationIndexAboveFcOverFsIsLimitedWithAWarning) {
   Netlist n = parse("t\nV2 10 0 SFFM 0.1 2 200 45 10k 1m 0 0\nR2 10 0 1\n.tran 1u 2m\n");
   EXPECT_DOUBLE_EQ(element(n, "v2").waveform.params[3], 0.02);
