@@ -99,6 +99,21 @@ TEST(ExpSource, RcResponseIsTheClosedFormExactlyWithEventAndToFirstOrderWithEule
   EXPECT_LT(e1 / e2, 2.2);
 }
 
+// EXP through `validate`: a voltage EXP with TD1 = 0 and a current EXP with TAU1 = 0 (a jump
+// here), which ngspice would read as TSTEP-based defaults, so they reach it as 1e-6 TSTOP.
+// Measured outside the tube at ngspice's TMAX = 1 us: v(in) 1.4e-11, v(out) 2.7e-5, i(v1)
+// 3.3e-5 of their ranges (at TMAX = TSTEP ngspice steps across the corner at TD2 = 4 ms:
+// v(in) 0.82 %). Written through as zeros, ngspice's vsrcload.c would replace them by TSTEP
+// (TD1 = 10 us: v(in) rising late; TAU1 = 10 us: a ramp instead of the jump).
+TEST(ExpSource, AgreesWithNgspice) {
+  const fs::path dir = scratch_dir("exp_validate");
+  std::ofstream(dir / "exp.cir") << "exp rc\nV1 in 0 EXP(0 1 0 0.5m 4m 0.2m)\nR1 in out 1k\nC1 out 0 1u\n"
+                                    "I1 0 out EXP(0 1m 1m 0 3m 0.3m)\n.tran 10u 8m\n.end\n";
+  Result r = run_lcspice("validate '" + (dir / "exp.cir").string() + "' --max-step 1e-6 --tol 2e-4", dir);
+  EXPECT_EQ(r.code, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("PASS: every probe within"), std::string::npos) << r.out;
+}
+
 // AM(VO=0.5 VMO=2 VMA=1.8 FM=1k FC=20k TD=0.2m PHASEM=30 PHASEC=45) into R = 100, C = 1u
 // (tau = 0.1 ms) from rest. The source is 0 before TD, then VO plus three sinusoids (at FC and
 // FC -+ FM), each passed by the RC with gain 1/sqrt(1 + (w tau)^2) and lag atan(w tau).
