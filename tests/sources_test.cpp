@@ -217,6 +217,17 @@ TEST(NegativeCoupling, InducedVoltageFlipsSignAndMatchesTheClosedForm) {
   }
 }
 
+// k = -1 is a perfect coupling like k = 1 (perfect_coupling.h): the secondary is -2 times the
+// primary at every row, to 1e-9 V, for the event method, implicit Euler and radau5.
+TEST(NegativeCoupling, MinusOneIsAPerfectCouplingWithTheTurnsRatioReversed) {
+  const std::string deck = "k=-1\nV1 p 0 SIN(0 10 1k)\nL1 p 0 1m\nL2 s 0 4m\nK1 L1 L2 -1\nRL s 0 50\n.tran 10u 2m UIC\n.end\n";
+  for (const char* method : {"event", "euler", "radau5"}) {
+    const Waves w = simulate(deck, method, 10e-6, {"v(p)", "v(s)"});
+    for (size_t i = 0; i < w.t.size(); ++i)
+      EXPECT_NEAR(w.y.at("v(s)")[i], -2 * w.y.at("v(p)")[i], 1e-9) << method << " t = " << w.t[i];
+  }
+}
+
 // The same two windings, k = -0.5, behind R1 = 10 ohm from a 1 kHz sine, through `validate`:
 // ngspice takes the negative coefficient as it is. Measured: every probe within 6.6e-5 of its
 // range outside the tube (there are no diodes: ngspice's own step error at TMAX = TSTEP;
