@@ -181,6 +181,11 @@ int run_command(const RunArgs& args) {
     options.method = default_method_for(model, &why).name;
     if (!why.empty()) note("method " + options.method + ": the default method does not apply (" + why + ")");
   }
+  // A method that cannot integrate this circuit is a usage error (the netlist is fine, as another
+  // method shows), like --diode shockley with a complementarity method.
+  std::string not_applicable;
+  if (method_of(options).applies && !method_of(options).applies(model, &not_applicable))
+    throw CliError(kExitUsage, "error: method " + options.method + ": " + not_applicable);
   if (method_of(options).fixed_step()) guard_source_sampling(netlist, args, options);
   const std::vector<Probe> probes = probes_for(netlist, model, args.probes);
   OutputMap outputs = output_map_or_exit(model, probes);

@@ -351,6 +351,8 @@ int validate_with_faults(const ValidateArgs& args, const NgspiceDeckFaults& faul
     throw CliError(kExitUsage, "error: --max-step must be a positive number");
 
   CircuitModel model = build_model(netlist, 0.0, run.tstop);
+  if (const MethodEntry& entry = *find_method(run.method); entry.applies && !entry.applies(model, &why))
+    throw CliError(kExitUsage, "error: method " + run.method + ": " + why);  // an SFFM source and event
   // What lcspice integrates: the ideal circuit, or for `smooth` the Shockley circuit of the deck.
   const bool smooth = find_method(run.method)->smooth_model;
   TranslationOptions topt;

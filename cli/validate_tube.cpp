@@ -22,7 +22,7 @@ Netlist netlist_with_shifted_thresholds(const CircuitModel& model,
         DiodeModel card;
         card.name = "lcs_gap_" + el.name;
         card.von = p.law.von + gap;
-        card.ron = p.law.ron;
+        card.ron = p.law.ron * (el.value > 0 ? el.value : 1.0);  // the device divides it by the area
         card.loc = shifted.diode_models.count(el.model) ? shifted.diode_models.at(el.model).loc : el.loc;
         shifted.diode_models[card.name] = card;
         el.model = card.name;

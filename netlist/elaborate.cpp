@@ -8,6 +8,7 @@
 #include "netlist/control_cards.h"
 #include "netlist/element_card.h"
 #include "netlist/model_card.h"
+#include "netlist/parallel_copies.h"
 #include "netlist/param_scope.h"
 
 namespace lcs::parse {
@@ -49,6 +50,7 @@ struct Instance {
   const Instance* parent = nullptr;
   std::map<std::string, std::string> models;   // model name as written -> flat model name
   int depth = 0;
+  double multiplier = 1.0;                     // m= of this instance times its parents' (parallel_copies.h)
 };
 
 class Elaborator {
@@ -184,6 +186,7 @@ class Elaborator {
     scope.node = [&](const std::string& n) { return map_node(in, n); };
     scope.is_model = [&](const std::string& n) { return !find_model(in, n).empty(); };
     ParsedElement pe = parse_element(card, scope, net_.warnings);
+    scale_for_parallel_copies(pe.element, in.multiplier);
     register_name(pe.element.name, card.at(0), "element");
     const std::size_t index = net_.elements.size();
     if (pe.element.kind == ElementKind::Diode) pe.element.model = resolve_diode_model(in, card, pe.model_token);
@@ -231,10 +234,19 @@ class Elaborator {
     child.prefix = flat + ".";
     child.parent = &in;
     child.depth = in.depth + 1;
+    child.multiplier = in.multiplier;
     child.scope = std::make_unique<ParamScope>(in.scope.get());
     for (std::size_t k = 0; k < words.size(); ++k) child.ports[def->ports[k]] = map_node(in, card[words[k]].lower);
     for (const Assignment& a : split_assignments(card, i, n, false, true)) {
       const Token& name = card[a.name];
+      // ngspice's multiplier, m copies of the instance in parallel; a subcircuit that declares a
+      // parameter m takes it as that parameter instead (as ngspice does).
+      if (name.lower == "m" && !def->param("m")) {
+        const double m = value_of(card, a.value_first, a.value_last, *in.scope, true);
+        if (!(m > 0)) throw NetlistError(card.at(a.value_first), "multiplier m of " + quote(flat) + " must be positive");
+        child.multiplier *= m;
+        continue;
+      }
       if (!def->param(name.lower))
         throw NetlistError(card.at(name), "subcircuit " + quote(sub) + " has no parameter " + quote(name.lower));
       child.scope->set(name.lower, value_of(card, a.value_first, a.value_last, *in.scope, true));

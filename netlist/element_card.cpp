@@ -1,5 +1,6 @@
 #include "netlist/element_card.h"
 
+#include "netlist/parallel_copies.h"
 #include "netlist/source_card.h"
 
 #include <cmath>
@@ -37,17 +38,27 @@ struct Reader {
     throw NetlistError(card.at(t), "unexpected extra token " + quote(t.text));
   }
 
-  // `IC=value` after the value of L and C.
-  void optional_ic(std::size_t i, Element& e) const {
+  // What follows the value of R, L and C: `M=m` (m copies in parallel: ngspice's multiplier) and,
+  // for L and C, `IC=value`. Returns m (1 when not given).
+  double trailing(std::size_t i, Element& e, bool ic_allowed) const {
+    double m = 1.0;
     while (i < card.size()) {
-      if (card[i].is_word("ic") && i + 1 < card.size() && card[i + 1].is(Token::Kind::Equals)) {
-        if (i + 2 >= card.size()) throw NetlistError(card.after_last(), "missing value for 'ic'");
-        e.ic = value_of(card, i + 2, *scope.params);
+      const bool assignment = card[i].is_word() && i + 1 < card.size() && card[i + 1].is(Token::Kind::Equals);
+      if (assignment && (card[i].is_word("m") || (ic_allowed && card[i].is_word("ic")))) {
+        if (i + 2 >= card.size()) throw NetlistError(card.after_last(), "missing value for " + quote(card[i].lower));
+        const double v = value_of(card, i + 2, *scope.params);
+        if (card[i].is_word("m")) {
+          positive(i + 2, v, "multiplier m");
+          m = v;
+        } else {
+          e.ic = v;
+        }
         i += 3;
         continue;
       }
       extra(i);
     }
+    return m;
   }
 
   void positive(std::size_t i, double v, const char* what) const {
@@ -123,6 +134,27 @@ void parse_bjt(const Card& card, const Reader& r, const ElementScope& scope, Par
       r.extra(i);
     }
     i = last;
+  }
+}
+
+// D ... model [area] [AREA=a] [M=m]: the diode's value is the area times m (m diodes in parallel).
+void diode_instance_params(const Card& card, const Reader& r, std::size_t i, Element& e) {
+  e.value = 1.0;
+  if (i < card.size() && !(i + 1 < card.size() && card[i + 1].is(Token::Kind::Equals)) &&
+      starts_with_digit(card[i])) {
+    e.value = r.value(i);
+    r.positive(i, e.value, "area");
+    ++i;
+  }
+  while (i < card.size()) {
+    const Token& t = card[i];
+    if (!(t.is_word() && i + 1 < card.size() && card[i + 1].is(Token::Kind::Equals))) r.extra(i);
+    if (i + 2 >= card.size()) throw NetlistError(card.after_last(), "missing value for " + quote(t.lower));
+    if (t.lower != "area" && t.lower != "m") r.extra(i);
+    const double v = r.value(i + 2);
+    r.positive(i + 2, v, t.lower == "area" ? "area" : "multiplier m");
+    e.value *= v;
+    i += 3;
   }
 }
 
@@ -246,11 +278,7 @@ ParsedElement parse_element(const Card& card, const ElementScope& scope,
       r.distinct_nodes(e);
       e.value = r.value(3);
       r.positive(3, e.value, letter == 'r' ? "resistance" : letter == 'l' ? "inductance" : "capacitance");
-      if (letter == 'r') {
-        if (card.size() > 4) r.extra(4);
-      } else {
-        r.optional_ic(4, e);
-      }
+      scale_for_parallel_copies(e, r.trailing(4, e, letter != 'r'));
       break;
     }
     case 'k': {
@@ -264,8 +292,9 @@ ParsedElement parse_element(const Card& card, const ElementScope& scope,
       if (e.coupled[0] == e.coupled[1])
         throw NetlistError(card.at(2), quote(e.name) + " couples " + quote(card[2].lower) + " with itself");
       e.value = r.value(3);
-      if (!(e.value > 0 && e.value <= 1))
-        throw NetlistError(card.at(3), "coupling coefficient of " + quote(e.name) + " must be in (0, 1]");
+      // ngspice: -1 <= k <= 1 (a negative k: the windings' fluxes oppose, M = k sqrt(L1 L2) < 0).
+      if (!(e.value >= -1 && e.value <= 1))
+        throw NetlistError(card.at(3), "coupling coefficient of " + quote(e.name) + " must be in [-1, 1]");
       if (card.size() > 4) r.extra(4);
       break;
     }
@@ -275,7 +304,9 @@ ParsedElement parse_element(const Card& card, const ElementScope& scope,
       r.node(1, e);
       r.node(2, e);
       r.distinct_nodes(e);
-      e.waveform = parse_source_waveform(card, 3, *scope.params, e.name, warnings);
+      double m = 1.0;
+      e.waveform = parse_source_waveform(card, 3, *scope.params, e.name, warnings, letter == 'i' ? &m : nullptr);
+      scale_for_parallel_copies(e, m);
       break;
     }
     case 'd': {
@@ -287,7 +318,7 @@ ParsedElement parse_element(const Card& card, const ElementScope& scope,
       if (!card[3].is_word()) throw NetlistError(card.at(3), "expected a model name, got " + quote(card[3].text));
       e.model = card[3].lower;
       out.model_token = 3;
-      if (card.size() > 4) r.extra(4);
+      diode_instance_params(card, r, 4, e);
       break;
     }
     case 'q':

@@ -15,11 +15,15 @@ struct FunctionSpec {
 
 const FunctionSpec kFunctions[] = {
     {"sin", Waveform::Kind::Sin, 2, 6},
+    {"sine", Waveform::Kind::Sin, 2, 6},  // ngspice's other name for SIN
     {"pulse", Waveform::Kind::Pulse, 2, 7},
     {"pwl", Waveform::Kind::Pwl, 2, 0},
+    {"exp", Waveform::Kind::Exp, 2, 6},
+    {"sffm", Waveform::Kind::Sffm, 2, 8},
+    {"am", Waveform::Kind::Am, 2, 8},
 };
 
-const char* const kUnsupported[] = {"exp", "sffm", "am", "trnoise", "trrandom", "pat", "ext"};
+const char* const kUnsupported[] = {"trnoise", "trrandom", "pat", "ext"};
 
 bool looks_numeric(const Token& t) {
   return t.is_expression() || (t.is_word() && parse_number(t.text).has_value());
@@ -32,7 +36,8 @@ std::string plural(std::size_t n, const char* what) {
 }  // namespace
 
 Waveform parse_source_waveform(const Card& card, std::size_t first, const ParamScope& scope,
-                               const std::string& name, std::vector<std::string>& warnings) {
+                               const std::string& name, std::vector<std::string>& warnings,
+                               double* multiplier) {
   Waveform w;
   bool have_dc = false, have_function = false;
   const std::size_t n = card.size();
@@ -49,6 +54,28 @@ Waveform parse_source_waveform(const Card& card, std::size_t first, const ParamS
       w.dc = value_of(card, i + 1, scope);
       have_dc = true;
       i += 2;
+      continue;
+    }
+    if (t.is_word("m") && i + 1 < n && card[i + 1].is(Token::Kind::Equals)) {
+      if (!multiplier)
+        throw NetlistError(card.at(t), "unknown parameter 'm' for " + quote(name) +
+                                           " (a voltage source has no multiplier)");
+      if (i + 2 >= n) throw NetlistError(card.after_last(), "missing value for 'm'");
+      *multiplier = value_of(card, i + 2, scope);
+      if (!(*multiplier > 0))
+        throw NetlistError(card.at(i + 2), "multiplier m of " + quote(name) + " must be positive");
+      i += 3;
+      continue;
+    }
+    // ngspice's PWL options after the list: TD=delay shifts every time point; R=time repeats.
+    if (have_function && w.kind == Waveform::Kind::Pwl && (t.is_word("td") || t.is_word("r")) && i + 1 < n &&
+        card[i + 1].is(Token::Kind::Equals)) {
+      if (t.is_word("r"))
+        throw NetlistError(card.at(t), "pwl repetition 'r=' of " + quote(name) + " is not supported (write the periods out)");
+      if (i + 2 >= n) throw NetlistError(card.after_last(), "missing value for 'td'");
+      const double td = value_of(card, i + 2, scope);
+      for (std::size_t k = 0; k < w.params.size(); k += 2) w.params[k] += td;
+      i += 3;
       continue;
     }
     if (t.is_word("ac")) {
@@ -109,6 +136,19 @@ Waveform parse_source_waveform(const Card& card, std::size_t first, const ParamS
         for (std::size_t k = 3; k < w.params.size(); ++k)
           if (w.params[k] < 0)
             throw NetlistError(card.at(args[k]), std::string("pulse ") + what[k] + " must not be negative");
+      }
+      if (fn->kind == Waveform::Kind::Exp)
+        for (std::size_t k : {3, 5})
+          if (k < w.params.size() && w.params[k] < 0)
+            throw NetlistError(card.at(args[k]), "exp time constant must not be negative");
+      if (fn->kind == Waveform::Kind::Sffm && w.params.size() >= 5 && w.params[4] != 0) {
+        // ngspice limits the modulation index so the instantaneous frequency stays >= 0.
+        const double mdi = w.params[3], limit = w.params[2] / w.params[4];
+        if (mdi > limit || mdi < 0)
+          warnings.push_back(warning_line(card.at(args[3]), "sffm modulation index " + card[args[3]].text + " of " +
+                                                                quote(name) + " is limited to " +
+                                                                (mdi < 0 ? std::string("0") : "FC/FS") +
+                                                                " (as ngspice does)"));
       }
       i = j;
       continue;

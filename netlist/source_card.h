@@ -1,4 +1,5 @@
-// The waveform part of V and I cards: `[DC] value`, `SIN(...)`, `PULSE(...)`, `PWL(...)` (with or
+// The waveform part of V and I cards: `[DC] value`, `SIN(...)` (or `SINE`), `PULSE(...)`,
+// `PWL(...)`, `EXP(...)`, `SFFM(...)`, `AM(...)` (with or
 // without a space before the parenthesis, or without parentheses), `DC x` together with a
 // transient function, and `AC mag [phase]` (accepted, ignored with a warning).
 // Internal to the netlist reader.
@@ -14,8 +15,10 @@
 namespace lcs::parse {
 
 // Reads the tokens from `first` to the end of the card. `name` is the element's (flat) name for
-// messages. The result is not resolved yet (that needs .tran).
+// messages. The result is not resolved yet (that needs .tran). `m=value` (a current source's
+// multiplier) is read into *multiplier; without one (a voltage source) it is an error.
 Waveform parse_source_waveform(const Card& card, std::size_t first, const ParamScope& scope,
-                               const std::string& name, std::vector<std::string>& warnings);
+                               const std::string& name, std::vector<std::string>& warnings,
+                               double* multiplier = nullptr);
 
 }  // namespace lcs::parse

@@ -1,4 +1,4 @@
-// Independent source waveforms with ngspice semantics (DC, SIN, PULSE, PWL).
+// Independent source waveforms with ngspice semantics (DC, SIN, PULSE, PWL, EXP, SFFM, AM).
 //
 // PULSE and PWL are piecewise linear. Both are evaluated through one list of knots (time, value)
 // with non-decreasing times; two knots at the same time are a jump. Values are right-continuous:
@@ -169,6 +169,79 @@ struct SinShape {
   }
 };
 
+// EXP: V1 before TD1; then V1 + (V2 - V1)(1 - exp(-(t - TD1)/TAU1)), and from TD2 (when it is
+// after TD1; else from TD1) also + (V1 - V2)(1 - exp(-(t - TD2)/TAU2)) (ngspice's vsrcload.c).
+// A zero time constant is a jump (as a zero PULSE edge is here): ngspice would use TSTEP.
+struct ExpShape {
+  double v1, v2, td1, tau1, td2, tau2;
+  explicit ExpShape(const std::vector<double>& p)
+      : v1(param(p, 0)), v2(param(p, 1)), td1(param(p, 2)), tau1(param(p, 3)), td2(param(p, 4)), tau2(param(p, 5)) {}
+  // exp(-x/tau) for x >= 0, with tau = 0 meaning the mode has already decayed.
+  static double decay(double x, double tau) { return tau > 0 ? std::exp(-x / tau) : 0.0; }
+  bool first(double t) const { return t >= td1; }
+  bool second(double t) const { return t >= td1 && t >= td2; }
+  double value(double t) const {
+    double v = v1;
+    if (first(t)) v += (v2 - v1) * (1 - decay(t - td1, tau1));
+    if (second(t)) v += (v1 - v2) * (1 - decay(t - td2, tau2));
+    return v;
+  }
+  double value_before(double t) const {  // only a zero time constant jumps
+    double v = v1;
+    if (t > td1) v += (v2 - v1) * (1 - decay(t - td1, tau1));
+    if (t > td1 && t > td2) v += (v1 - v2) * (1 - decay(t - td2, tau2));
+    return v;
+  }
+  double derivative(double t) const {
+    double d = 0;
+    if (first(t) && tau1 > 0) d += (v2 - v1) * decay(t - td1, tau1) / tau1;
+    if (second(t) && tau2 > 0) d += (v1 - v2) * decay(t - td2, tau2) / tau2;
+    return d;
+  }
+  // The second corner: TD2, or TD1 when TD2 is not after it.
+  double start2() const { return std::max(td1, td2); }
+};
+
+// SFFM (ngspice 40+, vsrcload.c): 0 before TD; then, tau = t - TD,
+// VO + VA sin(2 pi FC tau + PHASEC + MDI sin(2 pi FS tau + PHASEM)).
+struct SffmShape {
+  double vo, va, fc, mdi, fs, td, phasem, phasec;  // phases in radians
+  explicit SffmShape(const std::vector<double>& p)
+      : vo(param(p, 0)), va(param(p, 1)), fc(param(p, 2)), mdi(param(p, 3)), fs(param(p, 4)), td(param(p, 5)),
+        phasem(param(p, 6) * kPi / 180.0), phasec(param(p, 7) * kPi / 180.0) {}
+  double value(double t) const {
+    if (t < td) return 0.0;
+    double tau = t - td;
+    return vo + va * std::sin(2 * kPi * fc * tau + phasec + mdi * std::sin(2 * kPi * fs * tau + phasem));
+  }
+  double derivative(double t) const {
+    if (t < td) return 0.0;
+    double tau = t - td, wc = 2 * kPi * fc, ws = 2 * kPi * fs;
+    double inner = ws * tau + phasem;
+    return va * std::cos(wc * tau + phasec + mdi * std::sin(inner)) * (wc + mdi * ws * std::cos(inner));
+  }
+};
+
+// AM (ngspice 40+, vsrcload.c): 0 before TD; then, tau = t - TD,
+// VO + (VMO + VMA sin(2 pi FM tau + PHASEM)) sin(2 pi FC tau + PHASEC).
+struct AmShape {
+  double vo, vmo, vma, fm, fc, td, phasem, phasec;  // phases in radians
+  explicit AmShape(const std::vector<double>& p)
+      : vo(param(p, 0)), vmo(param(p, 1)), vma(param(p, 2)), fm(param(p, 3)), fc(param(p, 4)), td(param(p, 5)),
+        phasem(param(p, 6) * kPi / 180.0), phasec(param(p, 7) * kPi / 180.0) {}
+  double value(double t) const {
+    if (t < td) return 0.0;
+    double tau = t - td;
+    return vo + (vmo + vma * std::sin(2 * kPi * fm * tau + phasem)) * std::sin(2 * kPi * fc * tau + phasec);
+  }
+  double derivative(double t) const {
+    if (t < td) return 0.0;
+    double tau = t - td, wm = 2 * kPi * fm, wc = 2 * kPi * fc;
+    double m = wm * tau + phasem, c = wc * tau + phasec;
+    return vma * wm * std::cos(m) * std::sin(c) + (vmo + vma * std::sin(m)) * wc * std::cos(c);
+  }
+};
+
 }  // namespace
 
 void Waveform::reresolve(double tstep, double tstop) {
@@ -195,6 +268,34 @@ void Waveform::resolve(double tstep, double tstop) {
       while (params.size() < 7) params.push_back(defaults[params.size() - 2]);
       break;
     }
+    case Kind::Exp:
+      if (params.size() < 2) params.resize(2, 0.0);
+      if (params.size() < 3) params.push_back(0.0);                // TD1
+      if (params.size() < 4) params.push_back(tstep);              // TAU1
+      if (params.size() < 5) params.push_back(params[2] + tstep);  // TD2
+      if (params.size() < 6) params.push_back(tstep);              // TAU2
+      break;
+    case Kind::Sffm: {
+      if (params.size() < 2) params.resize(2, 0.0);
+      if (params.size() < 3) params.push_back(tstop > 0 ? 5.0 / tstop : 0.0);  // FC
+      if (params.size() < 4) params.push_back(90.0);                          // MDI
+      if (params.size() < 5 || params[4] == 0.0) {                            // FS (0: default)
+        params.resize(std::max<std::size_t>(params.size(), 5), 0.0);
+        params[4] = tstop > 0 ? 500.0 / tstop : 0.0;
+      }
+      params.resize(8, 0.0);  // TD PHASEM PHASEC
+      double& mdi = params[3];
+      if (params[4] != 0.0 && mdi > params[2] / params[4]) mdi = params[2] / params[4];
+      if (mdi < 0) mdi = 0;
+      break;
+    }
+    case Kind::Am:
+      if (params.size() < 2) params.resize(2, 0.0);
+      if (params.size() < 3) params.push_back(1.0);                           // VMA
+      if (params.size() < 4) params.push_back(tstop > 0 ? 5.0 / tstop : 0.0);  // FM
+      if (params.size() < 5) params.push_back(tstop > 0 ? 500.0 / tstop : 0.0);  // FC
+      params.resize(8, 0.0);  // TD PHASEM PHASEC
+      break;
   }
   resolved = true;
 }
@@ -220,6 +321,12 @@ double Waveform::value(double t) const {
     }
     case Kind::Pwl:
       return pl_value(pwl_knots(params), t);
+    case Kind::Exp:
+      return ExpShape(params).value(t);
+    case Kind::Sffm:
+      return SffmShape(params).value(t);
+    case Kind::Am:
+      return AmShape(params).value(t);
   }
   return dc;
 }
@@ -246,6 +353,13 @@ double Waveform::value_before(double t) const {
     }
     case Kind::Pwl:
       return pl_left(pwl_knots(params), t);
+    case Kind::Exp:
+      return ExpShape(params).value_before(t);
+    case Kind::Sffm:  // 0 up to a TD after the start
+    case Kind::Am: {
+      const double td = kind == Kind::Sffm ? SffmShape(params).td : AmShape(params).td;
+      return td > 0 && t <= td ? 0.0 : value(t);
+    }
   }
   return dc;
 }
@@ -271,6 +385,12 @@ double Waveform::derivative(double t) const {
     }
     case Kind::Pwl:
       return pl_slope(pwl_knots(params), t);
+    case Kind::Exp:
+      return ExpShape(params).derivative(t);
+    case Kind::Sffm:
+      return SffmShape(params).derivative(t);
+    case Kind::Am:
+      return AmShape(params).derivative(t);
   }
   return 0.0;
 }
@@ -348,6 +468,37 @@ std::pair<double, double> Waveform::range(double t0, double t1) const {
       }
       break;
     }
+    case Kind::Exp: {
+      // Monotone on each piece but the last, a sum of two exponentials with at most one extreme.
+      ExpShape s(params);
+      for (double t : {t0, t1}) take(s.value(t));
+      for (double c : {s.td1, s.start2()})
+        if (c > t0 && c < t1) take(s.value(c));
+      if (s.tau1 > 0 && s.tau2 > 0 && s.tau1 != s.tau2) {
+        // d/dt [-(V2-V1) e^{-(t-TD1)/TAU1} + (V2-V1) e^{-(t-TD2)/TAU2}] = 0: e1/TAU1 = e2/TAU2
+        double t = (std::log(s.tau1 / s.tau2) + s.td2 / s.tau2 - s.td1 / s.tau1) / (1 / s.tau2 - 1 / s.tau1);
+        if (t > std::max(t0, s.start2()) && t < t1) take(s.value(t));
+      }
+      break;
+    }
+    case Kind::Sffm: {
+      SffmShape s(params);
+      if (t0 < s.td) take(0.0);
+      if (t1 >= s.td) {
+        take(s.vo - std::fabs(s.va));
+        take(s.vo + std::fabs(s.va));
+      }
+      break;
+    }
+    case Kind::Am: {
+      AmShape s(params);
+      if (t0 < s.td) take(0.0);
+      if (t1 >= s.td) {
+        take(s.vo - std::fabs(s.vmo) - std::fabs(s.vma));
+        take(s.vo + std::fabs(s.vmo) + std::fabs(s.vma));
+      }
+      break;
+    }
   }
   return {lo, hi};
 }
@@ -368,6 +519,18 @@ std::vector<double> Waveform::breakpoints(double t0, double t1) const {
       break;
     case Kind::Sin:
       add(SinShape(params).td);
+      break;
+    case Kind::Exp: {
+      ExpShape e(params);
+      add(e.td1);
+      add(e.start2());
+      break;
+    }
+    case Kind::Sffm:
+      add(SffmShape(params).td);
+      break;
+    case Kind::Am:
+      add(AmShape(params).td);
       break;
     case Kind::Pwl:
       for (const Knot& n : pwl_knots(params)) add(n.t);
@@ -422,8 +585,46 @@ std::string Waveform::describe() const {
     case Kind::Pwl:
       list("PWL", params.size());
       break;
+    case Kind::Exp:
+      list("EXP", params.size());
+      break;
+    case Kind::Sffm:
+      list("SFFM", params.size());
+      break;
+    case Kind::Am:
+      list("AM", params.size());
+      break;
   }
   return out;
+}
+
+Waveform Waveform::scaled(double m) const {
+  Waveform w = *this;
+  w.dc *= m;
+  auto scale = [&](std::size_t i) {
+    if (i < w.params.size()) w.params[i] *= m;
+  };
+  switch (kind) {
+    case Kind::Dc:
+      break;
+    case Kind::Sin:    // VO VA
+    case Kind::Pulse:  // V1 V2
+    case Kind::Exp:    // V1 V2
+    case Kind::Sffm:   // VO VA
+      scale(0);
+      scale(1);
+      break;
+    case Kind::Am:  // VO VMO VMA (VMA's default 1 is written first, so it is scaled too)
+      if (w.params.size() == 2) w.params.push_back(1.0);
+      scale(0);
+      scale(1);
+      scale(2);
+      break;
+    case Kind::Pwl:
+      for (std::size_t i = 1; i < w.params.size(); i += 2) scale(i);
+      break;
+  }
+  return w;
 }
 
 }  // namespace lcs

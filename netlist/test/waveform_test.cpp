@@ -327,3 +327,116 @@ TEST(WaveformReresolve, DefaultsFollowTheNewAnalysis) {
 
 }  // namespace
 }  // namespace lcs
+
+// EXP, SFFM and AM against ngspice's formulas (vsrcload.c, ngspice 40+), written out here
+// independently at chosen times.
+namespace lcs {
+namespace {
+
+TEST(WaveformExp, TwoExponentialsWithCornersAtTd1AndTd2) {
+  // EXP(V1=1 V2=3 TD1=0.2m TAU1=0.1m TD2=0.6m TAU2=0.3m)
+  Waveform w = make(Waveform::Kind::Exp, {1, 3, 0.2e-3, 0.1e-3, 0.6e-3, 0.3e-3}, 1e-5, 2e-3);
+  EXPECT_EQ(w.value(0.1e-3), 1.0);
+  EXPECT_NEAR(w.value(0.3328e-3), 1 + 2 * (1 - std::exp(-1.328)), 1e-15);
+  const double t = 0.7328e-3;
+  EXPECT_NEAR(w.value(t), 1 + 2 * (1 - std::exp(-(t - 0.2e-3) / 0.1e-3)) - 2 * (1 - std::exp(-(t - 0.6e-3) / 0.3e-3)),
+              1e-15);
+  // Slope: (V2-V1)/TAU1 e^{..} - (V2-V1)/TAU2 e^{..}
+  EXPECT_NEAR(w.derivative(t), 2 / 0.1e-3 * std::exp(-5.328) - 2 / 0.3e-3 * std::exp(-(t - 0.6e-3) / 0.3e-3), 1e-6);
+  expect_times(w.breakpoints(0, 2e-3), {0.2e-3, 0.6e-3});
+  // Continuous at both corners; the range holds every sample and is reached.
+  EXPECT_NEAR(w.value_before(0.6e-3), w.value(0.6e-3), 1e-15);
+  auto [lo, hi] = w.range(0, 2e-3);
+  double seen_lo = 1e9, seen_hi = -1e9;
+  for (int i = 0; i <= 2000; ++i) {
+    const double v = w.value(i * 1e-6);
+    seen_lo = std::min(seen_lo, v), seen_hi = std::max(seen_hi, v);
+  }
+  EXPECT_LE(lo, seen_lo);
+  EXPECT_GE(hi, seen_hi);
+  EXPECT_NEAR(hi, seen_hi, 1e-6);  // the interior maximum of the last piece, found exactly
+  EXPECT_EQ(w.describe(), "EXP(1 3 0.0002 0.0001 0.0006 0.0003)");
+}
+
+TEST(WaveformExp, DefaultsFromTranAndAZeroTimeConstantIsAJump) {
+  Waveform d = make(Waveform::Kind::Exp, {0, 5}, 1e-3, 1);
+  ASSERT_EQ(d.params.size(), 6u);
+  EXPECT_EQ(d.params[2], 0.0);   // TD1
+  EXPECT_EQ(d.params[3], 1e-3);  // TAU1 = TSTEP
+  EXPECT_EQ(d.params[4], 1e-3);  // TD2 = TD1 + TSTEP
+  EXPECT_EQ(d.params[5], 1e-3);  // TAU2 = TSTEP
+  Waveform j = make(Waveform::Kind::Exp, {0, 5, 1, 0, 2, 0});
+  EXPECT_EQ(j.value_before(1), 0.0);
+  EXPECT_EQ(j.value(1), 5.0);
+  EXPECT_EQ(j.value(1.5), 5.0);
+  EXPECT_EQ(j.value(2), 0.0);
+  EXPECT_EQ(j.derivative(1.5), 0.0);
+}
+
+TEST(WaveformSffm, SineOfASineAfterTd) {
+  // SFFM(VO=0.1 VA=2 FC=200 MDI=45 FS=10k TD=1m PHASEM=20 PHASEC=10): MDI is limited to FC/FS = 0.02.
+  Waveform w = make(Waveform::Kind::Sffm, {0.1, 2, 200, 45, 10e3, 1e-3, 20, 10}, 1e-6, 4e-3);
+  EXPECT_DOUBLE_EQ(w.params[3], 0.02);
+  EXPECT_EQ(w.value(0.5e-3), 0.0);  // 0 before TD
+  EXPECT_EQ(w.value_before(1e-3), 0.0);
+  for (double t : {1e-3, 1.3e-3, 2.71e-3}) {
+    const double tau = t - 1e-3;
+    const double want = 0.1 + 2 * std::sin(2 * kPi * 200 * tau + 10 * kPi / 180 +
+                                           0.02 * std::sin(2 * kPi * 10e3 * tau + 20 * kPi / 180));
+    EXPECT_NEAR(w.value(t), want, 1e-14) << t;
+  }
+  const double t = 2e-3, h = 1e-9;
+  EXPECT_NEAR(w.derivative(t), (w.value(t + h) - w.value(t - h)) / (2 * h), 1e-4);
+  expect_times(w.breakpoints(0, 4e-3), {1e-3});
+  EXPECT_EQ(w.range(0, 4e-3), std::make_pair(-1.9, 2.1));
+  EXPECT_EQ(w.range(0, 0.5e-3), std::make_pair(0.0, 0.0));
+}
+
+TEST(WaveformSffm, DefaultsFromTran) {
+  Waveform w = make(Waveform::Kind::Sffm, {0, 1}, 1e-3, 0.5);
+  ASSERT_EQ(w.params.size(), 8u);
+  EXPECT_DOUBLE_EQ(w.params[2], 10.0);    // FC = 5/TSTOP
+  EXPECT_DOUBLE_EQ(w.params[4], 1000.0);  // FS = 500/TSTOP
+  EXPECT_DOUBLE_EQ(w.params[3], 0.01);    // MDI = 90, limited to FC/FS
+}
+
+TEST(WaveformAm, ProductOfSinusoidsAfterTd) {
+  // AM(VO=0.5 VMO=2 VMA=1.8 FM=1k FC=100k TD=1m PHASEM=30 PHASEC=45)
+  Waveform w = make(Waveform::Kind::Am, {0.5, 2, 1.8, 1e3, 100e3, 1e-3, 30, 45}, 1e-6, 4e-3);
+  EXPECT_EQ(w.value(0.999e-3), 0.0);
+  for (double t : {1e-3, 1.0123e-3, 3.3e-3}) {
+    const double tau = t - 1e-3;
+    const double want = 0.5 + (2 + 1.8 * std::sin(2 * kPi * 1e3 * tau + kPi / 6)) * std::sin(2 * kPi * 100e3 * tau + kPi / 4);
+    EXPECT_NEAR(w.value(t), want, 1e-13) << t;
+  }
+  const double t = 2e-3, h = 1e-10;
+  EXPECT_NEAR(w.derivative(t), (w.value(t + h) - w.value(t - h)) / (2 * h), 1e-1);  // slopes ~1e6 V/s
+  expect_times(w.breakpoints(0, 4e-3), {1e-3});
+  EXPECT_EQ(w.range(0, 4e-3), std::make_pair(0.5 - 3.8, 0.5 + 3.8));
+  EXPECT_EQ(w.describe(), "AM(0.5 2 1.8 1000 100000 0.001 30 45)");
+}
+
+TEST(WaveformAm, DefaultsFromTran) {
+  Waveform w = make(Waveform::Kind::Am, {0, 1}, 1e-3, 0.5);
+  ASSERT_EQ(w.params.size(), 8u);
+  EXPECT_DOUBLE_EQ(w.params[2], 1.0);     // VMA
+  EXPECT_DOUBLE_EQ(w.params[3], 10.0);    // FM = 5/TSTOP
+  EXPECT_DOUBLE_EQ(w.params[4], 1000.0);  // FC = 500/TSTOP
+}
+
+TEST(WaveformScaled, MultipliesLevelsNotTimes) {
+  Waveform am;
+  am.kind = Waveform::Kind::Am;
+  am.params = {0.5, 2};  // VMA defaults to 1 and is scaled too
+  Waveform a2 = am.scaled(2);
+  a2.resolve(1e-3, 1);
+  am.resolve(1e-3, 1);
+  for (double t : {0.013, 0.37}) EXPECT_DOUBLE_EQ(a2.value(t), 2 * am.value(t));
+  Waveform pwl = make(Waveform::Kind::Pwl, {0, 1, 1, 3});
+  EXPECT_DOUBLE_EQ(pwl.scaled(3).value(0.5), 6.0);
+  Waveform exp = make(Waveform::Kind::Exp, {1, 3, 0, 0.5, 2, 0.5});
+  EXPECT_DOUBLE_EQ(exp.scaled(2).value(0.7), 2 * exp.value(0.7));
+}
+
+}  // namespace
+}  // namespace lcs

@@ -37,10 +37,21 @@ const DiodeModel& model_of(const Element& element, const Netlist& netlist) {
     throw NetlistError(element.loc, "diode " + element.name + ": unknown model '" + element.model + "'");
   return it->second;
 }
+
+// The card of `area` diodes in parallel (the element's value: area times m; 0 when not set, 1):
+// the saturation current times the area, the series and on-resistances divided by it, VON and N
+// as they are.
+DiodeModel parallel_card(DiodeModel card, double area) {
+  if (!(area > 0) || area == 1.0) return card;
+  card.is *= area;
+  card.rs /= area;
+  if (card.ron) *card.ron /= area;
+  return card;
+}
 }  // namespace
 
 Diode::Diode(const Element& element, const Netlist& netlist, const DeviceOptions& options)
-    : Device(element), card_(model_of(element, netlist)), law_(resolve_diode_law(card_, options.ifit)) {}
+    : Device(element), card_(parallel_card(model_of(element, netlist), element.value)), law_(resolve_diode_law(card_, options.ifit)) {}
 
 std::vector<BranchDecl> Diode::branches() const {
   return {{name(), BranchClass::Diode, element_.nodes.at(0), element_.nodes.at(1)}};

@@ -3,6 +3,7 @@
 #include <stdexcept>
 
 #include "solver/integrators/event_driven.h"
+#include "solver/integrators/source_system.h"
 #include "solver/integrators/radau_iia.h"
 #include "solver/integrators/smooth_method.h"
 #include "solver/integrators/theta_method.h"
@@ -68,6 +69,9 @@ std::vector<MethodEntry> make_table() {
     return false;
   };
   event.history_degree = 4;
+  event.applies = [](const LcsProblem& problem, std::string* why) {
+    return event_method_applies(problem.inputs(), why);
+  };
   table.push_back(event);
 
   MethodEntry radau3 = fixed_step(
@@ -133,8 +137,9 @@ const MethodEntry& fixed_step_default_method() {
 
 const MethodEntry& default_method_for(const LcsProblem& model, std::string* why) {
   const MethodEntry& d = default_method();
-  if (!d.serves_as_default || d.serves_as_default(model, why)) return d;
-  return fixed_step_default_method();
+  if (d.applies && !d.applies(model, why)) return fixed_step_default_method();
+  if (d.serves_as_default && !d.serves_as_default(model, why)) return fixed_step_default_method();
+  return d;
 }
 
 const MethodEntry& exact_reference_method() {

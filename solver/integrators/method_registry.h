@@ -52,6 +52,9 @@ struct MethodEntry {
   // (DelayHistory): the method's order less one, at least linear, so the history is as
   // accurate as the steps. (The event method reads its exact past instead.)
   int history_degree = 1;
+  // Whether the method can integrate this circuit; null: every circuit. On false, *why says
+  // which element stops it and what to use instead (event: an SFFM source, source_system.h).
+  std::function<bool(const LcsProblem&, std::string* why)> applies;
 
   bool adaptive() const { return static_cast<bool>(make_continuous); }
   bool fixed_step() const { return static_cast<bool>(make_stepper); }

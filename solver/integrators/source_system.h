@@ -8,6 +8,13 @@
 //   (p'/Ω rather than p': S is then a scaled rotation, whose exponential is accurate in every
 //   entry; with [0 1; −Ω² 0] the entries range over Ω², and exp(S h) carried errors of 1e-16 Ω² h
 //   relative to its small ones: 4e-9 of a 10 kHz source's amplitude between grid times.)
+//   EXP after TD1, u = c + p1 + p2 with p1' = -p1/TAU1, p2' = -p2/TAU2 (p2 = 0 before TD2):
+//                                               σ = [c, p1, p2],   S = diag(0, −1/TAU1, −1/TAU2)
+//   AM after TD, a product of sinusoids = a sum of three, at FC and FC ± FM (source_system.cpp):
+//                                               σ = [VO, q1, q1'/w1, q2, q2'/w2, q3, q3'/w3],
+//                                               S = three rotations [[0 w] [−w 0]]
+//   SFFM (a sine of a sine) is no finite linear system: event_method_applies says no, unless its
+//   modulation vanishes (then it is a sinusoid, carried as AM is).
 //   a line's history input (the wave that left the other port a delay earlier, 1.3.3): on each
 //   step a polynomial of degree kHistoryDegree in s = t - t0 fitted to the exact past
 //   (fit_history), σ = [u, u', u''/2, ..., u^(p)/p!] at t0,  S = [[0 1 0 ..] [0 0 2 ..] ...]
@@ -26,13 +33,19 @@ namespace lcs {
 
 constexpr int kHistoryDegree = 7;
 
+// Whether every input of the circuit is a finite linear system between breakpoints, so the
+// event method can integrate it exactly: false for an SFFM source with a nonzero modulation, and
+// *why (when given) then names the source and says what to use instead. SourceSystem's
+// constructor throws std::invalid_argument with the same text.
+bool event_method_applies(const InputProvider& inputs, std::string* why);
+
 class SourceSystem {
  public:
   // Breakpoints (source corners, SIN starts) in (0, tstop] are collected once.
   SourceSystem(const LcsProblem& model, double tstop);
 
   // Which form each input takes on the segment starting at t (one character per input: 'c',
-  // 'r', 's', 'h'); segments with the same signature share S and P.
+  // 'r', 's', 'x' (EXP), 'a' (AM), 'h'); segments with the same signature share S and P.
   std::string signature(double t) const;
   int dimension(const std::string& signature) const;
   Eigen::MatrixXd S(const std::string& signature) const;
@@ -64,6 +77,8 @@ class SourceSystem {
   struct Input {
     const Waveform* waveform = nullptr;  // nullptr: the constant input u[0] = 1
     double omega = 0, theta = 0, vo = 0, td = 0;
+    double rate1 = 0, rate2 = 0;  // EXP: -1/TAU1, -1/TAU2 (0: a jump, the mode already gone)
+    double am_omega[3] = {0, 0, 0};  // AM: FC, FC - FM, FC + FM as angular rates
     bool history = false;
   };
   const InputProvider* provider_ = nullptr;

@@ -12,6 +12,7 @@
 #include "solver/devices/device_registry.h"
 #include "solver/model/line_dc_loops.h"
 #include "solver/model/netlist_options.h"
+#include "solver/model/inductance_check.h"
 #include "solver/model/perfect_coupling.h"
 #include "solver/model/sparse_lcs.h"
 #include "solver/model/sparse_solve.h"
@@ -137,6 +138,7 @@ CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& opt
   m.tree_ = build_normal_tree(g);
   const SpanningTree& t = m.tree_;
   check_source_loops_and_cutsets(netlist, g, t);
+  check_inductance_matrices(netlist);
   if (!(netlist.tran && netlist.tran->uic)) check_line_dc_loops(netlist);  // the run starts at DC
 
   // Collect the stamps: every device sees where its branches landed.
