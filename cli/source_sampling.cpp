@@ -9,6 +9,7 @@ namespace {
 
 constexpr double kStepsPerPeriod = 50;
 constexpr double kStepsPerPulseWidth = 5;
+constexpr double kStepsPerTimeConstant = 5;
 
 std::string seconds(double t) {
   char buf[32];
@@ -39,6 +40,19 @@ void features_of(const Element& e, std::optional<SourceFeature>& finest) {
       if (written >= 5) consider(finest, e, "fall time", p[4], 1);
       if (written >= 6) consider(finest, e, "pulse width", p[5], kStepsPerPulseWidth);
       if (written >= 7) consider(finest, e, "period", p[6], kStepsPerPeriod);
+      return;
+    case Waveform::Kind::Exp:  // EXP(V1 V2 TD1 TAU1 TD2 TAU2): a written time constant
+      if (p.size() < 6 || p[0] == p[1]) return;
+      if (written >= 4) consider(finest, e, "time constant TAU1", p[3], kStepsPerTimeConstant);
+      if (written >= 6) consider(finest, e, "time constant TAU2", p[5], kStepsPerTimeConstant);
+      return;
+    case Waveform::Kind::Sffm:  // SFFM(VO VA FC MDI FS ...): the highest instantaneous frequency
+      if (p.size() >= 5 && p[1] != 0 && p[2] > 0)
+        consider(finest, e, "shortest period", 1.0 / (p[2] + std::abs(p[3]) * std::abs(p[4])), kStepsPerPeriod);
+      return;
+    case Waveform::Kind::Am:  // AM(VO VMO VMA FM FC ...): the upper sideband FC + FM
+      if (p.size() >= 5 && (p[1] != 0 || p[2] != 0) && p[4] > 0)
+        consider(finest, e, "carrier period", 1.0 / (p[4] + std::abs(p[3])), kStepsPerPeriod);
       return;
     case Waveform::Kind::Pwl:  // PWL(t1 v1 t2 v2 ...): a segment along which the value changes
       for (std::size_t k = 2; k + 1 < p.size(); k += 2)

@@ -20,8 +20,9 @@ struct SourceFeature {
 
 // Rules (the fractions are choices, stated here and in README): a periodic source (SIN, PULSE
 // period) needs 50 steps per period, so implicit Euler's phase lag per step ω·h stays near
-// 0.13 rad; a pulse width, a written PULSE edge and a PWL segment need one step each (a shorter
-// one is a jump the step cannot place anyway, so only features the deck wrote count).
+// 0.13 rad (SFFM: at its highest instantaneous frequency FC + MDI·FS; AM: at FC + FM); a pulse
+// width 5 steps, a written EXP time constant 5; a written PULSE edge and a PWL segment along
+// which the value changes one step each (defaulted edges follow TSTEP and are not features).
 // nullopt: no source constrains the step (DC only).
 std::optional<SourceFeature> finest_source_feature(const Netlist& netlist);
 
