@@ -127,6 +127,7 @@ int run_command(const RunArgs& args) {
     if (args.emission) smoothing.emission = *args.emission;
     netlist = smooth_netlist(netlist, smoothing);
   }
+  if (method_of(options).adaptive()) refuse_switches(netlist, options.method);
   CircuitModel model = build_model(netlist, 0.0, options.tstop);
   const std::vector<Probe> probes = probes_for(netlist, model, args.probes);
   OutputMap outputs = output_map_or_exit(model, probes);

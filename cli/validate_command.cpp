@@ -350,6 +350,7 @@ int validate_with_faults(const ValidateArgs& args, const NgspiceDeckFaults& faul
   if (args.max_step && !positive(*args.max_step))
     throw CliError(kExitUsage, "error: --max-step must be a positive number");
 
+  if (find_method(run.method)->adaptive()) refuse_switches(netlist, run.method);
   CircuitModel model = build_model(netlist, 0.0, run.tstop);
   // What lcspice integrates: the ideal circuit, or for `smooth` the Shockley circuit of the deck.
   const bool smooth = find_method(run.method)->smooth_model;
