@@ -309,7 +309,7 @@ void run_switched_fixed_step(SwitchFamily& family, SwitchConfig config, const Ou
     summary.cpu_setup = process_cpu_seconds() - cpu0;
     emit(0.0);
     double t = 0.0, switched_at = -1;
-    int switches_here = 0;
+    int switches_here = 0, switches_in_step = 0;  // at one instant; since the last grid time
     long k = 0;  // the run has reached the grid time k h
     while (t < tstop) {
       const long knext = k + 1;
@@ -321,6 +321,7 @@ void run_switched_fixed_step(SwitchFamily& family, SwitchConfig config, const Ou
       const SwitchConfig wanted = family.next(config, c1);
       if (wanted == config) {
         x = x1, z = z1, t = t_next, k = knext;
+        switches_in_step = 0;
         emit(t);
         if (options.progress && (k & 4095) == 0) options.progress(t / tstop);
         continue;
@@ -345,13 +346,16 @@ void run_switched_fixed_step(SwitchFamily& family, SwitchConfig config, const Ou
       if (++switches_here > 64)
         throw NumericalFailure(t, "the switches change more than 64 times at one instant (chattering: " +
                                       family.describe(config) + ")");
+      if (++switches_in_step > 64 * static_cast<int>(config.size()))
+        throw NumericalFailure(t, "the switches change more than 64 times each within one step (chattering: " +
+                                      family.describe(config) + ")");
       for (size_t s = 0; s < sw.size(); ++s)
         if (at[s] <= tau + 1e-9 * h) config[s] = wanted[s];
       ++switchings;
       cur = &mode(config);
       cur->stepper->Start(t, h, x, z);
       emit(t);
-      if (t >= t_next) k = knext;
+      if (t >= t_next) k = knext, switches_in_step = 0;
     }
   } catch (const NumericalFailure&) {
     summary.cpu_steps = process_cpu_seconds() - loop0;
