@@ -53,7 +53,21 @@ struct Report {
   std::vector<std::string> warnings;
   std::vector<UniquenessEntry> uniqueness;
   std::optional<CcpReport> ccp;  // circuits with lines
+  std::vector<std::string> controlled;  // controlled sources and switches, one line each
 };
+
+// E, F, G, H and S, W: what they are listed as (not warnings).
+bool controlled_element(const Element& e) {
+  switch (e.kind) {
+    case ElementKind::Vcvs:
+    case ElementKind::Vccs:
+    case ElementKind::Cccs:
+    case ElementKind::Ccvs:
+    case ElementKind::VSwitch:
+    case ElementKind::CSwitch: return true;
+    default: return false;
+  }
+}
 
 std::string verdict_text(const PMatrixReport& p) {
   switch (p.verdict) {
@@ -172,6 +186,10 @@ void print_text(const Report& r) {
   for (const UniquenessEntry& e : r.uniqueness)
     std::printf("  %s, m = %d: %s\n", e.what.c_str(), e.size, e.verdict().c_str());
   if (r.ccp) print_ccp(m, *r.ccp);
+  if (!r.controlled.empty()) {
+    std::printf("\ncontrolled sources and switches (switches: the configuration at t = 0):\n");
+    for (const std::string& c : r.controlled) std::printf("  %s\n", c.c_str());
+  }
   for (const std::string& w : r.warnings) std::printf("warning: %s\n", w.c_str());
 }
 
@@ -222,6 +240,9 @@ void print_json(const Report& r) {
       << ", \"m1_p_matrix\": " << (r.ccp->m1_report.verdict == PMatrixReport::Verdict::P ? "true" : "false")
       << ", \"index\": " << r.ccp->index << "},\n";
   }
+  o << "  \"controlled\": [";
+  for (size_t k = 0; k < r.controlled.size(); ++k) o << (k ? ", " : "") << json_string(r.controlled[k]);
+  o << "],\n";
   o << "  \"warnings\": [";
   for (size_t k = 0; k < r.warnings.size(); ++k) o << (k ? ", " : "") << json_string(r.warnings[k]);
   o << "]\n}\n";
@@ -238,7 +259,8 @@ int analyze_command(const AnalyzeArgs& args) {
   for (const std::string& w : floating_potential_warnings(model)) r.warnings.push_back(w);
   for (const std::shared_ptr<Device>& d : model.devices())
     if (!d->has_history())  // a line's notes are its part of the CCP section
-      for (const std::string& note : d->notes()) r.warnings.push_back(note);
+      for (const std::string& note : d->notes())
+        (controlled_element(d->element()) ? r.controlled : r.warnings).push_back(note);
   if (model.has_history()) {
     r.ccp = ccp_report(model);
     for (const std::string& w : r.ccp->warnings) r.warnings.push_back(w);

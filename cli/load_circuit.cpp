@@ -3,6 +3,8 @@
 #include <iostream>
 
 #include "cli/exit_codes.h"
+#include "solver/model/numerical_failure.h"
+#include "solver/model/switch_family.h"
 
 namespace lcs {
 
@@ -25,12 +27,31 @@ CircuitModel build_model(const Netlist& netlist, double t0, double t1) {
     ModelOptions options;
     options.t0 = t0;
     options.t1 = t1;
+    CircuitModel model = CircuitModel::build(netlist, options);
+    // Switches: the configuration at t = 0 (ON/OFF, else the controls at the operating point).
+    SwitchFamily switches(model);
+    if (switches.empty()) return model;
+    const SwitchConfig start = switches.config_of(model);
+    const SwitchConfig config = initial_configuration(switches, start, netlist.tran && netlist.tran->uic);
+    if (config == start) return model;
+    for (size_t k = 0; k < config.size(); ++k) options.switch_on[switches.switches()[k].name] = config[k] != 0;
     return CircuitModel::build(netlist, options);
+  } catch (const NumericalFailure& e) {
+    throw CliError(kExitNumerical, std::string("lcspice: error: numerical failure ") + e.what());
   } catch (const TopologyError& e) {
     throw CliError(kExitNetlist, e.formatted(netlist));
   } catch (const NetlistError& e) {
     throw CliError(kExitNetlist, e.formatted());
   }
+}
+
+void refuse_switches(const Netlist& netlist, const std::string& method) {
+  for (const Element& el : netlist.elements)
+    if (el.kind == ElementKind::VSwitch || el.kind == ElementKind::CSwitch)
+      throw CliError(kExitNetlist, NetlistError(el.loc, "switch " + el.name + ": method " + method +
+                                                            " does not locate switch changes; use --method euler, "
+                                                            "theta, radau3 or radau5")
+                                       .formatted());
 }
 
 std::vector<Probe> parse_probe_list(const std::string& list) {

@@ -10,6 +10,7 @@
 #include "solver/model/numerical_failure.h"
 #include "solver/devices/device.h"
 #include "solver/lcp/lcp.h"
+#include "solver/devices/switch.h"
 #include "solver/model/line_dc_loops.h"
 #include "solver/model/operating_point.h"
 
@@ -50,6 +51,8 @@ void print_point(const CircuitModel& model, const OperatingPoint& op) {
     }
     const char* note = "";
     if (g.branches[b].cls == BranchClass::Diode) note = current[b] > on_threshold ? "   (on)" : "   (off)";
+    if (const auto* s = dynamic_cast<const Switch*>(devices[g.branches[b].element].get()))
+      note = s->on() ? "   (switch on)" : "   (switch off)";
     line("i(" + g.branches[b].name + ")", current[b], note);
   }
   for (const std::shared_ptr<Device>& d : devices)

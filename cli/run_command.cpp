@@ -173,6 +173,7 @@ int run_command(const RunArgs& args) {
     if (args.emission) smoothing.emission = *args.emission;
     netlist = smooth_netlist(netlist, smoothing);
   }
+  if (method_of(options).adaptive()) refuse_switches(netlist, options.method);
   CircuitModel model = build_model(netlist, 0.0, options.tstop);
   // SPEC §1: event wherever it applies, unless a method is named (--method, .options method=,
   // --diode shockley).

@@ -136,7 +136,11 @@ void check_ideal_diode_loops(const Netlist& netlist, const CircuitGraph& graph,
       if (br.cls != BranchClass::VoltageSource) continue;
       sources.push_back(br.name);
       // Stepping prev[v] -> v over a source raises the potential by +u when v is its n+.
-      auto [lo, hi] = netlist.elements[br.element].waveform.range(t0, t1);
+      // A controlled source (E, H) can take any value: the loop is taken as able to conduct.
+      const Element& source = netlist.elements[br.element];
+      constexpr double kAny = std::numeric_limits<double>::infinity();
+      auto [lo, hi] = source.kind == ElementKind::VoltageSource ? source.waveform.range(t0, t1)
+                                                                : std::pair<double, double>{-kAny, kAny};
       push_max += br.from == v ? hi : -lo;
     }
     const double thresholds = law[d].von + dist[diode.from];

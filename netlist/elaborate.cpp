@@ -63,6 +63,7 @@ class Elaborator {
     root.scope = std::make_unique<ParamScope>();
     expand(root);
     resolve_couplings();
+    resolve_controls();
     check_node_ics();
     check_probes();
     double tstep = net_.tran ? net_.tran->tstep : 0.0, tstop = net_.tran ? net_.tran->tstop : 0.0;
@@ -177,6 +178,7 @@ class Elaborator {
     if (m.type == "d") net_.diode_models[flat] = std::move(m.diode);
     if (m.type == "npn" || m.type == "pnp") net_.bjt_models[flat] = std::move(m.bjt);
     if (m.type == "ltra") net_.line_models[flat] = std::move(m.line);
+    if (m.type == "sw" || m.type == "csw") net_.switch_models[flat] = std::move(m.sw);
   }
 
   void add_element(const Card& card, Instance& in) {
@@ -193,8 +195,11 @@ class Elaborator {
     if (pe.element.kind == ElementKind::Bjt) pe.element.model = resolve_bjt_model(in, card, pe.model_token);
     if (pe.element.kind == ElementKind::LossyLine)
       pe.element.model = resolve_line_model(in, card, pe.model_token);
+    if (pe.element.kind == ElementKind::VSwitch || pe.element.kind == ElementKind::CSwitch)
+      pe.element.model = resolve_switch_model(in, card, pe.model_token, pe.element.kind == ElementKind::CSwitch);
     if (pe.element.kind == ElementKind::Coupling)
       coupling_refs_.push_back({index, {card.at(pe.coupled_tokens[0]), card.at(pe.coupled_tokens[1])}});
+    if (pe.control_token) control_refs_.push_back({index, card.at(pe.control_token)});
     net_.elements.push_back(std::move(pe.element));
   }
 
@@ -289,6 +294,19 @@ class Elaborator {
     return flat;
   }
 
+  std::string resolve_switch_model(const Instance& in, const Card& card, std::size_t token, bool current) const {
+    const std::string& name = card[token].lower;
+    const std::string flat = find_model(in, name);
+    const char* wanted = current ? "csw" : "sw";
+    if (flat.empty()) throw NetlistError(card.at(token), "switch model " + quote(name) + " is not defined");
+    const std::string& type = model_types_.at(flat);
+    if (type != wanted)
+      throw NetlistError(card.at(token), "model " + quote(name) + " is not a" + (current ? " CSW" : "n SW") +
+                                             " model (it is " + to_upper(type) + "); " +
+                                             (current ? "W switches take CSW models" : "S switches take SW models"));
+    return flat;
+  }
+
   std::string resolve_diode_model(const Instance& in, const Card& card, std::size_t token) const {
     const std::string& name = card[token].lower;
     for (const Instance* p = &in; p; p = p->parent) {
@@ -319,6 +337,21 @@ class Elaborator {
       if (!inserted)
         throw NetlistError(k.loc, "inductors " + quote(k.coupled[0]) + " and " + quote(k.coupled[1]) +
                                       " are already coupled by " + quote(it->second));
+    }
+  }
+
+  // F and H name a voltage source whose current controls them; in a subcircuit the name is the
+  // instance's own (ngspice prefixes it like every other name of the instance).
+  void resolve_controls() {
+    for (const ControlRef& r : control_refs_) {
+      const Element& e = net_.elements[r.element];
+      const Element* v = net_.find_element(e.control);
+      if (!v) throw NetlistError(r.loc, quote(e.name) + ": controlling voltage source " + quote(e.control) + " is not defined");
+      if (v->kind != ElementKind::VoltageSource)
+        throw NetlistError(r.loc, quote(e.name) + ": " + quote(e.control) + " is not a voltage source (it is a " +
+                                      element_kind_name(v->kind) + "); " +
+                                      (e.kind == ElementKind::CSwitch ? "W is" : "F and H are") +
+                                      " controlled by a V source's current");
     }
   }
 
@@ -383,7 +416,13 @@ class Elaborator {
     SourceLocation locs[2];
   };
 
+  struct ControlRef {
+    std::size_t element;
+    SourceLocation loc;
+  };
+
   Netlist& net_;
+  std::vector<ControlRef> control_refs_;
   std::map<std::string, SourceLocation> names_;
   std::map<std::string, SourceLocation> model_locs_;
   std::map<std::string, std::string> model_types_;

@@ -254,6 +254,76 @@ void parse_lossy_line(const Card& card, const Reader& r, ParsedElement& out) {
   }
 }
 
+// E/G n+ n- nc+ nc- gain and F/H n+ n- vname gain: ngspice's linear controlled sources. Their
+// behavioural forms (VALUE=, VOL=, CUR=, POLY, TABLE, LAPLACE) are nonlinear: refused by name.
+void parse_controlled_source(const Card& card, const Reader& r, char letter, ParsedElement& out) {
+  Element& e = out.element;
+  const bool voltage_controlled = letter == 'e' || letter == 'g';
+  e.kind = letter == 'e' ? ElementKind::Vcvs : letter == 'g' ? ElementKind::Vccs
+         : letter == 'f' ? ElementKind::Cccs : ElementKind::Ccvs;
+  r.node(1, e);
+  r.node(2, e);
+  r.distinct_nodes(e);
+  for (std::size_t i = 3; i < card.size(); ++i) {
+    const Token& t = card[i];
+    const bool keyword = t.is_word("value") || t.is_word("vol") || t.is_word("cur") || t.is_word("poly") ||
+                         t.is_word("table") || t.is_word("laplace") || t.is_word("freq");
+    if (keyword && (i + 1 >= card.size() || !card[i + 1].is_word()))
+      throw NetlistError(card.at(t), quote(r.name) + ": the behavioural form " + quote(t.lower) +
+                                         " is not supported (only linear controlled sources: " +
+                                         (voltage_controlled ? "n+ n- nc+ nc- gain" : "n+ n- vname gain") + ")");
+  }
+  std::size_t gain = 3;
+  if (voltage_controlled) {
+    r.node(3, e);
+    r.node(4, e);
+    gain = 5;
+  } else {
+    if (card.size() <= 3) throw NetlistError(card.after_last(), "missing controlling voltage source for " + quote(r.name));
+    if (!card[3].is_word())
+      throw NetlistError(card.at(3), "expected the name of a voltage source, got " + quote(card[3].text));
+    e.control = r.scope.prefix + card[3].lower;
+    out.control_token = 3;
+    gain = 4;
+  }
+  e.value = r.value(gain);
+  if (!std::isfinite(e.value)) throw NetlistError(card.at(gain), "the gain of " + quote(r.name) + " must be finite");
+  if (card.size() > gain + 1) r.extra(gain + 1);
+}
+
+// S n+ n- nc+ nc- model [ON|OFF] and W n+ n- vname model [ON|OFF]: ngspice's ideal switches.
+void parse_switch(const Card& card, const Reader& r, char letter, ParsedElement& out) {
+  Element& e = out.element;
+  e.kind = letter == 's' ? ElementKind::VSwitch : ElementKind::CSwitch;
+  r.node(1, e);
+  r.node(2, e);
+  r.distinct_nodes(e);
+  std::size_t model = 3;
+  if (letter == 's') {
+    r.node(3, e);
+    r.node(4, e);
+    model = 5;
+  } else {
+    if (card.size() <= 3) throw NetlistError(card.after_last(), "missing controlling voltage source for " + quote(r.name));
+    if (!card[3].is_word())
+      throw NetlistError(card.at(3), "expected the name of a voltage source, got " + quote(card[3].text));
+    e.control = r.scope.prefix + card[3].lower;
+    out.control_token = 3;
+    model = 4;
+  }
+  if (card.size() <= model) throw NetlistError(card.after_last(), "missing model name for " + quote(r.name));
+  if (!card[model].is_word()) throw NetlistError(card.at(model), "expected a model name, got " + quote(card[model].text));
+  e.model = card[model].lower;
+  out.model_token = model;
+  if (card.size() > model + 1) {
+    const Token& state = card[model + 1];
+    if (state.is_word("on")) e.initially_on = true;
+    else if (state.is_word("off")) e.initially_on = false;
+    else r.extra(model + 1);
+    if (card.size() > model + 2) r.extra(model + 2);
+  }
+}
+
 }  // namespace
 
 bool is_ground(const std::string& n) { return n == "0" || n == "gnd"; }
@@ -329,6 +399,16 @@ ParsedElement parse_element(const Card& card, const ElementScope& scope,
       break;
     case 'o':
       parse_lossy_line(card, r, out);
+      break;
+    case 'e':
+    case 'f':
+    case 'g':
+    case 'h':
+      parse_controlled_source(card, r, letter, out);
+      break;
+    case 's':
+    case 'w':
+      parse_switch(card, r, letter, out);
       break;
     default:
       throw NetlistError(card.at(head), "unknown element type " + quote(std::string(1, letter)));

@@ -1,4 +1,4 @@
-// Element cards R, L, C, K, V, I, D, Q, T, O (X instances are the subcircuit expander's). Rejects
+// Element cards R, L, C, K, V, I, D, Q, T, O, E, F, G, H (X instances are the subcircuit expander's). Rejects
 // unknown element letters. Internal to the netlist reader.
 #pragma once
 
@@ -24,6 +24,7 @@ struct ParsedElement {
   Element element;         // names and nodes flat; D, Q, O: `model` still the local name as written
   std::size_t model_token = 0;               // D, Q, O: token of the model name
   std::size_t coupled_tokens[2] = {0, 0};    // K: tokens of the two inductor names
+  std::size_t control_token = 0;             // F, H: token of the controlling source's name
 };
 
 ParsedElement parse_element(const Card& card, const ElementScope& scope,

@@ -89,7 +89,39 @@ void read_bjt_params(const Card& card, const std::vector<Assignment>& params, co
   warn_ignored(q.ignored, first_ignored, "transistor", q.name, warnings);
 }
 
-const char* const kModelTypes[] = {"d", "npn", "pnp", "ltra"};
+const char* const kModelTypes[] = {"d", "npn", "pnp", "ltra", "sw", "csw"};
+
+// .model NAME SW(VT= VH= RON= ROFF=) / CSW(IT= IH= RON= ROFF=), ngspice's defaults.
+void read_switch_params(const Card& card, const std::vector<Assignment>& params, const ParamScope& scope,
+                        SwitchModel& sw) {
+  const char* threshold = sw.current_controlled ? "it" : "vt";
+  const char* hysteresis = sw.current_controlled ? "ih" : "vh";
+  for (const Assignment& a : params) {
+    const Token& key = card[a.name];
+    if (a.flag()) throw NetlistError(card.at(key), "missing value for switch parameter " + quote(key.text));
+    const double v = value_of(card, a.value_first, a.value_last, scope);
+    const SourceLocation at_value = card.at(a.value_first);
+    auto check = [&](bool ok, const char* rule) {
+      if (!ok) throw NetlistError(at_value, "switch parameter " + quote(key.lower) + " must " + rule);
+    };
+    check(std::isfinite(v), "be finite");
+    if (key.lower == threshold) {
+      sw.vt = v;
+    } else if (key.lower == hysteresis) {
+      check(v >= 0, "not be negative (ngspice's negative hysteresis is not modelled)");
+      sw.vh = v;
+    } else if (key.lower == "ron") {
+      check(v > 0, "be positive");
+      sw.ron = v;
+    } else if (key.lower == "roff") {
+      check(v > 0, "be positive");
+      sw.roff = v;
+    } else {
+      throw NetlistError(card.at(key), std::string("unknown ") + (sw.current_controlled ? "CSW" : "SW") +
+                                           " model parameter " + quote(key.text));
+    }
+  }
+}
 
 // ngspice LTRA controls (step and interpolation choices of its own convolution); lcspice's
 // recursive convolution has none of them.
@@ -174,6 +206,13 @@ ModelCard parse_model_card(const Card& card, const ParamScope& scope, const std:
     m.bjt.pnp = m.type == "pnp";
     m.bjt.loc = card.at(1);
     read_bjt_params(card, params, scope, m.bjt, warnings);
+    return m;
+  }
+  if (m.type == "sw" || m.type == "csw") {
+    m.sw.name = prefix + m.name;
+    m.sw.current_controlled = m.type == "csw";
+    m.sw.loc = card.at(1);
+    read_switch_params(card, params, scope, m.sw);
     return m;
   }
   if (m.type == "ltra") {

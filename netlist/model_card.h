@@ -19,6 +19,7 @@ struct ModelCard {
   DiodeModel diode;   // type "d": name = prefix + name
   BjtModel bjt;       // type "npn" or "pnp": name = prefix + name
   LineModel line;     // type "ltra": name = prefix + name
+  SwitchModel sw;     // type "sw" or "csw": name = prefix + name
 };
 
 ModelCard parse_model_card(const Card& card, const ParamScope& scope, const std::string& prefix,

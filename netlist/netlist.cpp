@@ -14,6 +14,12 @@ const char* element_kind_name(ElementKind kind) {
     case ElementKind::Bjt: return "bipolar transistor";
     case ElementKind::Line: return "transmission line";
     case ElementKind::LossyLine: return "lossy transmission line";
+    case ElementKind::Vcvs: return "voltage-controlled voltage source";
+    case ElementKind::Vccs: return "voltage-controlled current source";
+    case ElementKind::Cccs: return "current-controlled current source";
+    case ElementKind::Ccvs: return "current-controlled voltage source";
+    case ElementKind::VSwitch: return "voltage-controlled switch";
+    case ElementKind::CSwitch: return "current-controlled switch";
   }
   return "element";
 }

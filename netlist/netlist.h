@@ -23,6 +23,12 @@ enum class ElementKind {
   Bjt,            // Q collector base emitter [substrate] model [area]
   Line,           // T p1+ p1- p2+ p2- Z0= TD= [IC=v1,i1,v2,i2]   (lossless)
   LossyLine,      // O p1+ p1- p2+ p2- model [IC=...]              (LTRA)
+  Vcvs,           // E n+ n- nc+ nc- gain   v(n+,n-) = gain v(nc+,nc-)
+  Vccs,           // G n+ n- nc+ nc- gm     current gm v(nc+,nc-) from n+ through it to n-
+  Cccs,           // F n+ n- vname gain     current gain i(vname) from n+ through it to n-
+  Ccvs,           // H n+ n- vname r        v(n+,n-) = r i(vname)
+  VSwitch,        // S n+ n- nc+ nc- model [ON|OFF]   ideal switch, controlled by v(nc+,nc-)
+  CSwitch,        // W n+ n- vname model [ON|OFF]     ideal switch, controlled by i(vname)
 };
 
 const char* element_kind_name(ElementKind kind);  // "resistor", "inductor", ...
@@ -44,6 +50,10 @@ struct Element {
   // LTRA card. IC=v1,i1,v2,i2 (T and O): the port values the line holds before t = 0 with UIC.
   double delay = 0;
   std::vector<double> line_ic;
+  // E, F, G, H: `value` is the gain (gm, r); F, H, W: `control` is the controlling voltage source
+  // (flat name, resolved in the card's own subcircuit instance as ngspice does).
+  std::string control;
+  std::optional<bool> initially_on;    // S, W: ON or OFF on the card (the state at t = 0)
   SourceLocation loc;                  // the card (for subcircuit elements: the card inside .subckt)
 };
 
@@ -85,6 +95,16 @@ struct LineModel {
   SourceLocation loc;
 };
 
+// `.model NAME SW(VT= VH= RON= ROFF=)` / `CSW(IT= IH= RON= ROFF=)`: an ideal switch (ngspice's
+// defaults). It turns on when its control exceeds VT + VH and off when it falls below VT - VH.
+struct SwitchModel {
+  std::string name;                    // lower-case
+  bool current_controlled = false;     // CSW: IT/IH in amperes
+  double vt = 0, vh = 0;               // threshold and hysteresis (V, or A for CSW)
+  double ron = 1, roff = 1e12;         // ROFF default 1/GMIN
+  SourceLocation loc;
+};
+
 struct TranSpec {
   double tstep = 0, tstop = 0, tstart = 0, tmax = 0;  // tmax 0: not given
   bool uic = false;
@@ -120,6 +140,7 @@ struct Netlist {
   std::map<std::string, DiodeModel> diode_models;  // by lower-case name
   std::map<std::string, BjtModel> bjt_models;      // by lower-case name
   std::map<std::string, LineModel> line_models;    // LTRA, by lower-case name
+  std::map<std::string, SwitchModel> switch_models;  // SW and CSW, by lower-case name
   std::optional<TranSpec> tran;
   std::vector<NodeIc> node_ics;
   std::vector<NodeIc> node_sets;       // `.nodeset`: choose among several operating points

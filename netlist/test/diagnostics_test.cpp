@@ -19,8 +19,23 @@ void check(const std::vector<Case>& cases) {
 
 TEST(ParseDiagnostics, SyntaxAndElements) {
   check({
-      {"t\nW1 a b 1\n", "t.cir:2:1: error: unknown element type 'w'\nW1 a b 1\n^~"},
-      {"t\nE1 a 0 b 0 2\n", "t.cir:2:1: error: unknown element type 'e'\nE1 a 0 b 0 2\n^~"},
+      {"t\nY1 a b 1\n", "t.cir:2:1: error: unknown element type 'y'\nY1 a b 1\n^~"},
+      {"t\nE1 a 0 value={2*v(b)}\n",
+       "t.cir:2:8: error: 'e1': the behavioural form 'value' is not supported (only linear controlled sources: "
+       "n+ n- nc+ nc- gain)\nE1 a 0 value={2*v(b)}\n       ^~~~~"},
+      {"t\nV1 a 0 1\nF1 b 0 r9 2\n", "t.cir:3:8: error: 'f1': controlling voltage source 'r9' is not defined\nF1 b 0 r9 2\n       ^~"},
+      {"t\nV1 a 0 1\nR9 a 0 1\nH1 b 0 r9 2\n",
+       "t.cir:4:8: error: 'h1': 'r9' is not a voltage source (it is a resistor); F and H are controlled by a V "
+       "source's current\nH1 b 0 r9 2\n       ^~"},
+      {"t\nG1 a 0 b 0\n", "t.cir:2:11: error: missing value for 'g1'\nG1 a 0 b 0\n          ^"},
+      {"t\nV1 c 0 1\nS1 a 0 c 0 m1\n.model m1 CSW(IT=1)\n",
+       "t.cir:3:12: error: model 'm1' is not an SW model (it is CSW); S switches take SW models\nS1 a 0 c 0 m1\n"
+       "           ^~"},
+      {"t\n.model m1 SW(VH=-1)\n",
+       "t.cir:2:17: error: switch parameter 'vh' must not be negative (ngspice's negative hysteresis is not "
+       "modelled)\n.model m1 SW(VH=-1)\n                ^~"},
+      {"t\nV1 c 0 1\nW1 a 0 v1 m1 maybe\n.model m1 CSW\n",
+       "t.cir:3:14: error: unexpected extra token 'maybe'\nW1 a 0 v1 m1 maybe\n             ^~~~~"},
       {"t\n( a b\n", "t.cir:2:1: error: expected an element or a control card, got '('\n( a b\n^"},
       {"t\nR1 a a 1k\n", "t.cir:2:6: error: r1 connects node 'a' to itself\nR1 a a 1k\n     ^"},
       {"t\nV1 0 gnd 1\n", "t.cir:2:6: error: v1 connects node '0' to itself\nV1 0 gnd 1\n     ^~~"},

@@ -164,6 +164,9 @@ struct DeviceOptions {
   // and the target relative error of that fit.
   double tstop = 0, tstep = 0;
   double line_fit_tolerance = 1e-4;
+  // Switches (S, W): the configuration being formed, by switch name (true: on). A switch not
+  // listed takes its card's ON/OFF, else off.
+  std::map<std::string, bool> switch_on;
 };
 
 }  // namespace lcs

@@ -2,11 +2,13 @@
 
 #include "solver/devices/bjt.h"
 #include "solver/devices/capacitor.h"
+#include "solver/devices/controlled_source.h"
 #include "solver/devices/coupling.h"
 #include "solver/devices/diode.h"
 #include "solver/devices/independent_source.h"
 #include "solver/devices/inductor.h"
 #include "solver/devices/resistor.h"
+#include "solver/devices/switch.h"
 #include "solver/devices/transmission_line.h"
 
 namespace lcs {
@@ -22,14 +24,20 @@ const std::vector<DeviceEntry>& device_registry() {
   static const std::vector<DeviceEntry> table = {
       {'c', ElementKind::Capacitor, "capacitor", make<Capacitor>},
       {'d', ElementKind::Diode, "diode", make<Diode>},
+      {'e', ElementKind::Vcvs, "voltage-controlled voltage source", make<ControlledSource>},
+      {'f', ElementKind::Cccs, "current-controlled current source", make<ControlledSource>},
+      {'g', ElementKind::Vccs, "voltage-controlled current source", make<ControlledSource>},
+      {'h', ElementKind::Ccvs, "current-controlled voltage source", make<ControlledSource>},
       {'i', ElementKind::CurrentSource, "current source", make<IndependentSource>},
       {'k', ElementKind::Coupling, "coupling", make<Coupling>},
       {'l', ElementKind::Inductor, "inductor", make<Inductor>},
       {'o', ElementKind::LossyLine, "lossy transmission line", make<TransmissionLine>},
       {'q', ElementKind::Bjt, "bipolar transistor", make<Bjt>},
       {'r', ElementKind::Resistor, "resistor", make<Resistor>},
+      {'s', ElementKind::VSwitch, "voltage-controlled switch", make<Switch>},
       {'t', ElementKind::Line, "transmission line", make<TransmissionLine>},
       {'v', ElementKind::VoltageSource, "voltage source", make<IndependentSource>},
+      {'w', ElementKind::CSwitch, "current-controlled switch", make<Switch>},
   };
   return table;
 }

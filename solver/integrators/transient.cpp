@@ -8,9 +8,12 @@
 #include <cmath>
 #include <cstdio>
 #include <ctime>
+#include <map>
+#include <memory>
 
 #include "solver/model/initial_state.h"
 #include "solver/model/numerical_failure.h"
+#include "solver/model/switch_family.h"
 
 namespace lcs {
 
@@ -246,6 +249,126 @@ void run_fixed_step(const CircuitModel& model, const OutputMap& outputs, const T
   notes();
 }
 
+// Switches (S, W) with a fixed-step method. Each configuration of the switches is its own model
+// (SwitchFamily) with the same states x. After every step the controls are evaluated; when one
+// crossed its threshold (VT + VH turning on, VT - VH turning off) the crossing time is located by
+// linear interpolation of that control over the step, the step is taken again from its start to
+// that time, a row is written there (as for an event), and the run continues in the new
+// configuration from the same x (its stepper restarted, so z is consistent with x); one shorter
+// step then brings the run back onto the grid of multiples of h. The switching time is exact to
+// the linear interpolation of the control over one step (an error of order h^2 where the control
+// is smooth), not to a tolerance.
+void run_switched_fixed_step(SwitchFamily& family, SwitchConfig config, const OutputMap& base_outputs,
+                             const TransientOptions& options, const MethodEntry& entry, Eigen::VectorXd x,
+                             const Eigen::VectorXd& z0, OutputSink& sink, TransientSummary& summary,
+                             double cpu0) {
+  std::vector<Probe> probes;
+  for (const std::string& name : base_outputs.names) probes.push_back(parse_probe(name, {}));
+  struct Mode {
+    const CircuitModel* model = nullptr;
+    std::unique_ptr<TimeStepper> stepper;
+    OutputMap outputs;
+    std::unique_ptr<RowWriter> writer;
+  };
+  std::map<SwitchConfig, std::unique_ptr<Mode>> modes;
+  auto mode = [&](const SwitchConfig& c) -> Mode& {
+    auto it = modes.find(c);
+    if (it != modes.end()) return *it->second;
+    auto m = std::make_unique<Mode>();
+    m->model = &family.model(c);
+    m->stepper = entry.make_stepper(*m->model, options.method_options);
+    m->outputs = m->model->output_map(probes);
+    m->writer = std::make_unique<RowWriter>(*m->model, m->outputs, sink);
+    return *modes.emplace(c, std::move(m)).first->second;
+  };
+  long switchings = 0;
+  auto collect = [&] {
+    StepperStats total;
+    for (const auto& [c, m] : modes) {
+      const StepperStats s = m->stepper->stats();
+      total.steps += s.steps;
+      total.lcp += s.lcp;
+      total.factorisations += s.factorisations;
+      for (const std::string& n : m->stepper->notes()) summary.warnings.push_back(n);
+    }
+    total.events = switchings;
+    total.mode_switches = switchings;
+    total.modes = static_cast<int>(modes.size());
+    summary.stepper = total;
+  };
+  Mode* cur = &mode(config);
+  const double h = options.step, tstop = options.tstop;
+  Eigen::VectorXd z = z0.size() == cur->model->lcs().pairs() ? z0 : Eigen::VectorXd::Zero(cur->model->lcs().pairs());
+  double last_row = -1;
+  auto emit = [&](double t) {
+    if (t <= last_row || t < options.tstart * (1 - 1e-12)) return;
+    cur->writer->write(t, x, z);
+    last_row = t;
+    ++summary.rows;
+  };
+  const double loop0 = process_cpu_seconds();
+  try {
+    cur->stepper->Start(0.0, h, x, z);
+    summary.cpu_setup = process_cpu_seconds() - cpu0;
+    emit(0.0);
+    double t = 0.0, switched_at = -1;
+    int switches_here = 0, switches_in_step = 0;  // at one instant; since the last grid time
+    long k = 0;  // the run has reached the grid time k h
+    while (t < tstop) {
+      const long knext = k + 1;
+      const double t_next = std::min(knext * h, tstop);
+      const double step = t_next - t;
+      Eigen::VectorXd x1 = x, z1 = z;
+      cur->stepper->Step(t, step, x1, z1);
+      const Eigen::VectorXd c0 = family.controls(config, x, z, t), c1 = family.controls(config, x1, z1, t_next);
+      const SwitchConfig wanted = family.next(config, c1);
+      if (wanted == config) {
+        x = x1, z = z1, t = t_next, k = knext;
+        switches_in_step = 0;
+        emit(t);
+        if (options.progress && (k & 4095) == 0) options.progress(t / tstop);
+        continue;
+      }
+      // The earliest crossing among the switches that change, and every switch crossing there.
+      const std::vector<SwitchControl>& sw = family.switches();
+      std::vector<double> at(sw.size(), INFINITY);
+      double tau = t_next;
+      for (size_t s = 0; s < sw.size(); ++s) {
+        if (wanted[s] == config[s]) continue;
+        const double threshold = config[s] ? sw[s].off_below : sw[s].on_above;
+        const bool beyond = config[s] ? c0(s) < threshold : c0(s) > threshold;
+        const double frac = beyond ? 0.0 : std::clamp((c0(s) - threshold) / (c0(s) - c1(s)), 0.0, 1.0);
+        at[s] = t + frac * step;
+        tau = std::min(tau, at[s]);
+      }
+      if (tau - t > 1e-9 * h) {
+        cur->stepper->Step(t, tau - t, x, z);
+        t = tau;
+      }
+      if (t > switched_at) switched_at = t, switches_here = 0;
+      if (++switches_here > 64)
+        throw NumericalFailure(t, "the switches change more than 64 times at one instant (chattering: " +
+                                      family.describe(config) + ")");
+      if (++switches_in_step > 64 * static_cast<int>(config.size()))
+        throw NumericalFailure(t, "the switches change more than 64 times each within one step (chattering: " +
+                                      family.describe(config) + ")");
+      for (size_t s = 0; s < sw.size(); ++s)
+        if (at[s] <= tau + 1e-9 * h) config[s] = wanted[s];
+      ++switchings;
+      cur = &mode(config);
+      cur->stepper->Start(t, h, x, z);
+      emit(t);
+      if (t >= t_next) k = knext, switches_in_step = 0;
+    }
+  } catch (const NumericalFailure&) {
+    summary.cpu_steps = process_cpu_seconds() - loop0;
+    collect();
+    throw;
+  }
+  summary.cpu_steps = process_cpu_seconds() - loop0;
+  collect();
+}
+
 }  // namespace
 
 TransientSummary run_transient(const CircuitModel& model, const OutputMap& outputs,
@@ -259,6 +382,19 @@ TransientSummary run_transient(const CircuitModel& model, const OutputMap& outpu
   const MethodEntry& entry = *find_method(options.method);
   sink.begin(outputs.names);  // a failure from here on still leaves a (header-only) file
   try {
+    SwitchFamily switches(model);
+    if (!switches.empty()) {
+      if (entry.adaptive())
+        throw NumericalFailure(0.0, "method " + options.method + " does not locate switch changes (switches: " +
+                                        switches.describe(switches.config_of(model)) +
+                                        "); use a fixed-step method: euler, theta, radau3 or radau5");
+      const SwitchConfig start = initial_configuration(switches, switches.config_of(model), options.uic);
+      InitialState init = initial_state(switches.model(start), options.uic, 0.0);
+      summary.warnings = init.warnings;
+      run_switched_fixed_step(switches, start, outputs, options, entry, init.x, init.z, sink, summary, cpu0);
+      sink.finish();
+      return summary;
+    }
     InitialState init = initial_state(model, options.uic, 0.0);  // also the lines' past
     if (model.has_history()) model.history().set_degree(entry.history_degree);
     summary.warnings = init.warnings;

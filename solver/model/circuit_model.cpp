@@ -120,18 +120,57 @@ std::vector<StateInfo> magnetising_states(const std::vector<StateInfo>& states,
   return out;
 }
 
+// A link capacitor whose loop holds a controlled voltage source (E, H), or a tree inductor whose
+// cutset holds a controlled current source (F, G, or a sensing branch): its voltage (current)
+// would be the source's, a function of the circuit's own unknowns, and its current (voltage) a
+// derivative of them; the loop equations of the normal tree give no state for that.
+TopologyError storage_loop_with_controlled_source(const Netlist& netlist, const CircuitGraph& g,
+                                                  const SpanningTree& t, int b, bool capacitor) {
+  std::vector<int> elements{g.branches[b].element};
+  if (capacitor) {
+    const std::vector<LoopTerm>& loop = t.loops[t.position[b]];
+    for (size_t j = 1; j < loop.size(); ++j) elements.push_back(g.branches[loop[j].branch].element);
+  } else {
+    const int i = t.position[b];
+    for (size_t j = 0; j < t.links.size(); ++j)
+      if (t.B.coeff(i, j) != 0) elements.push_back(g.branches[t.links[j]].element);
+  }
+  std::sort(elements.begin() + 1, elements.end());
+  elements.erase(std::unique(elements.begin() + 1, elements.end()), elements.end());
+  std::vector<std::string> names;
+  for (int e : elements) names.push_back(netlist.elements[e].name);
+  const std::string what = capacitor ? "capacitor " : "inductor ";
+  const std::string where = capacitor ? " is in a loop of capacitors and voltage sources with a controlled voltage source ("
+                                      : " is in a cutset of inductors and current sources with a controlled current source (";
+  return TopologyError(what + names[0] + where + join_names(names) + "): its " +
+                           (capacitor ? "voltage" : "current") + " would follow the controlled source, not be a state; add a " +
+                           (capacitor ? "resistance in series with it" : "resistance in parallel with it"),
+                       elements);
+}
+
 }  // namespace
 
 CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& options) {
   CircuitModel m;
   m.netlist_ = netlist;
+  m.options_ = options;
   DeviceOptions device_options;
+  device_options.switch_on = options.switch_on;
   const NetlistOptions netlist_options = read_netlist_options(netlist);  // NetlistError
   device_options.ifit = netlist_options.ifit.value_or(options.ifit);
   device_options.bjtcap = netlist_options.bjtcap;
   device_options.tstop = options.t1;
   device_options.tstep = netlist.tran ? netlist.tran->tstep : 0;
   m.devices_ = make_devices(m.netlist_, device_options);
+  // Each switch configuration is its own model (switch_family.h) and a line's history lives in
+  // one model's inputs: the two together are refused rather than run with a lost past.
+  for (const std::shared_ptr<Device>& line : m.devices_) {
+    if (!line->has_history()) continue;
+    for (const Element& e : netlist.elements)
+      if (e.kind == ElementKind::VSwitch || e.kind == ElementKind::CSwitch)
+        throw NetlistError(e.loc, "switch " + e.name + ": switches in a circuit with transmission lines (" +
+                                      line->name() + ") are not supported");
+  }
   m.graph_ = graph_of_devices(m.devices_);
   const CircuitGraph& g = m.graph_;
   check_connected(netlist, g);
@@ -346,7 +385,7 @@ CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& opt
           const double s = loop[j].sign;  // b_{f,b}
           if (state_of[f] >= 0) tc.emplace_back(k, state_of[f], -s);
           else if (input_of[f] >= 0) Tcu(k, input_of[f]) -= s;
-          else throw std::logic_error("circuit model: unexpected branch in a capacitor loop");
+          else throw storage_loop_with_controlled_source(netlist, g, t, b, true);
         }
       }
     }
@@ -361,7 +400,7 @@ CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& opt
           const double s = it.value();  // b_{b,l}
           if (state_of[l] >= 0) tl.emplace_back(k, state_of[l], s);
           else if (input_of[l] >= 0) Tlu(k, input_of[l]) += s;
-          else throw std::logic_error("circuit model: unexpected branch in an inductor cutset");
+          else throw storage_loop_with_controlled_source(netlist, g, t, b, false);
         }
       }
     }

@@ -18,6 +18,7 @@
 // constitutive relations, storage, pairs, inputs) and eliminates; it knows no element kind.
 #pragma once
 
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -56,6 +57,8 @@ struct StorageInfo {
 struct ModelOptions {
   double ifit = 10e-3;        // diode fit current, `.options ifit=`
   double t0 = 0, t1 = 0;      // interval over which sources are checked (Figure 5.5 test)
+  // Switches: the configuration to form (switch name -> on); see DeviceOptions::switch_on.
+  std::map<std::string, bool> switch_on;
 };
 
 // The model of one netlist: its devices, graph, normal tree, and the LCS they form, which the
@@ -67,6 +70,7 @@ class CircuitModel : public LcsProblem {
   static CircuitModel build(const Netlist& netlist, const ModelOptions& options);
 
   const Netlist& netlist() const { return netlist_; }
+  const ModelOptions& options() const { return options_; }  // what it was built with
   const CircuitGraph& graph() const { return graph_; }
   const SpanningTree& tree() const { return tree_; }
   // The devices in card order: devices()[e] is the device of Netlist::elements[e].
@@ -101,6 +105,7 @@ class CircuitModel : public LcsProblem {
   Eigen::RowVectorXd node_row(int node) const;                     // physical, memoised
 
   Netlist netlist_;
+  ModelOptions options_;
   CircuitGraph graph_;
   SpanningTree tree_;
   std::vector<std::shared_ptr<Device>> devices_;

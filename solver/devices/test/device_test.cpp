@@ -28,7 +28,10 @@ TEST(DeviceRegistry, SortedByLetterAndOneDevicePerElementKind) {
                                ElementKind::Capacitor,     ElementKind::Coupling,
                                ElementKind::VoltageSource, ElementKind::CurrentSource,
                                ElementKind::Diode,         ElementKind::Bjt,
-                               ElementKind::Line,          ElementKind::LossyLine};
+                               ElementKind::Line,          ElementKind::LossyLine,
+                               ElementKind::Vcvs,          ElementKind::Vccs,
+                               ElementKind::Cccs,          ElementKind::Ccvs,
+                               ElementKind::VSwitch,       ElementKind::CSwitch};
   for (ElementKind kind : kinds) {
     const auto n = std::count_if(table.begin(), table.end(),
                                  [&](const DeviceEntry& e) { return e.kind == kind; });

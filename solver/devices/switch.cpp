@@ -1,0 +1,96 @@
+#include "solver/devices/switch.h"
+
+#include <cstdio>
+
+namespace lcs {
+
+namespace {
+
+const SwitchModel& model_of(const Element& element, const Netlist& netlist) {
+  auto it = netlist.switch_models.find(element.model);
+  if (it == netlist.switch_models.end())
+    throw NetlistError(element.loc, "switch " + element.name + ": unknown model '" + element.model + "'");
+  return it->second;
+}
+
+}  // namespace
+
+Switch::Switch(const Element& element, const Netlist& netlist, const DeviceOptions& options)
+    : Device(element), card_(model_of(element, netlist)) {
+  auto it = options.switch_on.find(element.name);
+  on_ = it != options.switch_on.end() ? it->second : element.initially_on.value_or(false);
+}
+
+bool Switch::senses() const {
+  return element_.kind == ElementKind::VSwitch && element_.nodes.at(2) != element_.nodes.at(3);
+}
+
+std::vector<BranchDecl> Switch::branches() const {
+  std::vector<BranchDecl> out{{name(), BranchClass::Resistor, element_.nodes.at(0), element_.nodes.at(1)}};
+  if (senses()) out.push_back({name() + "#sense", BranchClass::CurrentSource, element_.nodes.at(2), element_.nodes.at(3)});
+  return out;
+}
+
+void Switch::stamp(const StampContext& context, Stamps& stamps) const {
+  const int b = context.branch(0);
+  stamps.relations.push_back({b, {{Term::Of::Voltage, b, 1.0}, {Term::Of::Current, b, -(on_ ? card_.ron : card_.roff)}}});
+  if (senses()) {
+    const int s = context.branch(1);
+    stamps.relations.push_back({s, {{Term::Of::Current, s, 1.0}}});  // the sensing branch: i_S = 0
+  }
+}
+
+Probe Switch::control_probe() const {
+  Probe p;
+  if (element_.kind == ElementKind::VSwitch) {
+    p.kind = Probe::Kind::NodePairVoltage;
+    p.a = element_.nodes.at(2);
+    p.b = element_.nodes.at(3);
+  } else {
+    p.kind = Probe::Kind::ElementCurrent;
+    p.a = element_.control;
+  }
+  p.loc = element_.loc;
+  return p;
+}
+
+// Written through: the same card (ON/OFF kept) and its model under a name unique in the deck.
+NgspiceCards Switch::ngspice(const NgspiceDeckContext& context) const {
+  NgspiceCards cards;
+  std::string plus = element_.nodes.at(0);
+  if (context.current_probed) {
+    const std::string meter = context.fresh("v_amm_" + name());
+    const std::string mid = context.fresh("lcs_" + name() + "_amm");
+    cards.lines.push_back(meter + " " + plus + " " + mid + " DC 0");
+    cards.probes["i(" + name() + ")"] = {meter + "#branch", ""};
+    plus = mid;
+  }
+  const bool voltage = element_.kind == ElementKind::VSwitch;
+  const std::string model = context.fresh("lcs_sw_" + name());
+  const std::string control = voltage ? element_.nodes.at(2) + " " + element_.nodes.at(3)
+                                      : deck_name('v', element_.control);
+  std::string line = deck_name(voltage ? 's' : 'w', name()) + " " + plus + " " + element_.nodes.at(1) + " " +
+                     control + " " + model;
+  if (element_.initially_on) line += *element_.initially_on ? " ON" : " OFF";
+  cards.lines.push_back(line);
+  cards.models.push_back(".model " + model + (voltage ? " SW(VT=" : " CSW(IT=") + number(card_.vt) +
+                         (voltage ? " VH=" : " IH=") + number(card_.vh) + " RON=" + number(card_.ron) +
+                         " ROFF=" + number(card_.roff) + ")");
+  return cards;
+}
+
+std::vector<std::string> Switch::notes() const {
+  const bool voltage = element_.kind == ElementKind::VSwitch;
+  const Probe control = control_probe();
+  const char* unit = voltage ? "V" : "A";
+  char buf[320];
+  std::snprintf(buf, sizeof buf,
+                "switch %s: controlled by %s, on above %.6g %s, off below %.6g %s (%s = %.6g, %s = %.6g), "
+                "RON = %.6g ohm, ROFF = %.6g ohm, %s%s",
+                name().c_str(), control.name().c_str(), card_.vt + card_.vh, unit, card_.vt - card_.vh, unit,
+                voltage ? "VT" : "IT", card_.vt, voltage ? "VH" : "IH", card_.vh, card_.ron, card_.roff,
+                on_ ? "on" : "off", element_.initially_on ? (*element_.initially_on ? " (ON on the card)" : " (OFF on the card)") : "");
+  return {buf};
+}
+
+}  // namespace lcs

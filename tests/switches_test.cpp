@@ -1,0 +1,268 @@
+// Ideal switches S and W (SPEC §2): switching times where the control crosses VT + VH (on) and
+// VT - VH (off), the RC closed form after the switch closes, hysteresis, current control, the
+// state at t = 0, and the refusals.
+#include <cmath>
+#include <fstream>
+
+#include <gtest/gtest.h>
+
+#include "netlist/netlist.h"
+#include "solver/model/switch_family.h"
+#include "tests/cli_support.h"
+
+namespace lcs {
+namespace {
+
+using namespace cli_testing;
+
+fs::path write_deck(const std::string& name, const std::string& text) {
+  const fs::path dir = scratch_dir("switch_deck_" + name);
+  const fs::path path = dir / (name + ".cir");
+  std::ofstream(path) << text;
+  return path;
+}
+
+// The row nearest to time t (its index).
+size_t row_at(const std::vector<double>& times, double t) {
+  size_t best = 0;
+  for (size_t k = 1; k < times.size(); ++k)
+    if (std::abs(times[k] - t) < std::abs(times[best] - t)) best = k;
+  return best;
+}
+
+// v(c) ramps 0 -> 0.9 V over 1 ms; the switch (VT 0.4 V, VH 0.1 V) closes where v(c) reaches
+// 0.5 V, t_on = 0.5/0.9 ms (not a multiple of the step), and charges C1 = 1 uF through RON = 1 k
+// from 5 V: v(out) = 5 (1 - exp(-(t - t_on)/1 ms)) after it, ~0 before (from rest, UIC: ROFF =
+// 1e12 leaks 5 V t / (ROFF C) = 2.8 nV by t_on; the operating point would charge C1 through ROFF).
+const char* const kRampedRc = R"(RC charged through a voltage-controlled switch
+VDD dd 0 DC 5
+VC c 0 PWL(0 0 1m 0.9)
+S1 dd out c 0 sw1
+C1 out 0 1u
+.model sw1 SW(VT=0.4 VH=0.1 RON=1k ROFF=1e12)
+.tran 1u 3m UIC
+.end
+)";
+
+TEST(Switches, RcChargedThroughARampedSwitch) {
+  const fs::path deck = write_deck("ramped_rc", kRampedRc);
+  const double t_on = 0.5e-3 / 0.9;
+  // radau5: the RC exponential to its fifth-order error; euler: to its first-order global error
+  // (h/2 tau) (t/tau) e^(-t/tau) 5 V <= 0.93 mV at h = 1 us, tau = 1 ms.
+  for (auto [method, tol] : {std::pair{"radau5", 1e-7}, std::pair{"euler", 1e-3}, std::pair{"theta", 1e-6},
+                             std::pair{"radau3", 1e-7}}) {
+    SCOPED_TRACE(method);
+    const Csv csv = run_csv(deck, method, "--probe 'v(out),v(c)'");
+    const std::vector<double> t = column(csv, "time"), v = column(csv, "v(out)");
+    // A row at the switching time itself, exact for a linear control.
+    const size_t k_on = row_at(t, t_on);
+    EXPECT_NEAR(t[k_on], t_on, 1e-12);
+    for (size_t k = 0; k < t.size(); ++k) {
+      const double expected = t[k] < t_on ? 0.0 : 5 * (1 - std::exp(-(t[k] - t_on) / 1e-3));
+      ASSERT_NEAR(v[k], expected, tol) << t[k];
+    }
+  }
+}
+
+// A triangle 0 -> 1 -> 0 V (1 ms up, 1 ms down) into a switch with VT = 0.5 V, VH = 0.205 V and
+// a 1 k load: on at 0.705 V (t = 0.705 ms) on the way up, off at 0.295 V (t = 1.705 ms) on the
+// way down, not at 0.705 V (t = 1.295 ms). On: v(out) = 5 * 1000/1001. (Neither time is a
+// multiple of the 10 us step.)
+TEST(Switches, HysteresisOpensAtVtMinusVh) {
+  const fs::path deck = write_deck("hysteresis", R"(switch hysteresis
+VDD dd 0 DC 5
+VC c 0 PWL(0 0 1m 1 2m 0)
+S1 dd out c 0 sw1
+R1 out 0 1k
+.model sw1 SW(VT=0.5 VH=0.205 RON=1 ROFF=1e12)
+.tran 10u 2m
+.end
+)");
+  for (const char* method : {"euler", "radau5"}) {
+    SCOPED_TRACE(method);
+    const Csv csv = run_csv(deck, method, "--probe 'v(out)'");
+    const std::vector<double> t = column(csv, "time"), v = column(csv, "v(out)");
+    EXPECT_NEAR(t[row_at(t, 0.705e-3)], 0.705e-3, 1e-12);
+    EXPECT_NEAR(t[row_at(t, 1.705e-3)], 1.705e-3, 1e-12);
+    for (size_t k = 0; k < t.size(); ++k) {
+      const bool on = t[k] >= 0.705e-3 - 1e-12 && t[k] < 1.705e-3 - 1e-12;
+      EXPECT_NEAR(v[k], on ? 5 * 1000.0 / 1001 : 5 * 1000 / (1e12 + 1000), 1e-9) << t[k];
+    }
+  }
+}
+
+// W1 is controlled by the current of VSENSE, i = v(in)/1k ramping 0 -> 1 mA over 1 ms; with
+// IT = 0.5 mA and IH = 0.105 mA it closes at 0.605 mA, t = 0.605 ms.
+TEST(Switches, CurrentControlledSwitch) {
+  const fs::path deck = write_deck("wswitch", R"(current-controlled switch
+VIN in 0 PWL(0 0 1m 1)
+VSENSE in m 0
+RS m 0 1k
+VDD dd 0 DC 5
+W1 dd out vsense wsw
+R1 out 0 1k
+.model wsw CSW(IT=0.5m IH=0.105m RON=1 ROFF=1e12)
+.tran 10u 1m
+.end
+)");
+  const Csv csv = run_csv(deck, "radau5", "--probe 'v(out),i(vsense)'");
+  const std::vector<double> t = column(csv, "time"), v = column(csv, "v(out)");
+  EXPECT_NEAR(t[row_at(t, 0.605e-3)], 0.605e-3, 1e-12);
+  for (size_t k = 0; k < t.size(); ++k)
+    EXPECT_NEAR(v[k], t[k] >= 0.605e-3 - 1e-12 ? 5 * 1000.0 / 1001 : 0.0, 1e-8) << t[k];
+}
+
+// The state at t = 0: an S whose control is its own output inverted (E1: v(c) = 5 - v(out)) has
+// no consistent state (off: v(c) = 5 V asks for on; on: v(c) = 5 mV asks for off); ON on the card
+// makes it definite. The op prints the on state's output.
+TEST(Switches, StateAtTimeZeroIsConsistentOrRefused) {
+  const std::string inverted = R"(switch that opens itself
+VDD dd 0 DC 5
+S1 dd out c 0 sw1 STATE
+R1 out 0 1k
+E1 c 0 dd out 1
+.model sw1 SW(VT=2.5 RON=1 ROFF=1e12)
+.tran 10u 1m
+.end
+)";
+  std::string free_text = inverted, on_text = inverted;
+  free_text.replace(free_text.find(" STATE"), 6, "");
+  on_text.replace(on_text.find("STATE"), 5, "ON");
+  const fs::path free_deck = write_deck("inconsistent", free_text), on_deck = write_deck("on", on_text);
+  const Result r = run_lcspice("op '" + free_deck.string() + "'", free_deck.parent_path());
+  EXPECT_EQ(r.code, 3) << r.err;
+  EXPECT_NE(r.err.find("no consistent state of the switches at t = 0"), std::string::npos) << r.err;
+  const Result on = run_lcspice("op '" + on_deck.string() + "'", on_deck.parent_path());
+  EXPECT_EQ(on.code, 0) << on.err;
+  EXPECT_NE(on.out.find("4.99500499"), std::string::npos) << on.out;  // 5 * 1000/1001
+  EXPECT_NE(on.out.find("(switch on)"), std::string::npos) << on.out;
+}
+
+// A latch: S1 controlled by its own output holds whichever state it starts in.
+TEST(Switches, LatchKeepsItsCardState) {
+  const std::string latch = R"(self-holding switch
+VDD dd 0 DC 5
+S1 dd out out 0 sw1 STATE
+R1 out 0 1k
+.model sw1 SW(VT=1 RON=1 ROFF=1e12)
+.tran 10u 100u
+.end
+)";
+  for (const char* state : {"ON", "OFF"}) {
+    std::string text = latch;
+    text.replace(text.find("STATE"), 5, state);
+    const fs::path deck = write_deck(std::string("latch_") + state, text);
+    const Csv csv = run_csv(deck, "euler", "--probe 'v(out)'");
+    const double expected = std::string(state) == "ON" ? 5 * 1000.0 / 1001 : 5 * 1000 / (1e12 + 1000);
+    for (double v : column(csv, "v(out)")) EXPECT_NEAR(v, expected, 1e-9);
+  }
+}
+
+// ngspice's manual example (p. 92): v1 a triangle 0 -> 2 -> 0 V over 4 ms, v2 0.9 -> 2 -> 0.4 V,
+// the current of vm3 0 -> 2 -> 0 mA; VT = 1 V, VH = 0.2 V (CSW: 1 mA, 0.2 mA), 10 k loads from 2 V.
+// s1 (v1): on at 1.2 ms, off at 3.2 ms; s2 (v2, OFF): on at 0.3/0.55 ms, off at 3.5 ms; s3 (v2,
+// ON, starting inside the window): on until 3.5 ms; w1: on at 1.2 ms, off at 3.2 ms. The deck
+// is read from the shared corpus, its `.probe` card left out (another part of the dialect).
+TEST(Switches, NgspiceManualExampleSwitchesWhereTheControlsCross) {
+  const fs::path source = "/work/shared/realworld/ngspice/examples/probe/switches-manual-p92.cir";
+  if (!fs::exists(source)) GTEST_SKIP() << source << " is not on this machine";
+  std::istringstream in(read_file(source));
+  std::string text, line;
+  while (std::getline(in, line))
+    if (line.rfind(".probe", 0) != 0) text += line + "\n";
+  const fs::path deck = write_deck("manual_p92", text);
+  const Csv csv = run_csv(deck, "radau5", "--probe 'v(10),v(20),v(30),v(40)'");
+  const std::vector<double> t = column(csv, "time");
+  struct Window { const char* probe; double on, off; double on_value; };
+  const Window windows[] = {{"v(10)", 1.2e-3, 3.2e-3, 2 * 1 / 10001.0},
+                            {"v(20)", 0.3e-3 / 0.55, 3.5e-3, 2 * 1 / 10001.0},
+                            {"v(30)", 0.0, 3.5e-3, 2 * 1 / 10001.0},
+                            {"v(40)", 1.2e-3, 3.2e-3, 2 * 1000 / 11000.0}};
+  for (const Window& w : windows) {
+    SCOPED_TRACE(w.probe);
+    const std::vector<double> v = column(csv, w.probe);
+    if (w.on > 0) EXPECT_NEAR(t[row_at(t, w.on)], w.on, 1e-12);
+    EXPECT_NEAR(t[row_at(t, w.off)], w.off, 1e-12);
+    for (size_t k = 0; k < t.size(); ++k) {
+      // These switching times are multiples of the 2 us step: the grid row k h and the switching
+      // row differ by rounding only, and either state is right there.
+      if (std::abs(t[k] - w.on) < 1e-12 || std::abs(t[k] - w.off) < 1e-12) continue;
+      const bool on = t[k] > w.on && t[k] < w.off;
+      // Off: ROFF = 10 k against the 10 k load; on: RON = 1 ohm (1 k for w1).
+      ASSERT_NEAR(v[k], on ? w.on_value : 1.0, 1e-9) << t[k];
+    }
+  }
+}
+
+TEST(Switches, AdaptiveMethodsAreRefusedWithTheReason) {
+  const fs::path deck = write_deck("refused", kRampedRc);
+  const Result r = run_lcspice("run '" + deck.string() + "' --method event -o -", deck.parent_path());
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_NE(r.err.find(":4:1: error: switch s1: method event does not locate switch changes; use --method "
+                       "euler, theta, radau3 or radau5"),
+            std::string::npos)
+      << r.err;
+}
+
+}  // namespace
+}  // namespace lcs
+
+namespace lcs {
+namespace {
+
+using namespace cli_testing;
+
+// The family forms a configuration's model once, when first asked, and every configuration has
+// the same states (the normal tree does not depend on resistances) but its own matrices.
+TEST(Switches, FamilyFormsEachConfigurationOnceWithTheSameStates) {
+  const Netlist netlist = parse_netlist_string(R"(three switches
+VDD dd 0 DC 5
+VC c 0 DC 1
+S1 dd a c 0 sw1
+S2 a b c 0 sw1
+S3 b 0 c 0 sw1 ON
+C1 a 0 1u
+C2 b 0 1u
+.model sw1 SW(VT=0.5 RON=1 ROFF=1e6)
+.tran 1u 1m
+.end
+)",
+                                               "family.cir");
+  const CircuitModel base = CircuitModel::build(netlist, {});
+  SwitchFamily family(base);
+  ASSERT_EQ(family.switches().size(), 3u);
+  EXPECT_EQ(family.config_of(base), (SwitchConfig{0, 0, 1}));
+  EXPECT_EQ(&family.model({0, 0, 1}), &base);  // its own configuration: the base model itself
+  EXPECT_EQ(family.formed(), 0);
+  const CircuitModel& on = family.model({1, 1, 0});
+  EXPECT_EQ(family.formed(), 1);
+  EXPECT_EQ(&family.model({1, 1, 0}), &on);
+  EXPECT_EQ(family.formed(), 1);
+  ASSERT_EQ(on.states().size(), base.states().size());
+  for (size_t k = 0; k < on.states().size(); ++k) EXPECT_EQ(on.states()[k].label, base.states()[k].label);
+  EXPECT_GT((on.lcs().A - base.lcs().A).cwiseAbs().maxCoeff(), 1.0);
+  // With v(c) = 1 V > VT every switch asks to be on; S3's ON is the card's, kept at t = 0.
+  EXPECT_EQ(initial_configuration(family, family.config_of(base), false), (SwitchConfig{1, 1, 1}));
+}
+
+// `analyze` lists the switches with their thresholds and the state they start in, and the
+// controlled sources with their laws.
+TEST(Switches, AnalyzeListsSwitchesAndControlledSources) {
+  const Result r = run_lcspice("analyze '" + circuit("switch_hysteresis").string() + "'", scratch_dir("analyze_sw"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("controlled sources and switches (switches: the configuration at t = 0):"), std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("switch s1: controlled by v(c,0), on above 1.2 V, off below 0.8 V (VT = 1, VH = 0.2), "
+                       "RON = 1 ohm, ROFF = 10000 ohm, off (OFF on the card)"),
+            std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("switch w1: controlled by i(vsense), on above 0.0012 A, off below 0.0008 A"), std::string::npos)
+      << r.out;
+  const Result c = run_lcspice("analyze '" + circuit("controlled_sources").string() + "'", scratch_dir("analyze_cs"));
+  ASSERT_EQ(c.code, 0) << c.err;
+  EXPECT_NE(c.out.find("voltage-controlled voltage source e1: v = 100000 * v(0,m)"), std::string::npos) << c.out;
+  EXPECT_NE(c.out.find("current-controlled voltage source h1: v = 1000 ohm * i(vsense)"), std::string::npos) << c.out;
+}
+
+}  // namespace
+}  // namespace lcs
