@@ -45,13 +45,18 @@ CircuitModel build_model(const Netlist& netlist, double t0, double t1) {
   }
 }
 
-void refuse_switches(const Netlist& netlist, const std::string& method) {
+const Element* first_switch(const Netlist& netlist) {
   for (const Element& el : netlist.elements)
-    if (el.kind == ElementKind::VSwitch || el.kind == ElementKind::CSwitch)
-      throw CliError(kExitNetlist, NetlistError(el.loc, "switch " + el.name + ": method " + method +
-                                                            " does not locate switch changes; use --method euler, "
-                                                            "theta, radau3 or radau5")
-                                       .formatted());
+    if (el.kind == ElementKind::VSwitch || el.kind == ElementKind::CSwitch) return &el;
+  return nullptr;
+}
+
+void refuse_switches(const Netlist& netlist, const std::string& method) {
+  if (const Element* el = first_switch(netlist))
+    throw CliError(kExitNetlist, NetlistError(el->loc, "switch " + el->name + ": method " + method +
+                                                           " does not locate switch changes; use --method euler, "
+                                                           "theta, radau3 or radau5")
+                                     .formatted());
 }
 
 std::vector<Probe> parse_probe_list(const std::string& list) {

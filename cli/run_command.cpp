@@ -173,15 +173,19 @@ int run_command(const RunArgs& args) {
     if (args.emission) smoothing.emission = *args.emission;
     netlist = smooth_netlist(netlist, smoothing);
   }
-  if (method_of(options).adaptive()) refuse_switches(netlist, options.method);
   CircuitModel model = build_model(netlist, 0.0, options.tstop);
   // SPEC §1: event wherever it applies, unless a method is named (--method, .options method=,
   // --diode shockley).
   if (args.method.empty() && args.diode != "shockley" && !netlist_names_method(netlist)) {
     std::string why;
     options.method = default_method_for(model, &why).name;
+    if (const Element* s = first_switch(netlist); s && method_of(options).adaptive()) {
+      options.method = fixed_step_default_method().name;
+      why = "switch " + s->name + ": the event method does not locate switch changes";
+    }
     if (!why.empty()) note("method " + options.method + ": the default method does not apply (" + why + ")");
   }
+  if (method_of(options).adaptive()) refuse_switches(netlist, options.method);
   // A method that cannot integrate this circuit is a usage error (the netlist is fine, as another
   // method shows), like --diode shockley with a complementarity method.
   std::string not_applicable;
