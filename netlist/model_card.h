@@ -19,6 +19,9 @@ struct ModelCard {
   DiodeModel diode;   // type "d": name = prefix + name
   BjtModel bjt;       // type "npn" or "pnp": name = prefix + name
   LineModel line;     // type "ltra": name = prefix + name
+  // A type ngspice knows and lcspice does not simulate (NMOS, NUMD, LCOUPLE, ...): kept only to
+  // refuse the elements that use it (see out_of_scope.h); `type` is that type, lower-case.
+  bool unsimulated = false;
 };
 
 ModelCard parse_model_card(const Card& card, const ParamScope& scope, const std::string& prefix,
