@@ -105,7 +105,7 @@ struct Probe {
   char terminal = 0;                   // TerminalCurrent: 'c', 'b', 'e' (a BJT's ic/ib/ie), '2' (i2(t1))
   // When set, the header instead of the canonical name: i(r1) of a resistor left out of the
   // circuit (both terminals on one node) is read as v(0,0), which is zero, under its own name.
-  std::string label;
+  std::string label = {};
   std::string name() const;            // canonical CSV header: "v(n)", "v(p,n)", "i(d1)", "ic(q1)"
 };
 
