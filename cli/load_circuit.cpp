@@ -10,9 +10,11 @@ namespace lcs {
 
 void warn(const std::string& text) { std::cerr << "lcspice: warning: " << text << "\n"; }
 
-Netlist load_netlist(const std::string& path) {
+Netlist load_netlist(const std::string& path, bool require_transient) {
   try {
-    Netlist netlist = parse_netlist_file(path);
+    ReadOptions options;
+    options.require_transient = require_transient;
+    Netlist netlist = parse_netlist_file(path, options);
     for (const std::string& w : netlist.warnings) std::cerr << w << "\n";
     return netlist;
   } catch (const FileError& e) {

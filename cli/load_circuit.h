@@ -10,7 +10,8 @@
 namespace lcs {
 
 // FileError -> exit 1; NetlistError -> exit 2. Prints the netlist's warnings to stderr.
-Netlist load_netlist(const std::string& path);
+// `require_transient`: see ReadOptions (run and validate).
+Netlist load_netlist(const std::string& path, bool require_transient = false);
 // TopologyError / NetlistError -> exit 2. [t0, t1] is the interval the sources are checked over.
 CircuitModel build_model(const Netlist& netlist, double t0, double t1);
 // Probes from a `--probe` list ("v(a),v(p,n),i(d1)": commas inside parentheses belong to a probe).

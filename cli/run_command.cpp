@@ -118,7 +118,7 @@ void apply_diode_model(const RunArgs& args, TransientOptions& options) {
 }  // namespace
 
 int run_command(const RunArgs& args) {
-  Netlist netlist = load_netlist(args.netlist);
+  Netlist netlist = load_netlist(args.netlist, !(args.step && args.tstop));
   TransientOptions options;
   apply_netlist_options(netlist, options);
   if (!args.method.empty()) {

@@ -322,7 +322,7 @@ std::string why_not_judged(const CircuitModel& model, const Probe& probe) {
 int validate_command(const ValidateArgs& args) { return validate_with_faults(args, {}); }
 
 int validate_with_faults(const ValidateArgs& args, const NgspiceDeckFaults& faults) {
-  Netlist netlist = load_netlist(args.netlist);
+  Netlist netlist = load_netlist(args.netlist, true);
   if (!netlist.tran) {
     SourceLocation file_only;
     file_only.file = netlist.file;

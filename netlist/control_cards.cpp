@@ -3,6 +3,7 @@
 #include "netlist/control_cards.h"
 
 #include <cstdio>
+#include <algorithm>
 #include <cstdlib>
 
 #include "netlist/element_card.h"
@@ -30,7 +31,7 @@ DotCard classify_dot_card(const std::string& k) {
   if (k == ".ic") return DotCard::Ic;
   if (k == ".nodeset") return DotCard::Nodeset;
   if (k == ".print" || k == ".plot") return DotCard::Print;
-  if (k == ".save") return DotCard::Save;
+  if (k == ".save" || k == ".probe") return DotCard::Save;
   if (k == ".options" || k == ".option" || k == ".opt") return DotCard::Options;
   if (k == ".op") return DotCard::Op;
   if (k == ".title") return DotCard::Title;
@@ -112,7 +113,7 @@ std::vector<NodeIc> parse_ic(const Card& card, const ParamScope& scope) {
 std::vector<Probe> parse_probe_card(const Card& card, std::vector<std::string>& warnings) {
   std::vector<Probe> out;
   const std::size_t n = card.size();
-  const bool save = card.keyword() == ".save";
+  const bool save = card.keyword() == ".save" || card.keyword() == ".probe";
   std::size_t i = 1;
   if (!save && i < n && card[i].is_word() && !(i + 1 < n && card[i + 1].is(Token::Kind::LParen))) {
     if (card[i].lower == "tran") {
@@ -131,16 +132,42 @@ std::vector<Probe> parse_probe_card(const Card& card, std::vector<std::string>& 
       ++i;
       continue;
     }
-    if (save && t.is_word("all")) {
+    if (save && (t.is_word("all") || t.is_word("alli") || t.is_word("allv"))) {
       ++i;
       continue;
     }
-    std::size_t end = i + 1;
-    if (t.is_word() && i + 1 < n && card[i + 1].is(Token::Kind::LParen)) {
-      std::size_t j = i + 2;
-      while (j < n && !card[j].is(Token::Kind::RParen)) ++j;
-      if (j >= n) throw NetlistError(card.at(i + 1), "missing ')'");
-      end = j + 1;
+    if (t.is_word("format") && i + 1 < n && card[i + 1].is(Token::Kind::Equals)) {
+      warnings.push_back(warning_line(card.at(t), quote(card[0].lower) + ": FORMAT= is ignored (lcspice writes CSV)"));
+      i = std::min(n, i + 3);
+      continue;
+    }
+    // One entry: the tokens written together (parentheses may hold blanks and commas).
+    std::size_t end = i;
+    int depth = 0, groups = 0;
+    do {
+      if (card[end].is(Token::Kind::LParen)) ++depth;
+      if (card[end].is(Token::Kind::RParen) && depth > 0 && --depth == 0) ++groups;
+      ++end;
+    } while (end < n && (depth > 0 || (card[end].begin == card[end - 1].end && !card[end].is(Token::Kind::Comma)) ||
+                         (card[end].is(Token::Kind::LParen) && card[end - 1].is_word())));
+    const bool device_parameter = !t.text.empty() && t.text[0] == '@';
+    const bool power = t.is_word("p") && groups == 1;
+    const bool expression = groups > 1 || (groups == 1 && !card[end - 1].is(Token::Kind::RParen)) ||
+                            (groups == 1 && t.is(Token::Kind::LParen));
+    if (device_parameter || power || expression) {
+      const std::string entry = card.text(t.begin, card[end - 1].end);
+      const char* why = device_parameter ? "device parameters are not probes lcspice writes"
+                        : power          ? "power probes are not written by lcspice"
+                                         : "expressions are not written by lcspice (only v(), i() probes)";
+      warnings.push_back(warning_line(card.span(t.begin, card[end - 1].end),
+                                      quote(card[0].lower) + " entry " + quote(entry) + " is ignored: " + why));
+      i = end;
+      continue;
+    }
+    if (depth > 0) {
+      std::size_t open = i;
+      while (!card[open].is(Token::Kind::LParen)) ++open;
+      throw NetlistError(card.at(open), "missing ')'");
     }
     int b = t.begin, e = card[end - 1].end;
     out.push_back(parse_probe(card.text(b, e), card.span(b, e)));

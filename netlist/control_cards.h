@@ -20,12 +20,12 @@ enum class DotCard {
   Ic,
   Nodeset,   // same syntax as .ic: hints that choose among several operating points
   Print,     // .print, .plot
-  Save,
+  Save,      // .save, .probe
   Options,   // .options, .option, .opt
   Op,        // accepted silently
   Title,     // .title text
   Ignored,   // analyses and cards lcspice does not run (.ac .dc .noise .tf .meas .four ...): warning
-  Endc,      // a stray .endc (the lexer skips .control blocks)
+  Endc,      // a stray .endc (the lexer takes .control blocks out)
   Unknown,
 };
 
@@ -38,7 +38,9 @@ TranSpec parse_tran(const Card& card, const ParamScope& scope);
 // .ic and .nodeset: v(node)=value ...
 std::vector<NodeIc> parse_ic(const Card& card, const ParamScope& scope);
 // .print/.plot (`tran` or no analysis name: probes; another analysis: ignored with a warning)
-// and .save (`all` means the default probes).
+// and .save/.probe (`all`, `alli`, `allv` mean the default probes). Entries lcspice does not write
+// (expressions such as v(1)*i(r1), power p(x), device parameters @d1[id], FORMAT=) are skipped
+// with a warning each.
 std::vector<Probe> parse_probe_card(const Card& card, std::vector<std::string>& warnings);
 void parse_options(const Card& card, const ParamScope& scope, Netlist& netlist);
 

@@ -2,6 +2,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <sstream>
 #include <system_error>
 
@@ -42,41 +43,122 @@ std::string resolve_relative(const std::string& includer, const std::string& nam
   return (dir / p).lexically_normal().string();
 }
 
+// `.lib FILE SECTION`: the file (quoted or bare) and the section name.
+struct LibReference {
+  std::string file, section;
+  SourceLocation file_loc;
+};
+
+std::optional<LibReference> lib_reference(const Card& card) {
+  if (card.size() != 3 || !card[2].is_word()) return std::nullopt;
+  if (!card[1].is_word() && !card[1].is(Token::Kind::Quoted)) return std::nullopt;
+  return LibReference{card[1].text, card[2].lower, card.at(1)};
+}
+
+bool is_lib(const Card& card) { return card[0].is_word(".lib"); }
+bool is_endl(const Card& card) { return card[0].is_word(".endl"); }
+
+// The `.endl` closing the section that starts at cards[begin] (a `.lib SECTION` card).
+std::size_t section_end(const std::vector<Card>& cards, std::size_t begin) {
+  for (std::size_t k = begin + 1; k < cards.size(); ++k)
+    if (is_endl(cards[k])) return k;
+  throw NetlistError(cards[begin].at(0), "missing '.endl' for '.lib " + cards[begin][1].lower + "'");
+}
+
 class Reader {
  public:
-  explicit Reader(std::vector<std::string>& warnings) : warnings_(warnings) {}
+  Reader(std::vector<std::string>& warnings, std::vector<ControlBlock>& controls)
+      : warnings_(warnings), controls_(controls) {}
 
   void expand(const SourceFilePtr& file, bool has_title, std::vector<Card>& out) {
     stack_.push_back(identity(file->path));
-    for (Card& card : split_cards(file, has_title, warnings_)) {
+    std::vector<Card> cards = split_cards(file, has_title, warnings_, &controls_);
+    splice(file, cards, 0, cards.size(), out);
+    stack_.pop_back();
+  }
+
+ private:
+  // Copies cards [begin, end) of `file` to `out`, expanding `.include` and `.lib FILE SECTION`
+  // and leaving out `.lib SECTION` ... `.endl` blocks (a library's sections are read on request).
+  void splice(const SourceFilePtr& file, std::vector<Card>& cards, std::size_t begin, std::size_t end,
+              std::vector<Card>& out) {
+    for (std::size_t k = begin; k < end; ++k) {
+      Card& card = cards[k];
+      if (is_endl(card)) throw NetlistError(card.at(0), "'.endl' without '.lib'");
+      if (is_lib(card)) {
+        if (card.size() == 2 && card[1].is_word()) {  // a section definition not asked for here
+          k = section_end(cards, k);
+          continue;
+        }
+        std::optional<LibReference> ref = lib_reference(card);
+        if (!ref) throw NetlistError(card.at(0), "expected '.lib FILE SECTION' or '.lib SECTION'");
+        read_section(file, *ref, card, out);
+        continue;
+      }
       if (!card[0].is_word(".include") && !card[0].is_word(".inc")) {
         out.push_back(std::move(card));
         continue;
       }
       std::string name = include_target(card);
       SourceLocation loc = card.span(card[1].begin, card.tokens.back().end);
-      std::string path = resolve_relative(file->path, name);
-      std::string id = identity(path);
-      for (const std::string& open : stack_)
-        if (open == id) throw NetlistError(loc, "include cycle: " + quote(name) + " is already being included");
-      if (stack_.size() >= kMaxIncludeDepth) throw NetlistError(loc, "include files nested too deeply");
-      if (++opens_ > kMaxIncludeOpens)
-        throw NetlistError(loc, "more than " + std::to_string(kMaxIncludeOpens) +
-                                    " .include files read for one netlist (includes that repeat each other?)");
       std::string text;
-      if (!read_file(path, text, true)) throw NetlistError(loc, "cannot open include file " + quote(name));
-      bytes_ += text.size();
-      if (bytes_ > kMaxIncludedBytes)
-        throw NetlistError(loc, "included text exceeds " + std::to_string(kMaxIncludedBytes >> 20) +
-                                    " MiB for one netlist");
+      std::string path = open_nested(file, name, loc, "include", text);
       expand(make_source_file(path, text), false, out);
     }
-    stack_.pop_back();
   }
 
- private:
+  // Checks the bounds and reads the file `name` names relative to `file`; returns its path.
+  std::string open_nested(const SourceFilePtr& file, const std::string& name, const SourceLocation& loc,
+                          const char* what, std::string& text) {
+    std::string path = resolve_relative(file->path, name);
+    std::string id = identity(path);
+    for (const std::string& open : stack_)
+      if (open == id) throw NetlistError(loc, std::string(what) + " cycle: " + quote(name) + " is already being included");
+    if (stack_.size() >= kMaxIncludeDepth) throw NetlistError(loc, "include files nested too deeply");
+    if (++opens_ > kMaxIncludeOpens)
+      throw NetlistError(loc, "more than " + std::to_string(kMaxIncludeOpens) +
+                                  " .include files read for one netlist (includes that repeat each other?)");
+    if (!read_file(path, text, true)) throw NetlistError(loc, "cannot open " + std::string(what) + " file " + quote(name));
+    bytes_ += text.size();
+    if (bytes_ > kMaxIncludedBytes)
+      throw NetlistError(loc, "included text exceeds " + std::to_string(kMaxIncludedBytes >> 20) +
+                                  " MiB for one netlist");
+    return path;
+  }
+
+  // `.lib FILE SECTION`: the cards of section SECTION of FILE (ngspice: only that section is
+  // read; a section may itself reference sections of the same or other files).
+  void read_section(const SourceFilePtr& file, const LibReference& ref, const Card& card, std::vector<Card>& out) {
+    std::string text;
+    std::string path = open_nested(file, ref.file, ref.file_loc, "library", text);
+    const std::string key = identity(path) + "#" + ref.section;
+    for (const std::string& open : stack_)
+      if (open == key)
+        throw NetlistError(card.at(2), "library cycle: section " + quote(ref.section) + " of " + quote(ref.file) +
+                                           " is already being read");
+    SourceFilePtr lib = make_source_file(path, text);
+    std::vector<Card> cards = split_cards(lib, false, warnings_, &controls_);
+    std::string sections;
+    for (std::size_t k = 0; k < cards.size(); ++k) {
+      if (!is_lib(cards[k]) || cards[k].size() != 2 || !cards[k][1].is_word()) continue;
+      const std::size_t end = section_end(cards, k);
+      if (cards[k][1].lower == ref.section) {
+        stack_.push_back(key);
+        splice(lib, cards, k + 1, end, out);
+        stack_.pop_back();
+        return;
+      }
+      sections += (sections.empty() ? "" : ", ") + cards[k][1].lower;
+      k = end;
+    }
+    throw NetlistError(card.at(2), "library " + quote(ref.file) + " has no section " + quote(ref.section) +
+                                       (sections.empty() ? std::string(" (it has no sections)")
+                                                         : " (its sections: " + sections + ")"));
+  }
+
   std::vector<std::string>& warnings_;
-  std::vector<std::string> stack_;  // identities of the files being read, outermost first
+  std::vector<ControlBlock>& controls_;
+  std::vector<std::string> stack_;  // identities of the files (and library sections) being read, outermost first
   std::size_t opens_ = 0, bytes_ = 0;
 };
 
@@ -102,7 +184,7 @@ bool read_file(const std::string& path, std::string& text, bool regular_only) {
 Deck read_deck(const SourceFilePtr& top, std::vector<std::string>& warnings) {
   Deck deck;
   if (!top->lines.empty()) deck.title = top->lines.front();
-  Reader(warnings).expand(top, true, deck.cards);
+  Reader(warnings, deck.controls).expand(top, true, deck.cards);
   return deck;
 }
 

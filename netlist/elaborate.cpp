@@ -9,6 +9,7 @@
 #include "netlist/element_card.h"
 #include "netlist/model_card.h"
 #include "netlist/parallel_copies.h"
+#include "netlist/out_of_scope.h"
 #include "netlist/param_scope.h"
 
 namespace lcs::parse {
@@ -26,6 +27,8 @@ std::string short_number(double x) {
 // still finishes in about a minute; issue 12 (large circuits) is what raises it.
 constexpr std::size_t kMaxElements = 5'000;
 constexpr int kMaxInstanceDepth = 100;
+// The model of diodes written without one (a name no `.model` card can clash with: it has a space).
+const char* const kDefaultDiode = "ideal default";
 
 // "line 12", or "other.cir:12" when the first one is in another file.
 std::string where(const SourceLocation& first, const SourceLocation& here) {
@@ -57,11 +60,13 @@ class Elaborator {
  public:
   explicit Elaborator(Netlist& netlist) : net_(netlist) {}
 
-  void run(const SubcktDef& top) {
+  void run(const SubcktDef& top, const Card* control_tran) {
     Instance root;
     root.def = &top;
     root.scope = std::make_unique<ParamScope>();
     expand(root);
+    if (control_tran && !net_.tran) net_.tran = parse_tran(*control_tran, *root.scope);
+    note_unused_models();
     resolve_couplings();
     resolve_controls();
     check_node_ics();
@@ -175,6 +180,7 @@ class Elaborator {
     model_locs_[flat] = card.at(1);
     model_types_[flat] = m.type;
     in.models[m.name] = flat;
+    if (m.unsimulated) unsimulated_models_.push_back({flat, m.type, card.at(2)});
     if (m.type == "d") net_.diode_models[flat] = std::move(m.diode);
     if (m.type == "npn" || m.type == "pnp") net_.bjt_models[flat] = std::move(m.bjt);
     if (m.type == "ltra") net_.line_models[flat] = std::move(m.line);
@@ -187,11 +193,17 @@ class Elaborator {
     scope.prefix = in.prefix;
     scope.node = [&](const std::string& n) { return map_node(in, n); };
     scope.is_model = [&](const std::string& n) { return !find_model(in, n).empty(); };
+    // A diode of a model type lcspice does not simulate (CIDER's NUMD): that, not its other fields.
+    if (card.keyword()[0] == 'd' && card.size() > 3 && card[3].is_word()) {
+      const std::string flat = find_model(in, card[3].lower);
+      if (!flat.empty()) refuse_unsimulated(card, 3, model_types_.at(flat));
+    }
     ParsedElement pe = parse_element(card, scope, net_.warnings);
     scale_for_parallel_copies(pe.element, in.multiplier);
     register_name(pe.element.name, card.at(0), "element");
     const std::size_t index = net_.elements.size();
-    if (pe.element.kind == ElementKind::Diode) pe.element.model = resolve_diode_model(in, card, pe.model_token);
+    if (pe.element.kind == ElementKind::Diode)
+      pe.element.model = pe.element.model.empty() ? default_diode_model(card) : resolve_diode_model(in, card, pe.model_token);
     if (pe.element.kind == ElementKind::Bjt) pe.element.model = resolve_bjt_model(in, card, pe.model_token);
     if (pe.element.kind == ElementKind::LossyLine)
       pe.element.model = resolve_line_model(in, card, pe.model_token);
@@ -199,8 +211,32 @@ class Elaborator {
       pe.element.model = resolve_switch_model(in, card, pe.model_token, pe.element.kind == ElementKind::CSwitch);
     if (pe.element.kind == ElementKind::Coupling)
       coupling_refs_.push_back({index, {card.at(pe.coupled_tokens[0]), card.at(pe.coupled_tokens[1])}});
+    if (pe.shorted) {
+      net_.warnings.push_back(warning_line(card.at(1), quote(pe.element.name) + " has both terminals on node " +
+                                                          quote(pe.element.nodes[0]) +
+                                                          ": it carries no current and is left out of the circuit"));
+      shorted_.insert(pe.element.name);
+      return;
+    }
     if (pe.control_token) control_refs_.push_back({index, card.at(pe.control_token)});
     net_.elements.push_back(std::move(pe.element));
+  }
+
+  // `D anode cathode` without a model: LTspice's default diode, which is ideal (VON = 0, RON = 0:
+  // lcspice's ideal law exactly). One shared model; one warning for the deck.
+  std::string default_diode_model(const Card& card) {
+    if (!net_.diode_models.count(kDefaultDiode)) {
+      DiodeModel d;
+      d.name = kDefaultDiode;
+      d.von = 0.0;
+      d.ron = 0.0;
+      d.loc = card.at(0);
+      net_.diode_models[kDefaultDiode] = d;
+      net_.warnings.push_back(warning_line(card.at(0), "diode " + quote(card[0].lower) +
+                                                           " has no model name (LTspice dialect): it and every "
+                                                           "other such diode get the ideal diode, VON = 0, RON = 0"));
+    }
+    return kDefaultDiode;
   }
 
   // Xname nodes... SUBNAME [params:] [name=value ...]
@@ -279,6 +315,7 @@ class Elaborator {
     const std::string flat = find_model(in, name);
     if (flat.empty()) throw NetlistError(card.at(token), "transistor model " + quote(name) + " is not defined");
     const std::string& type = model_types_.at(flat);
+    refuse_unsimulated(card, token, type);
     if (type != "npn" && type != "pnp")
       throw NetlistError(card.at(token), "model " + quote(name) + " is not a transistor model (it is " + to_upper(type) + ")");
     return flat;
@@ -289,6 +326,7 @@ class Elaborator {
     const std::string flat = find_model(in, name);
     if (flat.empty()) throw NetlistError(card.at(token), "line model " + quote(name) + " is not defined");
     const std::string& type = model_types_.at(flat);
+    refuse_unsimulated(card, token, type);
     if (type != "ltra")
       throw NetlistError(card.at(token), "model " + quote(name) + " is not a line model (it is " + to_upper(type) + ")");
     return flat;
@@ -313,11 +351,25 @@ class Elaborator {
       auto it = p->models.find(name);
       if (it == p->models.end()) continue;
       const std::string& type = model_types_.at(it->second);
+      refuse_unsimulated(card, token, type);
       if (type != "d")
         throw NetlistError(card.at(token), "model " + quote(name) + " is not a diode model (it is " + to_upper(type) + ")");
       return it->second;
     }
     throw NetlistError(card.at(token), "diode model " + quote(name) + " is not defined");
+  }
+
+  static void refuse_unsimulated(const Card& card, std::size_t token, const std::string& type) {
+    if (!unsimulated_model_kind(type).empty()) throw NetlistError(card.at(token), unsimulated_model_reason(type));
+  }
+
+  // Every element that uses a model lcspice does not simulate has been refused: the rest are unused.
+  void note_unused_models() {
+    std::set<std::string> said;  // a model in a subcircuit instantiated many times: one note
+    for (const UnsimulatedModel& m : unsimulated_models_)
+      if (said.insert(m.loc.file + ":" + std::to_string(m.loc.line) + ":" + std::to_string(m.loc.column)).second)
+        net_.warnings.push_back(warning_line(m.loc, "model " + quote(m.name) + " (" + unsimulated_model_kind(m.type) +
+                                                       ") is not simulated by lcspice; no element uses it: skipped"));
   }
 
   void resolve_couplings() {
@@ -380,6 +432,15 @@ class Elaborator {
     std::vector<Probe> unique;
     std::set<std::string> seen;
     for (const Probe& p : net_.probes) {
+      if (p.kind == Probe::Kind::ElementCurrent && shorted_.count(p.a)) {
+        // The element was left out: its current is zero, and v(0,0) is a probe that reads zero.
+        Probe zero = p;
+        zero.kind = Probe::Kind::NodePairVoltage;
+        zero.a = zero.b = "0";
+        zero.label = p.name();
+        if (seen.insert(zero.name()).second) unique.push_back(zero);
+        continue;
+      }
       if (p.kind == Probe::Kind::ElementCurrent) {
         const Element* e = net_.find_element(p.a);
         if (!e) throw NetlistError(p.loc, "unknown element " + quote(p.a));
@@ -427,10 +488,18 @@ class Elaborator {
   std::map<std::string, SourceLocation> model_locs_;
   std::map<std::string, std::string> model_types_;
   std::vector<CouplingRef> coupling_refs_;
+  struct UnsimulatedModel {
+    std::string name, type;
+    SourceLocation loc;
+  };
+  std::vector<UnsimulatedModel> unsimulated_models_;
+  std::set<std::string> shorted_;  // elements left out because both terminals are one node
 };
 
 }  // namespace
 
-void elaborate(const SubcktDef& top, Netlist& netlist) { Elaborator(netlist).run(top); }
+void elaborate(const SubcktDef& top, Netlist& netlist, const Card* control_tran) {
+  Elaborator(netlist).run(top, control_tran);
+}
 
 }  // namespace lcs::parse

@@ -8,7 +8,8 @@
 
 namespace lcs::parse {
 
-// Fills everything but `file` and `title` (a `.title` card does set `title`). Throws NetlistError.
-void elaborate(const SubcktDef& top, Netlist& netlist);
+// Fills everything but `file` and `title` (a `.title` card does set `title`). `control_tran`, when
+// not null, is the `.control` block's `tran` command, read like a `.tran` card. Throws NetlistError.
+void elaborate(const SubcktDef& top, Netlist& netlist, const Card* control_tran = nullptr);
 
 }  // namespace lcs::parse

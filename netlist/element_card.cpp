@@ -21,9 +21,10 @@ struct Reader {
     e.nodes.push_back(scope.node(t.lower));
   }
 
-  void distinct_nodes(const Element& e) const {
+  void distinct_nodes(const Element& e, const char* why = nullptr) const {
     if (e.nodes[0] == e.nodes[1])
-      throw NetlistError(card.at(2), name + " connects node " + quote(e.nodes[0]) + " to itself");
+      throw NetlistError(card.at(2), name + " connects node " + quote(e.nodes[0]) + " to itself" +
+                                         (why ? std::string(" (") + why + ")" : std::string()));
   }
 
   double value(std::size_t i) const {
@@ -345,7 +346,8 @@ ParsedElement parse_element(const Card& card, const ElementScope& scope,
       e.kind = letter == 'r' ? ElementKind::Resistor : letter == 'l' ? ElementKind::Inductor : ElementKind::Capacitor;
       r.node(1, e);
       r.node(2, e);
-      r.distinct_nodes(e);
+      if (letter == 'l') r.distinct_nodes(e, "the current of an inductor shorted by itself is not set by the circuit");
+      out.shorted = e.nodes[0] == e.nodes[1];
       e.value = r.value(3);
       r.positive(3, e.value, letter == 'r' ? "resistance" : letter == 'l' ? "inductance" : "capacitance");
       scale_for_parallel_copies(e, r.trailing(4, e, letter != 'r'));
@@ -373,7 +375,7 @@ ParsedElement parse_element(const Card& card, const ElementScope& scope,
       e.kind = letter == 'v' ? ElementKind::VoltageSource : ElementKind::CurrentSource;
       r.node(1, e);
       r.node(2, e);
-      r.distinct_nodes(e);
+      r.distinct_nodes(e, letter == 'v' ? "a voltage source cannot hold a voltage across a short" : nullptr);
       double m = 1.0;
       e.waveform = parse_source_waveform(card, 3, *scope.params, e.name, warnings, letter == 'i' ? &m : nullptr);
       scale_for_parallel_copies(e, m);
@@ -383,8 +385,8 @@ ParsedElement parse_element(const Card& card, const ElementScope& scope,
       e.kind = ElementKind::Diode;
       r.node(1, e);
       r.node(2, e);
-      r.distinct_nodes(e);
-      if (card.size() <= 3) throw NetlistError(card.after_last(), "missing model name for " + quote(e.name));
+      out.shorted = e.nodes[0] == e.nodes[1];
+      if (card.size() == 3) break;  // LTspice's default diode: the elaborator gives it the ideal law
       if (!card[3].is_word()) throw NetlistError(card.at(3), "expected a model name, got " + quote(card[3].text));
       e.model = card[3].lower;
       out.model_token = 3;

@@ -22,9 +22,12 @@ struct ElementScope {
 
 struct ParsedElement {
   Element element;         // names and nodes flat; D, Q, O: `model` still the local name as written
+                           // (D without a model name: empty)
   std::size_t model_token = 0;               // D, Q, O: token of the model name
   std::size_t coupled_tokens[2] = {0, 0};    // K: tokens of the two inductor names
   std::size_t control_token = 0;             // F, H: token of the controlling source's name
+  // R, C, D with both terminals on one node: no current flows through it and it changes nothing.
+  bool shorted = false;
 };
 
 ParsedElement parse_element(const Card& card, const ElementScope& scope,

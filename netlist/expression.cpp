@@ -36,6 +36,7 @@ const Function kFunctions[] = {
     {"floor", 1, 1, [](const std::vector<double>& a) { return std::floor(a[0]); }},
     {"ceil", 1, 1, [](const std::vector<double>& a) { return std::ceil(a[0]); }},
     {"pow", 2, 2, [](const std::vector<double>& a) { return std::pow(a[0], a[1]); }},
+    {"if", 3, 3, [](const std::vector<double>& a) { return a[0] != 0 ? a[1] : a[2]; }},
     {"min", 1, 0,
      [](const std::vector<double>& a) {
        double m = a[0];
@@ -100,7 +101,56 @@ class Evaluator {
     ~Depth() { --e.depth_; }
   };
 
+  // ngspice's logical and comparison operators (lowest precedence first), 1 for true, 0 for false:
+  // `.if (mode == 2)`, `{ IF((a < 1) & (b > 0), x, y) }`.
   double expr() {
+    double v = conjunction();
+    while (at_operator("||") || at_single('|')) {
+      i_ += at_operator("||") ? 2 : 1;
+      const double r = conjunction();
+      v = (v != 0 || r != 0) ? 1.0 : 0.0;
+    }
+    return v;
+  }
+
+  double conjunction() {
+    double v = comparison();
+    while (at_operator("&&") || at_single('&')) {
+      i_ += at_operator("&&") ? 2 : 1;
+      const double r = comparison();
+      v = (v != 0 && r != 0) ? 1.0 : 0.0;
+    }
+    return v;
+  }
+
+  double comparison() {
+    double v = sum();
+    while (true) {
+      const char* const ops[] = {"==", "!=", "<=", ">=", "<", ">"};
+      const char* op = nullptr;
+      for (const char* o : ops)
+        if (at_operator(o)) {
+          op = o;
+          break;
+        }
+      if (!op) return v;
+      i_ += std::string_view(op).size();
+      const double r = sum();
+      const std::string_view o(op);
+      const bool b = o == "==" ? v == r : o == "!=" ? v != r : o == "<=" ? v <= r : o == ">=" ? v >= r
+                   : o == "<"  ? v < r  : v > r;
+      v = b ? 1.0 : 0.0;
+    }
+  }
+
+  bool at_operator(std::string_view op) {
+    skip();
+    return s_.substr(i_, op.size()) == op;
+  }
+  // `c` alone, not the first character of `cc` (so `|` is not read out of `||`).
+  bool at_single(char c) { return at(c) && !(i_ + 1 < s_.size() && s_[i_ + 1] == c); }
+
+  double sum() {
     double v = term();
     while (at('+') || at('-')) {
       std::size_t op = i_;
@@ -128,6 +178,11 @@ class Evaluator {
   }
 
   double unary() {
+    if (at('!') && !at_operator("!=")) {
+      Depth d(*this, i_);
+      ++i_;
+      return unary() == 0 ? 1.0 : 0.0;
+    }
     if (at('+') || at('-')) {
       Depth d(*this, i_);
       char c = s_[i_++];

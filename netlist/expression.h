@@ -1,6 +1,8 @@
 // Arithmetic expressions of `.param` and `{...}`: + - * / ^ ** (right-associative), unary +-,
 // parentheses, numbers with SPICE suffixes, parameter names, `pi`, and the functions sqrt exp
-// log (natural) ln log10 abs sin cos tan asin acos atan sinh cosh tanh min max pow floor ceil.
+// log (natural) ln log10 abs sin cos tan asin acos atan sinh cosh tanh min max pow floor ceil,
+// and ngspice's comparisons == != < <= > >=, logic && || (also & |) and !, and if(c, a, b)
+// (true is 1, false 0; a condition is true when nonzero).
 // Internal to the netlist reader.
 #pragma once
 

@@ -79,8 +79,13 @@ void tokenize(Card& card) {
     } else if (c == '}') {
       throw NetlistError(card.span(i, i + 1), "unmatched '}'");
     } else if (c == '{') {
-      std::size_t close = s.find('}', i + 1);
-      if (close == std::string::npos) throw NetlistError(card.span(i, i + 1), "missing '}'");
+      // Braces nest (`{ if(v(a) > {vth}, 1, 0) }` in vendor libraries).
+      std::size_t close = i + 1;
+      for (int depth = 1; close < s.size(); ++close) {
+        if (s[close] == '{') ++depth;
+        if (s[close] == '}' && --depth == 0) break;
+      }
+      if (close >= s.size()) throw NetlistError(card.span(i, i + 1), "missing '}'");
       int e = static_cast<int>(close);
       push(Token::Kind::Braced, i, e + 1, s.substr(i + 1, e - i - 1));
       i = e + 1;
@@ -97,6 +102,33 @@ void tokenize(Card& card) {
       push(Token::Kind::Word, b, i, s.substr(b, i - b));
     }
   }
+}
+
+// The command lines of a `.control` block, physical lines [first, end). Only a `tran` command is
+// tokenized (the others are shell syntax, not netlist syntax, and are only named in a warning).
+ControlBlock read_control_block(const SourceFilePtr& file, const SourceLocation& loc, std::size_t first,
+                                std::size_t end) {
+  ControlBlock block;
+  block.loc = loc;
+  for (std::size_t k = first; k < end; ++k) {
+    const std::string& line = file->lines[k];
+    std::size_t f = first_non_space(line, line.size());
+    if (f == line.size() || line[f] == '*' || line[f] == '#') continue;
+    ControlCommand command;
+    command.name = first_word(line, f, line.size());
+    command.loc = physical(file, static_cast<int>(k) + 1, static_cast<int>(f) + 1, static_cast<int>(command.name.size()));
+    if (command.name == "tran") {
+      const std::size_t end_of_text = comment_start(line);
+      command.card.file = file;
+      for (std::size_t i = f; i < end_of_text; ++i) {
+        command.card.chars += line[i];
+        command.card.pos.emplace_back(static_cast<int>(k) + 1, static_cast<int>(i) + 1);
+      }
+      tokenize(command.card);
+    }
+    block.commands.push_back(std::move(command));
+  }
+  return block;
 }
 
 }  // namespace
@@ -172,8 +204,8 @@ SourceLocation Card::after_last() const {
   return physical(file, line, col + 1, 1);
 }
 
-std::vector<Card> split_cards(const SourceFilePtr& file, bool has_title,
-                              std::vector<std::string>& warnings) {
+std::vector<Card> split_cards(const SourceFilePtr& file, bool has_title, std::vector<std::string>& warnings,
+                              std::vector<ControlBlock>* controls) {
   std::vector<Card> cards;
   const auto& lines = file->lines;
   Card current;
@@ -218,7 +250,7 @@ std::vector<Card> split_cards(const SourceFilePtr& file, bool has_title,
         if (first_word(lines[k], kf, lines[k].size()) == ".endc") break;
       }
       if (k == lines.size()) throw NetlistError(loc, "missing '.endc' for '.control'");
-      warnings.push_back(warning_line(loc, "'.control' block is ignored"));
+      if (controls) controls->push_back(read_control_block(file, loc, li + 1, k));
       li = k;
       continue;
     }

@@ -66,11 +66,25 @@ struct Card {
   std::string text(int begin, int end) const { return chars.substr(begin, end - begin); }
 };
 
+// One command line of a `.control` block: its first word (lower-case) and where it is. A `tran`
+// command also has its tokens in `card` (same syntax as the `.tran` card).
+struct ControlCommand {
+  std::string name;
+  SourceLocation loc;
+  Card card;
+};
+
+// `.control` ... `.endc`: ngspice's interactive commands, kept for the parser to find `tran` in.
+struct ControlBlock {
+  SourceLocation loc;  // the `.control` line
+  std::vector<ControlCommand> commands;
+};
+
 // Splits a file into cards: skips the title line (when `has_title`), blank lines, `*` comment
-// lines, inline `;` and `$ ` comments and `.control`...`.endc` blocks (with a warning), joins `+`
-// continuation lines and stops at `.end`. Throws NetlistError on lexical errors.
-std::vector<Card> split_cards(const SourceFilePtr& file, bool has_title,
-                              std::vector<std::string>& warnings);
+// lines and inline `;` and `$ ` comments, joins `+` continuation lines and stops at `.end`.
+// `.control`...`.endc` blocks are taken out into `controls` (dropped when it is null). Throws NetlistError on lexical errors.
+std::vector<Card> split_cards(const SourceFilePtr& file, bool has_title, std::vector<std::string>& warnings,
+                              std::vector<ControlBlock>* controls = nullptr);
 
 // "FILE:LINE:COL: warning: message" on one line (no source line, no caret).
 std::string warning_line(const SourceLocation& loc, const std::string& message);

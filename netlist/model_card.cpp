@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "netlist/out_of_scope.h"
+
 namespace lcs::parse {
 namespace {
 
@@ -127,7 +129,7 @@ void read_switch_params(const Card& card, const std::vector<Assignment>& params,
 // recursive convolution has none of them.
 const char* const kIgnoredLineParams[] = {"rel", "abs", "nosteplimit", "nocontrol", "lininterp",
                                           "mixedinterp", "compactrel", "compactabs", "truncnr",
-                                          "truncdontcut", "steplimit", "quadinterp"};
+                                          "truncdontcut", "steplimit", "quadinterp", "noprint", "print"};
 
 // .model NAME LTRA(R= L= G= C= LEN=): per-unit-length R, L, G, C and the length.
 void read_line_params(const Card& card, const std::vector<Assignment>& params, const ParamScope& scope,
@@ -186,9 +188,13 @@ ModelCard parse_model_card(const Card& card, const ParamScope& scope, const std:
   if (card.size() < 3) throw NetlistError(card.after_last(), "missing model type for " + quote(m.name));
   const Token& type = card[2];
   if (!type.is_word()) throw NetlistError(card.at(2), "expected a model type, got " + quote(type.text));
-  if (std::none_of(std::begin(kModelTypes), std::end(kModelTypes), [&](const char* t) { return type.lower == t; }))
-    throw NetlistError(card.at(2), "unsupported model type " + quote(type.text));
   m.type = type.lower;
+  if (std::none_of(std::begin(kModelTypes), std::end(kModelTypes), [&](const char* t) { return type.lower == t; })) {
+    if (unsimulated_model_kind(type.lower).empty())
+      throw NetlistError(card.at(2), "unsupported model type " + quote(type.text));
+    m.unsimulated = true;  // its parameters are not read: an element that uses it is refused
+    return m;
+  }
 
   // Parameters, optionally in one pair of parentheses.
   std::size_t first = 3, last = card.size();

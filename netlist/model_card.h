@@ -20,6 +20,9 @@ struct ModelCard {
   BjtModel bjt;       // type "npn" or "pnp": name = prefix + name
   LineModel line;     // type "ltra": name = prefix + name
   SwitchModel sw;     // type "sw" or "csw": name = prefix + name
+  // A type ngspice knows and lcspice does not simulate (NMOS, NUMD, LCOUPLE, ...): kept only to
+  // refuse the elements that use it (see out_of_scope.h); `type` is that type, lower-case.
+  bool unsimulated = false;
 };
 
 ModelCard parse_model_card(const Card& card, const ParamScope& scope, const std::string& prefix,

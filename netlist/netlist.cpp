@@ -25,6 +25,7 @@ const char* element_kind_name(ElementKind kind) {
 }
 
 std::string Probe::name() const {
+  if (!label.empty()) return label;
   switch (kind) {
     case Kind::NodeVoltage: return "v(" + a + ")";
     case Kind::NodePairVoltage: return "v(" + a + "," + b + ")";

@@ -125,6 +125,9 @@ struct Probe {
   std::string a, b;                    // nodes (a, b) or element name (a); lower-case
   SourceLocation loc;                  // empty file when it came from the command line
   char terminal = 0;                   // TerminalCurrent: 'c', 'b', 'e' (a BJT's ic/ib/ie), '2' (i2(t1))
+  // When set, the header instead of the canonical name: i(r1) of a resistor left out of the
+  // circuit (both terminals on one node) is read as v(0,0), which is zero, under its own name.
+  std::string label = {};
   std::string name() const;            // canonical CSV header: "v(n)", "v(p,n)", "i(d1)", "ic(q1)"
 };
 
@@ -158,7 +161,14 @@ struct Netlist {
 // Reads and flattens a netlist. Throws NetlistError for every problem in the input (syntax,
 // unknown model, duplicate names, unsupported card, unreadable .include file, ...).
 // A file that cannot be opened at the top level throws FileError (a usage error, exit 1).
-Netlist parse_netlist_file(const std::string& path);
-Netlist parse_netlist_string(const std::string& text, const std::string& file_name);
+struct ReadOptions {
+  // For commands that run a transient analysis (`run`, `validate`): a deck with neither a `.tran`
+  // card nor a `tran` command in `.control`, that asks for another analysis (`.op`, `dc` ...), is
+  // refused before its cards are elaborated (the refusal is the first thing wrong with it).
+  bool require_transient = false;
+};
+Netlist parse_netlist_file(const std::string& path, const ReadOptions& options = {});
+Netlist parse_netlist_string(const std::string& text, const std::string& file_name,
+                             const ReadOptions& options = {});
 
 }  // namespace lcs

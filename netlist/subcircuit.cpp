@@ -17,7 +17,7 @@ std::string where(const SourceLocation& first, const SourceLocation& here) {
   return "line " + std::to_string(first.line);
 }
 
-std::unique_ptr<SubcktDef> parse_header(const Card& card) {
+std::unique_ptr<SubcktDef> parse_header(const Card& card, std::vector<std::string>& warnings) {
   auto def = std::make_unique<SubcktDef>();
   def->card = &card;
   const std::size_t n = card.size();
@@ -33,8 +33,10 @@ std::unique_ptr<SubcktDef> parse_header(const Card& card) {
     }
     if (t.is_word() && i + 1 < n && card[i + 1].is(Token::Kind::Equals)) break;
     if (!t.is_word()) throw NetlistError(card.at(t), "expected a port name, got " + quote(t.text));
-    if (is_ground(t.lower))
-      throw NetlistError(card.at(t), "ground cannot be a port of subcircuit " + quote(def->name));
+    if (is_ground(t.lower))  // as ngspice: the port is ground inside; the node connected there is not joined to it
+      warnings.push_back(warning_line(card.at(t), "port " + quote(t.lower) + " of subcircuit " + quote(def->name) +
+                                                      " is ground: inside it is node '0', whatever an instance "
+                                                      "connects there"));
     for (const std::string& p : def->ports)
       if (p == t.lower)
         throw NetlistError(card.at(t), "duplicate port " + quote(t.lower) + " in subcircuit " + quote(def->name));
@@ -66,7 +68,7 @@ const SubcktDef::Param* SubcktDef::param(const std::string& wanted) const {
   return nullptr;
 }
 
-std::unique_ptr<SubcktDef> build_definitions(const std::vector<Card>& cards) {
+std::unique_ptr<SubcktDef> build_definitions(const std::vector<Card>& cards, std::vector<std::string>& warnings) {
   auto top = std::make_unique<SubcktDef>();
   std::vector<SubcktDef*> open = {top.get()};
   std::optional<NetlistError> misplaced;  // the first control card found inside a definition
@@ -75,7 +77,7 @@ std::unique_ptr<SubcktDef> build_definitions(const std::vector<Card>& cards) {
     if (keyword == ".subckt") {
       if (open.size() > kMaxDefinitionNesting)
         throw NetlistError(card.at(0), "subcircuit definitions nested too deeply");
-      std::unique_ptr<SubcktDef> def = parse_header(card);
+      std::unique_ptr<SubcktDef> def = parse_header(card, warnings);
       SubcktDef* parent = open.back();
       auto it = parent->children.find(def->name);
       if (it != parent->children.end())

@@ -32,7 +32,8 @@ struct SubcktDef {
 };
 
 // Splits the deck into the top level and the subcircuit definitions. Checks `.subckt` and `.ends`
-// cards (names, ports, params, nesting) and rejects control cards inside a definition.
-std::unique_ptr<SubcktDef> build_definitions(const std::vector<Card>& cards);
+// cards (names, ports, params, nesting) and rejects control cards inside a definition. A ground
+// port (`gnd`, `0`, as in vendor libraries) is accepted with a warning: inside it is ground.
+std::unique_ptr<SubcktDef> build_definitions(const std::vector<Card>& cards, std::vector<std::string>& warnings);
 
 }  // namespace lcs::parse

@@ -52,6 +52,26 @@ TEST(ParseExpression, ArithmeticAndPrecedence) {
   EXPECT_EQ(eval("  1 +\t1 "), 2);
 }
 
+TEST(ParseExpression, ComparisonsLogicAndIf) {
+  EXPECT_EQ(eval("a == 3"), 1);
+  EXPECT_EQ(eval("a != 3"), 0);
+  EXPECT_EQ(eval("b < a"), 1);
+  EXPECT_EQ(eval("a <= 2"), 0);
+  EXPECT_EQ(eval("a >= 3"), 1);
+  EXPECT_EQ(eval("1 + 1 > 1"), 1);       // arithmetic binds tighter than comparison
+  EXPECT_EQ(eval("b > 0 && zero"), 0);
+  EXPECT_EQ(eval("b > 0 & a > 2"), 1);   // ngspice's single & and |
+  EXPECT_EQ(eval("zero || 2 < 1"), 0);
+  EXPECT_EQ(eval("zero | a"), 1);
+  EXPECT_EQ(eval("1 || 0 && 0"), 1);     // && binds tighter than ||
+  EXPECT_EQ(eval("!zero + 1"), 2);
+  EXPECT_EQ(eval("!(a == 3)"), 0);
+  EXPECT_EQ(eval("if(a > 2, 10, 20)"), 10);
+  EXPECT_EQ(eval("IF ( (zero < 1e-9) , 1e-9, zero )"), 1e-9);
+  expect_error("if(1, 2)", 0, 2, "'if' takes 3 arguments");
+  expect_error("a <", 3, 1, "unexpected end of expression");
+}
+
 TEST(ParseExpression, NumbersWithSuffixes) {
   EXPECT_EQ(eval("1k*2"), 2000);
   EXPECT_DOUBLE_EQ(eval("2.2u*1meg"), 2.2);

@@ -56,9 +56,10 @@ TEST(ParseLexer, ErrorInsideAContinuationLinePointsAtItsColumn) {
             "t.cir:3:8: error: undefined parameter 'undefined_p'\n"
             "+ {2 * undefined_p}\n"
             "       ^~~~~~~~~~~");
-  EXPECT_EQ(diag("t\nR1 a\n+ a 1k\n"),
-            "t.cir:3:3: error: r1 connects node 'a' to itself\n"
-            "+ a 1k\n"
+  EXPECT_EQ(diag("t\nL1 a\n+ a 1m\n"),
+            "t.cir:3:3: error: l1 connects node 'a' to itself (the current of an inductor shorted by itself is not "
+            "set by the circuit)\n"
+            "+ a 1m\n"
             "  ^");
 }
 
@@ -110,11 +111,11 @@ TEST(ParseLexer, EndStopsTheDeck) {
   EXPECT_EQ(parse("t\n.subckt s a\nR1 a 0 1\n.ends\nX1 n s\n").elements.size(), 1u);
 }
 
-TEST(ParseLexer, ControlBlocksAreSkippedWithAWarning) {
+TEST(ParseLexer, ControlBlocksAreTakenOutWithAWarning) {
   Netlist n = parse("t\nR1 a 0 1\n.control\nrun\nplot v(a) * junk {\n.endc\nR2 a 0 2\n");
   EXPECT_EQ(n.elements.size(), 2u);
   ASSERT_EQ(n.warnings.size(), 1u);
-  EXPECT_EQ(n.warnings[0], "t.cir:3:1: warning: '.control' block is ignored");
+  EXPECT_EQ(n.warnings[0], "t.cir:3:1: warning: '.control' block is not run; its commands: 'run', 'plot'");
   EXPECT_EQ(diag("t\nR1 a 0 1\n  .control\nrun\n"),
             "t.cir:3:3: error: missing '.endc' for '.control'\n"
             "  .control\n"

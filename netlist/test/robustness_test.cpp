@@ -39,7 +39,8 @@ TEST(ParseRobustness, EmptyAndTrivialInputs) {
 TEST(ParseRobustness, UnbalancedDelimiters) {
   EXPECT_EQ(outcome("t\nV1 a 0 SIN((0 1 2\n"), "missing ')'");
   EXPECT_EQ(outcome("t\nV1 a 0 SIN(0 1 2))\n"), "unexpected extra token ')'");
-  EXPECT_EQ(outcome("t\nR1 a 0 {{1}\n"), "unexpected '{' in expression");
+  EXPECT_EQ(outcome("t\nR1 a 0 {{1}\n"), "missing '}'");  // braces nest
+  EXPECT_EQ(outcome("t\nR1 a 0 {{1}}\n"), "unexpected '{' in expression");
   EXPECT_EQ(outcome("t\nR1 a 0 {1}}\n"), "unmatched '}'");
   EXPECT_EQ(outcome("t\nR1 a 0 )\n"), "expected a number, got ')'");
   EXPECT_EQ(outcome("t\n.model d D((von=1))\n"), "unexpected extra token ')'");

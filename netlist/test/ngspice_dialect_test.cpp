@@ -1,0 +1,117 @@
+// Smaller pieces of the ngspice (and LTspice) dialect: .probe, .print/.save entries lcspice does
+// not write, a diode without a model, LTRA flags, elements with both terminals on one node.
+#include <gtest/gtest.h>
+
+#include "netlist/netlist.h"
+#include "netlist/test/parse_helpers.h"
+
+namespace lcs {
+namespace {
+
+std::string names(const std::vector<Probe>& probes) {
+  std::string out;
+  for (const Probe& p : probes) out += p.name() + " ";
+  return out;
+}
+
+TEST(NgspiceDialect, ProbeCardIsLikeSave) {
+  Netlist n = test::parse("t\nR1 a 0 1\nV1 a 0 1\n.probe alli\n");
+  EXPECT_TRUE(n.probes.empty());  // alli, like all: the default probes
+  EXPECT_TRUE(n.warnings.empty());
+  n = test::parse("t\nR1 a 0 1\nV1 a 0 1\n.probe v(a) i(r1)\n.save allv\n");
+  EXPECT_EQ(names(n.probes), "v(a) i(r1) ");
+}
+
+TEST(NgspiceDialect, PrintEntriesThatAreNotProbesAreSkippedWithAWarningEach) {
+  Netlist n = test::parse(
+      "t\nR1 1 0 1\nV1 1 0 1\nD1 1 0 dm\n.model dm d\n"
+      ".print tran v(1) v(1)*i(r1) FORMAT=NOQUOTE i(v1)\n"
+      ".save @d1[id] p(r1) v(1, 0) all\n");
+  EXPECT_EQ(names(n.probes), "v(1) i(v1) v(1,0) ");
+  ASSERT_EQ(n.warnings.size(), 4u);
+  EXPECT_EQ(n.warnings[0], "t.cir:6:18: warning: '.print' entry 'v(1)*i(r1)' is ignored: expressions are not "
+                           "written by lcspice (only v(), i() probes)");
+  EXPECT_EQ(n.warnings[1], "t.cir:6:29: warning: '.print': FORMAT= is ignored (lcspice writes CSV)");
+  EXPECT_EQ(n.warnings[2], "t.cir:7:7: warning: '.save' entry '@d1[id]' is ignored: device parameters are not "
+                           "probes lcspice writes");
+  EXPECT_EQ(n.warnings[3], "t.cir:7:15: warning: '.save' entry 'p(r1)' is ignored: power probes are not written by lcspice");
+  // A probe that is neither is still an error.
+  EXPECT_EQ(test::diag("t\nR1 a 0 1\n.save q(a)\n"),
+            "t.cir:3:7: error: invalid probe 'q(a)': expected v(node), v(node1,node2), i(element), ic/ib/ie(transistor) "
+            "or i2(line)\n.save q(a)\n      ^~~~");
+}
+
+TEST(NgspiceDialect, DiodeWithoutModelIsLtspicesIdealDiode) {
+  Netlist n = test::parse("t\nV1 a 0 1\nD1 a b\nR1 b 0 1k\nD2 b 0\n");
+  ASSERT_EQ(n.elements.size(), 4u);
+  const Element& d1 = test::element(n, "d1");
+  const Element& d2 = test::element(n, "d2");
+  EXPECT_EQ(d1.model, d2.model);
+  const DiodeModel& m = n.diode_models.at(d1.model);
+  ASSERT_TRUE(m.von && m.ron);
+  EXPECT_EQ(*m.von, 0.0);
+  EXPECT_EQ(*m.ron, 0.0);
+  ASSERT_EQ(n.warnings.size(), 1u);
+  EXPECT_EQ(n.warnings[0], "t.cir:3:1: warning: diode 'd1' has no model name (LTspice dialect): it and every other "
+                           "such diode get the ideal diode, VON = 0, RON = 0");
+}
+
+TEST(NgspiceDialect, LtraFlagsWithoutValuesAreAcceptedAndListed) {
+  Netlist n = test::parse(
+      "t\n.model llfifth ltra nocontrol noprint rel=10 r=0 g=0 l=9.13e-9\n"
+      "+c=3.65e-12 len=0.2 steplimit quadinterp truncdontcut\nO1 a 0 b 0 llfifth\nR1 a 0 50\nR2 b 0 50\n");
+  const LineModel& m = n.line_models.at("llfifth");
+  EXPECT_EQ(m.l, 9.13e-9);
+  EXPECT_EQ(m.c, 3.65e-12);
+  EXPECT_EQ(m.len, 0.2);
+  EXPECT_EQ(m.ignored, (std::vector<std::string>{"nocontrol", "noprint", "rel", "steplimit", "quadinterp", "truncdontcut"}));
+  ASSERT_EQ(n.warnings.size(), 1u);
+  EXPECT_EQ(n.warnings[0], "t.cir:2:21: warning: line model 'llfifth': parameters nocontrol, noprint, rel, steplimit, "
+                           "quadinterp, truncdontcut ignored by lcspice");
+}
+
+TEST(NgspiceDialect, ShortedResistorCapacitorDiodeAreLeftOutAndReadZero) {
+  Netlist n = test::parse(
+      "t\nV1 in 0 1\nR1 in 0 1k\nX1 0 clamp\n.subckt clamp k\nD1CLAMP 0 k dmod\nC1 k k 1p\n.ends\n"
+      ".model dmod d\n.print tran v(in) i(x1.d1clamp) i(r1)\n");
+  ASSERT_EQ(n.elements.size(), 2u);  // v1, r1
+  ASSERT_EQ(n.warnings.size(), 2u);
+  EXPECT_EQ(n.warnings[0], "t.cir:6:9: warning: 'x1.d1clamp' has both terminals on node '0': it carries no current "
+                           "and is left out of the circuit");
+  EXPECT_EQ(n.warnings[1], "t.cir:7:4: warning: 'x1.c1' has both terminals on node '0': it carries no current "
+                           "and is left out of the circuit");
+  EXPECT_EQ(names(n.probes), "v(in) i(x1.d1clamp) i(r1) ");
+  EXPECT_EQ(n.probes[1].kind, Probe::Kind::NodePairVoltage);  // v(0,0): zero
+  EXPECT_EQ(n.probes[1].a, "0");
+  EXPECT_EQ(n.probes[1].b, "0");
+  // An undefined model is still an error on a shorted diode.
+  EXPECT_EQ(test::diag("t\nD1 a a nosuch\n"),
+            "t.cir:2:8: error: diode model 'nosuch' is not defined\nD1 a a nosuch\n       ^~~~~~");
+}
+
+TEST(NgspiceDialect, ShortedInductorOrVoltageSourceStaysAnError) {
+  EXPECT_EQ(test::diag("t\nL1 a a 1m\n"),
+            "t.cir:2:6: error: l1 connects node 'a' to itself (the current of an inductor shorted by itself is "
+            "not set by the circuit)\nL1 a a 1m\n     ^");
+  EXPECT_EQ(test::diag("t\nV1 0 gnd 1\n"),
+            "t.cir:2:6: error: v1 connects node '0' to itself (a voltage source cannot hold a voltage across a "
+            "short)\nV1 0 gnd 1\n     ^~~");
+}
+
+}  // namespace
+}  // namespace lcs
+
+namespace lcs {
+namespace {
+
+// Vendor libraries (TLC555.LIB) name a port GND; ngspice reads gnd as node 0 everywhere.
+TEST(NgspiceDialect, GroundPortIsGroundInsideWithAWarning) {
+  Netlist n = test::parse("t\n.subckt s a GND\nR1 a gnd 1k\n.ends\nX1 in 0 s\nV1 in 0 1\n");
+  EXPECT_EQ(test::element(n, "x1.r1").nodes, (std::vector<std::string>{"in", "0"}));
+  ASSERT_EQ(n.warnings.size(), 1u);
+  EXPECT_EQ(n.warnings[0], "t.cir:2:13: warning: port 'gnd' of subcircuit 's' is ground: inside it is node '0', "
+                           "whatever an instance connects there");
+}
+
+}  // namespace
+}  // namespace lcs
