@@ -20,11 +20,13 @@ Netlist load_netlist(const std::string& path) {
   }
 }
 
-CircuitModel build_model(const Netlist& netlist, double t0, double t1) {
+CircuitModel build_model(const Netlist& netlist, double t0, double t1,
+                         const std::map<std::string, DiodeCurrentRanges>& diode_ranges) {
   try {
     ModelOptions options;
     options.t0 = t0;
     options.t1 = t1;
+    options.diode_ranges = diode_ranges;
     return CircuitModel::build(netlist, options);
   } catch (const TopologyError& e) {
     throw CliError(kExitNetlist, e.formatted(netlist));

@@ -18,6 +18,8 @@ Netlist smooth_netlist(const Netlist& netlist, const SmoothingOptions& options) 
     card.n = s.n;
     card.rs = s.rs;
     card.has_is = card.has_n = card.has_rs = true;
+    card.bv = s.bv;  // the breakdown pair: threshold BV, RS, junction (IBV, N) (diode.cpp)
+    card.ibv = s.ibv;
   }
   for (auto& [name, card] : out.bjt_models)
     card.smooth = BjtModel::Smooth{options.emission, options.saturation_current};
