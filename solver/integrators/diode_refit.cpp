@@ -40,6 +40,13 @@ bool moved(const ResolvedDiodeLaw& before, const ResolvedDiodeLaw& after, const 
 DiodeRefitResult refit_diodes(const Netlist& netlist, const ModelOptions& model_options,
                               const TransientOptions& options, const DiodeRefitOptions& refit) {
   DiodeRefitResult result;
+  // No D card without VON/RON (or with BV and no VON/RON/Rrev): nothing to fit, no model to form.
+  const bool any = std::any_of(netlist.elements.begin(), netlist.elements.end(), [&](const Element& el) {
+    if (el.kind != ElementKind::Diode) return false;
+    const auto card = netlist.diode_models.find(el.model);
+    return card != netlist.diode_models.end() && !card->second.von && !card->second.ron;
+  });
+  if (!any) return result;
   const double cpu0 = process_cpu_seconds();
   ModelOptions mo = model_options;
   mo.ifit = read_netlist_options(netlist).ifit.value_or(mo.ifit);  // as CircuitModel::build reads it

@@ -57,7 +57,7 @@ struct StorageInfo {
 
 struct ModelOptions {
   double ifit = 10e-3;        // diode fit current, `.options ifit=`
-  std::map<std::string, DiodeCurrentRanges> diode_ranges;  // DeviceOptions::diode_ranges
+  std::map<std::string, DiodeCurrentRanges> diode_ranges{};  // DeviceOptions::diode_ranges
   double t0 = 0, t1 = 0;      // interval over which sources are checked (Figure 5.5 test)
 };
 
