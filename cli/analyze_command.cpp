@@ -1,5 +1,6 @@
 // `lcspice analyze`: the normal tree, fundamental loops, the pair type and C/R/L class of every
 // diode (5.4.4), the components of H and the quotient G/H (5.4.6), the LCS dimensions and index.
+#include <algorithm>
 #include <optional>
 #include <cstdio>
 #include <sstream>
@@ -11,6 +12,8 @@
 #include "graph/components.h"
 #include "graph/diode_classes.h"
 #include "solver/devices/device.h"
+#include "solver/integrators/diode_refit.h"
+#include "solver/model/netlist_options.h"
 #include "solver/model/lcs_index.h"
 #include "cli/ccp_report.h"
 
@@ -39,6 +42,35 @@ std::string number(double v) {
   return buf;
 }
 
+// The range a fitted pair's line was fitted over and its worst error there (junction_fit.h).
+std::string fit_text(const PairInfo& p) {
+  char buf[200];
+  std::snprintf(buf, sizeof buf, " over %.3g A to %.3g A (%s), worst error %.3g mV = %.3g %% of its voltage",
+                p.fit_i1, p.fit_i2, p.circuit_fit ? "the currents it carries here" : ".options ifit",
+                1e3 * p.fit_error, 100 * p.fit_error_fraction);
+  return buf;
+}
+
+// The transient `run` would make of the deck (its .tran and .options method), for the fit of its
+// diodes to the currents they carry; none without a .tran card.
+std::optional<TransientOptions> deck_transient(const Netlist& netlist) {
+  if (!netlist.tran) return std::nullopt;
+  TransientOptions o;
+  const TranSpec& tran = *netlist.tran;
+  o.step = tran.tmax > 0 ? std::min(tran.tstep, tran.tmax) : tran.tstep;
+  o.tstop = tran.tstop;
+  o.tstart = tran.tstart;
+  o.uic = tran.uic;
+  try {
+    const NetlistOptions read = read_netlist_options(netlist);
+    if (!read.method.empty() && find_method(read.method)) o.method = read.method;
+    if (read.theta) o.method_options.theta = *read.theta;
+  } catch (const NetlistError&) {
+  }
+  if (!o.IsValid(nullptr) || find_method(o.method)->smooth_model) return std::nullopt;
+  return o;
+}
+
 std::string loop_text(const CircuitGraph& g, const std::vector<LoopTerm>& loop) {
   std::string s;
   for (const LoopTerm& t : loop) s += (s.empty() ? "" : " ") + std::string(t.sign > 0 ? "+" : "-") + g.branches[t.branch].name;
@@ -54,6 +86,7 @@ struct Report {
   std::vector<UniquenessEntry> uniqueness;
   std::optional<CcpReport> ccp;  // circuits with lines
   std::vector<std::string> controlled;  // controlled sources and switches, one line each
+  std::string refit;             // how the diodes were fitted to the circuit's currents, if they were
 };
 
 // E, F, G, H and S, W: what they are listed as (not warnings).
@@ -156,13 +189,17 @@ void print_text(const Report& r) {
   for (size_t k = 0; k < m.pairs().size(); ++k) {
     const PairInfo& p = m.pairs()[k];
     std::string law = "VON=" + number(p.law.von) + " V RON=" + number(p.law.ron) + " ohm";
-    if (p.fitted) law += " (fitted to Shockley IS/N/RS)";
+    const bool breakdown = p.name.size() > 3 && p.name.compare(p.name.size() - 3, 3, ":bv") == 0;
+    if (p.fitted) law += std::string(breakdown ? " (fitted to breakdown BV/IBV/N/RS" : " (fitted to Shockley IS/N/RS") + fit_text(p) + ")";
     const int pk = r.index.pair_index[k];
     std::printf("  %-10s %-8s %-5s %-14s %s%s\n", g.branches[p.branch].name.c_str(),
                 p.voltage_type ? "voltage" : "current", class_of(r, p.branch).c_str(),
                 pk >= 0 ? std::to_string(pk).c_str() : "-", law.c_str(),
                 joins(r, p.branch) ? "  [joins H components]" : "");
   }
+
+  if (!r.refit.empty())
+    std::printf("  fitted over the currents each diode carries in the .tran run: %s\n", r.refit.c_str());
 
   std::printf("\nLCS: dx/dt = A x + B z + E u,  w = C x + D z + F u,  0 <= w _|_ z >= 0\n");
   std::printf("  states n = %d:", s.states());
@@ -219,6 +256,10 @@ void print_json(const Report& r) {
       << ", \"class\": " << json_string(class_of(r, p.branch)) << ", \"index\": " << r.index.pair_index[k]
       << ", \"von\": " << number(p.law.von) << ", \"ron\": " << number(p.law.ron)
       << ", \"fitted\": " << (p.fitted ? "true" : "false")
+      << ", \"fit_range\": [" << number(p.fit_i1) << ", " << number(p.fit_i2) << "]"
+      << ", \"fit_error_mv\": " << number(1e3 * p.fit_error)
+      << ", \"fit_error_fraction\": " << number(p.fit_error_fraction)
+      << ", \"circuit_fit\": " << (p.circuit_fit ? "true" : "false")
       << ", \"joins_h_components\": " << (joins(r, p.branch) ? "true" : "false") << "}";
   }
   o << "\n  ],\n  \"lcs\": {\"states\": " << s.states() << ", \"pairs\": " << s.pairs()
@@ -255,8 +296,22 @@ int analyze_command(const AnalyzeArgs& args) {
   Netlist netlist = load_netlist(args.netlist);
   const double t1 = netlist.tran ? netlist.tran->tstop : 0.0;
   CircuitModel model = build_model(netlist, 0.0, t1);
+  std::optional<DiodeRefitResult> refit;
+  if (const std::optional<TransientOptions> tran = deck_transient(netlist)) {
+    ModelOptions mo;
+    mo.t1 = t1;
+    refit = refit_diodes(netlist, mo, *tran);
+    if (refit->passes > 0) model = build_model(netlist, 0.0, t1, refit->ranges);
+  }
   Report r{model, h_components(model.graph()), classify_diodes(model.graph()), lcs_index(model.lcs()), {}, {}, {}};
   for (const std::string& w : floating_potential_warnings(model)) r.warnings.push_back(w);
+  if (refit && refit->passes > 0) {
+    r.refit = std::to_string(refit->passes) + " transient pass" + (refit->passes == 1 ? "" : "es") + ", " +
+              (refit->converged ? "converged" : "not converged") +
+              (refit->failure.empty() ? "" : " (" + refit->failure + ")");
+    const std::string poor = poor_fit_message(model);
+    if (!poor.empty()) r.warnings.push_back(poor);
+  }
   for (const std::shared_ptr<Device>& d : model.devices())
     if (!d->has_history())  // a line's notes are its part of the CCP section
       for (const std::string& note : d->notes())

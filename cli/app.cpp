@@ -60,7 +60,8 @@ int run_cli(int argc, char** argv) {
              "smooth: emission coefficient N of the diodes standing in for ideal ones (default 0.05)");
   run_cmd->add_option("--diode", run.diode,
                       "diode model: ideal (complementarity with VON/RON; every method but smooth), "
-                      "shockley (smooth diodes, --method smooth), auto (follows the method)");
+                      "shockley (smooth diodes, --method smooth), auto (ideal where the fit to the circuit's "
+                      "currents serves it, else the smooth method with Shockley diodes)");
   run_cmd->add_flag("--stats", run.stats, "print a run summary to standard error");
 
   OpArgs op;

@@ -24,11 +24,13 @@ Netlist load_netlist(const std::string& path, bool require_transient) {
   }
 }
 
-CircuitModel build_model(const Netlist& netlist, double t0, double t1) {
+CircuitModel build_model(const Netlist& netlist, double t0, double t1,
+                         const std::map<std::string, DiodeCurrentRanges>& diode_ranges) {
   try {
     ModelOptions options;
     options.t0 = t0;
     options.t1 = t1;
+    options.diode_ranges = diode_ranges;
     CircuitModel model = CircuitModel::build(netlist, options);
     // Switches: the configuration at t = 0 (ON/OFF, else the controls at the operating point).
     SwitchFamily switches(model);

@@ -12,8 +12,10 @@ namespace lcs {
 // FileError -> exit 1; NetlistError -> exit 2. Prints the netlist's warnings to stderr.
 // `require_transient`: see ReadOptions (run and validate).
 Netlist load_netlist(const std::string& path, bool require_transient = false);
-// TopologyError / NetlistError -> exit 2. [t0, t1] is the interval the sources are checked over.
-CircuitModel build_model(const Netlist& netlist, double t0, double t1);
+// TopologyError / NetlistError -> exit 2. [t0, t1] is the interval the sources are checked over;
+// diode_ranges: the currents each fitted diode carries (diode_refit.h).
+CircuitModel build_model(const Netlist& netlist, double t0, double t1,
+                         const std::map<std::string, DiodeCurrentRanges>& diode_ranges = {});
 // Probes from a `--probe` list ("v(a),v(p,n),i(d1)": commas inside parentheses belong to a probe).
 std::vector<Probe> parse_probe_list(const std::string& list);
 // The netlist's probes, else the model's defaults.

@@ -8,6 +8,7 @@
 #include "cli/load_circuit.h"
 #include "cli/progress.h"
 #include "cli/source_sampling.h"
+#include "solver/integrators/diode_refit.h"
 #include "solver/integrators/transient.h"
 #include "solver/model/netlist_options.h"
 #include "solver/model/smooth_netlist.h"
@@ -115,6 +116,12 @@ void apply_diode_model(const RunArgs& args, TransientOptions& options) {
   throw CliError(kExitUsage, "error: unknown diode model '" + d + "' (known: ideal, shockley, auto)");
 }
 
+ModelOptions refit_model_options(double tstop) {
+  ModelOptions o;
+  o.t1 = tstop;
+  return o;
+}
+
 }  // namespace
 
 int run_command(const RunArgs& args) {
@@ -168,11 +175,16 @@ int run_command(const RunArgs& args) {
     throw CliError(kExitUsage, "error: " + why);
   }
 
-  if (method_of(options).smooth_model) {
+  auto smoothed = [&args](const Netlist& n) {
     SmoothingOptions smoothing;
     if (args.emission) smoothing.emission = *args.emission;
-    netlist = smooth_netlist(netlist, smoothing);
-  }
+    try {
+      return smooth_netlist(n, smoothing);
+    } catch (const NetlistError& e) {
+      throw CliError(kExitNetlist, e.formatted());
+    }
+  };
+  if (method_of(options).smooth_model) netlist = smoothed(netlist);
   CircuitModel model = build_model(netlist, 0.0, options.tstop);
   // SPEC §1: event wherever it applies, unless a method is named (--method, .options method=,
   // --diode shockley).
@@ -192,6 +204,29 @@ int run_command(const RunArgs& args) {
   if (method_of(options).applies && !method_of(options).applies(model, &not_applicable))
     throw CliError(kExitUsage, "error: method " + options.method + ": " + not_applicable);
   if (method_of(options).fixed_step()) guard_source_sampling(netlist, args, options);
+  if (!method_of(options).smooth_model) {
+    // Cards without VON/RON: their lines refitted to the currents this circuit carries.
+    const DiodeRefitResult refit = refit_diodes(netlist, refit_model_options(options.tstop), options);
+    if (refit.passes > 0) {
+      if (args.stats) std::cerr << refit.BriefReport() << "\n";
+      model = build_model(netlist, 0.0, options.tstop, refit.ranges);
+    }
+    const std::string poor = poor_fit_message(model);
+    // --diode auto: the smooth method with Shockley diodes where a fit does not serve the circuit
+    // (the whole circuit: the ideal and smooth models are not mixed in one run); an explicit
+    // --method of the ideal law is kept, with the warning.
+    if (!poor.empty() && args.diode == "auto" && args.method.empty() && smooth_reference_method() &&
+        !first_switch(netlist)) {
+      std::cerr << "lcspice: --diode auto: " << join_names(poorly_fitted_pairs(model))
+                << ": the ideal fit is poor over the currents carried; running --method "
+                << smooth_method_name() << " with Shockley diodes\n";
+      options.method = smooth_method_name();
+      netlist = smoothed(netlist);
+      model = build_model(netlist, 0.0, options.tstop);
+    } else if (!poor.empty()) {
+      warn(poor);
+    }
+  }
   const std::vector<Probe> probes = probes_for(netlist, model, args.probes);
   OutputMap outputs = output_map_or_exit(model, probes);
   for (const std::string& w : floating_probe_warnings(model, probes)) warn(w);

@@ -22,6 +22,7 @@
 #include "cli/load_circuit.h"
 #include "cli/require_ngspice.h"
 #include "cli/validate_tube.h"
+#include "solver/integrators/diode_refit.h"
 #include "ngspice/deck_translation.h"
 #include "ngspice/ngspice_session.h"
 #include "ngspice/probe_series.h"
@@ -354,6 +355,17 @@ int validate_with_faults(const ValidateArgs& args, const NgspiceDeckFaults& faul
   CircuitModel model = build_model(netlist, 0.0, run.tstop);
   if (const MethodEntry& entry = *find_method(run.method); entry.applies && !entry.applies(model, &why))
     throw CliError(kExitUsage, "error: method " + run.method + ": " + why);  // an SFFM source and event
+  // Cards without VON/RON: fitted to the currents this circuit carries, as `run` fits them.
+  std::map<std::string, DiodeCurrentRanges> diode_ranges;
+  if (!find_method(run.method)->smooth_model) {
+    ModelOptions mo;
+    mo.t1 = run.tstop;
+    const DiodeRefitResult refit = refit_diodes(netlist, mo, run);
+    if (refit.passes > 0) {
+      diode_ranges = refit.ranges;
+      model = build_model(netlist, 0.0, run.tstop, diode_ranges);
+    }
+  }
   // What lcspice integrates: the ideal circuit, or for `smooth` the Shockley circuit of the deck.
   const bool smooth = find_method(run.method)->smooth_model;
   TranslationOptions topt;
@@ -436,7 +448,7 @@ int validate_with_faults(const ValidateArgs& args, const NgspiceDeckFaults& faul
   }
   std::optional<MemorySink> far_wall;
   if (!gaps.empty()) {
-    const CircuitModel shifted = build_model(netlist_with_shifted_thresholds(model, gaps), 0.0, run.tstop);
+    const CircuitModel shifted = build_model(netlist_with_shifted_thresholds(model, gaps), 0.0, run.tstop, diode_ranges);
     far_wall = run_ours(shifted, output_map_or_exit(shifted, all), run);
     // The same output times: the event method adds rows at its own events, different here.
     MemorySink resampled;

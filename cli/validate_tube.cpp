@@ -19,13 +19,27 @@ Netlist netlist_with_shifted_thresholds(const CircuitModel& model,
       if (p.name != junction) continue;
       Element& el = shifted.elements.at(p.element);
       if (el.kind == ElementKind::Diode) {
-        DiodeModel card;
-        card.name = "lcs_gap_" + el.name;
-        card.von = p.law.von + gap;
-        card.ron = p.law.ron * (el.value > 0 ? el.value : 1.0);  // the device divides it by the area
-        card.loc = shifted.diode_models.count(el.model) ? shifted.diode_models.at(el.model).loc : el.loc;
-        shifted.diode_models[card.name] = card;
-        el.model = card.name;
+        // A card of its own per diode, its other parameters kept (BV); "d1:bv" is its breakdown
+        // pair, whose threshold is BV and resistance Rrev. Resistances are per unit area: the
+        // device divides them by the element's area again.
+        const std::string own = "lcs_gap_" + el.name;
+        if (el.model != own) {
+          DiodeModel card = shifted.diode_models.count(el.model) ? shifted.diode_models.at(el.model) : DiodeModel{};
+          if (!shifted.diode_models.count(el.model)) card.loc = el.loc;
+          card.name = own;
+          shifted.diode_models[own] = card;
+          el.model = own;
+        }
+        DiodeModel& card = shifted.diode_models.at(own);
+        const double area = el.value > 0 ? el.value : 1.0;
+        const bool breakdown = p.name.size() >= 3 && p.name.compare(p.name.size() - 3, 3, ":bv") == 0;
+        if (breakdown) {
+          card.bv = p.law.von + gap;
+          card.rrev = p.law.ron * area;
+        } else {
+          card.von = p.law.von + gap;
+          card.ron = p.law.ron * area;
+        }
       } else if (el.kind == ElementKind::Bjt) {
         // A card of its own per transistor, both junctions written out: VONE/RONE for "q1:be",
         // VONC/RONC for "q1:bc" (RON as the card gives it: the device divides it by the area).

@@ -10,7 +10,7 @@ namespace {
 
 // ngspice diode (level 1 and its extensions) parameters that lcspice accepts and does not use.
 const char* const kIgnoredDiodeParams[] = {
-    "cjo", "cj0", "cj", "vj", "pb", "m", "mj", "tt", "bv", "ibv", "nbv", "ikf", "ik", "ikr",
+    "cjo", "cj0", "cj", "vj", "pb", "m", "mj", "tt", "nbv", "ikf", "ik", "ikr",
     "jsw", "isw", "ns", "cjp", "cjsw", "php", "mjsw", "fc", "fcs", "eg", "xti", "kf", "af",
     "tnom", "tref", "level", "area", "pj", "temp", "dtemp", "tlev", "tlevc", "tm1", "tm2",
     "trs", "trs1", "trs2", "tbv1", "tbv2", "tcv", "tpb", "tphp", "tcj", "tcjsw", "gap1", "gap2",
@@ -18,6 +18,10 @@ const char* const kIgnoredDiodeParams[] = {
 
 // Gummel–Poon (ngspice level 1 BJT) parameters that lcspice accepts and does not use, and the
 // vendor extras found on manufacturers' cards (VCEO, ICRATING, MFG, ...), whose values may be words.
+// LTspice's ideal-diode parameters (LTspice only; ngspice reads them under `ngbehavior=lta`) that
+// lcspice does not model: current limits and the softening of the knees.
+const char* const kIgnoredLtspiceDiodeParams[] = {"ilimit", "revilimit", "epsilon", "revepsilon"};
+
 const char* const kIgnoredBjtParams[] = {
     "vaf", "va", "ikf", "ik", "ise", "ne", "var", "vb", "ikr", "isc", "nc", "rb", "irb", "rbm",
     "re", "rc", "vje", "pe", "mje", "me", "tf", "xtf", "vtf", "itf", "ptf", "cjc", "vjc", "pc",
@@ -256,7 +260,23 @@ ModelCard parse_model_card(const Card& card, const ParamScope& scope, const std:
       check(v >= 0, "not be negative");
       d.rs = v;
       d.has_rs = true;
-    } else if (listed(kIgnoredDiodeParams, key.lower)) {
+    } else if (key.lower == "bv" || key.lower == "vrev") {  // Vrev: LTspice's breakdown voltage
+      check(v > 0, "be positive");
+      d.bv = v;
+    } else if (key.lower == "ibv") {
+      check(v > 0, "be positive");
+      d.ibv = v;
+    } else if (key.lower == "vfwd") {  // LTspice's forward threshold (Ron is lcspice's RON already)
+      d.von = v;
+    } else if (key.lower == "rrev") {  // LTspice's breakdown resistance (default: Ron)
+      check(v >= 0, "not be negative");
+      d.rrev = v;
+    } else if (key.lower == "roff") {
+      // LTspice puts Roff across the blocking diode; lcspice's blocking diode is an open circuit.
+      warnings.push_back(warning_line(card.at(key), "diode model " + quote(d.name) +
+                                                        ": Roff (LTspice) is not modelled: the "
+                                                        "blocking diode is an open circuit"));
+    } else if (listed(kIgnoredDiodeParams, key.lower) || listed(kIgnoredLtspiceDiodeParams, key.lower)) {
       add_ignored(d.ignored, first_ignored, card.at(key), key.lower);
     } else {
       throw NetlistError(card.at(key), "unknown diode model parameter " + quote(key.text));

@@ -62,7 +62,12 @@ struct DiodeModel {
   std::optional<double> von, ron;      // ideal (piecewise-linear) parameters as written
   double is = 1e-14, n = 1.0, rs = 0.0;  // smooth (Shockley, ngspice level 1) parameters
   bool has_is = false, has_n = false, has_rs = false;  // which smooth ones were written
-  std::vector<std::string> ignored;    // accepted ngspice parameters unused by lcspice (cjo, tt, bv, ...)
+  // Reverse breakdown (a Zener): current flows backwards once the reverse voltage reaches BV,
+  // ngspice's I = -IBV exp(-(V + BV) / (N Vt)); the ideal law is a second, reverse pair at -BV.
+  std::optional<double> bv;            // V, > 0; none: no breakdown
+  double ibv = 1e-3;                   // A, ngspice's default
+  std::optional<double> rrev;          // LTspice's Rrev: the breakdown's on-resistance (ideal law)
+  std::vector<std::string> ignored;    // accepted ngspice parameters unused by lcspice (cjo, tt, ...)
   SourceLocation loc;
 };
 

@@ -165,10 +165,34 @@ TEST(ParseModels, ManyIgnoredNgspiceParameters) {
   EXPECT_EQ(d.is, 2.52e-9);
   EXPECT_EQ(d.rs, 0.568);
   EXPECT_EQ(d.n, 1.752);
-  EXPECT_EQ(d.ignored, (std::vector<std::string>{"cjo", "m", "tt", "bv", "ibv", "level"}));
+  EXPECT_EQ(d.ignored, (std::vector<std::string>{"cjo", "m", "tt", "level"}));
+  ASSERT_TRUE(d.bv);  // breakdown is modelled (a second, reverse pair: issue 13)
+  EXPECT_EQ(*d.bv, 100.0);
+  EXPECT_EQ(d.ibv, 100e-6);
   ASSERT_EQ(n.warnings.size(), 1u);
   EXPECT_EQ(n.warnings[0],
-            "t.cir:2:43: warning: diode model 'd1n4148': parameters cjo, m, tt, bv, ibv, level ignored by lcspice");
+            "t.cir:2:43: warning: diode model 'd1n4148': parameters cjo, m, tt, level ignored by lcspice");
+}
+
+// LTspice's ideal diode: Vfwd is VON, Vrev BV, Rrev its resistance; Roff is reported as not
+// modelled at its own column, the limits as ignored; a non-positive Vrev is an error.
+TEST(ParseModels, LtspiceIdealDiodeParameters) {
+  Netlist n = parse("t\n.model A D(Ron=1 Roff=1Meg Vfwd=1 Vrev=2 Rrev=3 Ilimit=1 epsilon=1)\n");
+  const DiodeModel& d = n.diode_models.at("a");
+  EXPECT_EQ(d.von, 1.0);
+  EXPECT_EQ(d.ron, 1.0);
+  EXPECT_EQ(d.bv, 2.0);
+  EXPECT_EQ(d.rrev, 3.0);
+  EXPECT_EQ(d.ignored, (std::vector<std::string>{"ilimit", "epsilon"}));
+  ASSERT_EQ(n.warnings.size(), 2u);
+  EXPECT_EQ(n.warnings[0], "t.cir:2:18: warning: diode model 'a': Roff (LTspice) is not modelled: the blocking diode is an open circuit");
+  EXPECT_EQ(n.warnings[1], "t.cir:2:49: warning: diode model 'a': parameters ilimit, epsilon ignored by lcspice");
+  try {
+    parse("t\n.model A D(Vrev=0)\n");
+    ADD_FAILURE() << "Vrev=0 accepted";
+  } catch (const NetlistError& e) {
+    EXPECT_EQ(e.formatted().rfind("t.cir:2:17: error: diode parameter 'vrev' must be positive", 0), 0u) << e.formatted();
+  }
 }
 
 TEST(ParseModels, BjtAndLineModelsAreAcceptedAndNotStored) {

@@ -29,6 +29,7 @@
 #include "graph/circuit_graph.h"
 #include "netlist/netlist.h"
 #include "solver/model/input_provider.h"
+#include "solver/devices/junction_fit.h"
 #include "solver/model/pair_law.h"
 
 namespace lcs {
@@ -135,6 +136,9 @@ class Device {
   // A multi-terminal device's current into one terminal (SPEC §3, `ic(q1)`) as a combination of
   // its own branch currents: (local branch, coefficient). Empty: no such terminal.
   virtual std::vector<std::pair<int, double>> terminal_current(char terminal) const { return {}; }
+  // i(element) of a device of several branches (a diode with its breakdown branch) as a
+  // combination of its own branch currents; empty: the current of its branch of that name.
+  virtual std::vector<std::pair<int, double>> element_current() const { return {}; }
 
   // Devices with history (lines): the longest step they allow (their shortest delay: a step
   // that ends at t reads the past at t - delay, which must already be known).
@@ -159,6 +163,9 @@ class Device {
 // What model formation passes to every device it creates.
 struct DeviceOptions {
   double ifit = 10e-3;  // diode fit current (`.options ifit=`)
+  // Per diode (by element name): the currents it carried in this circuit, over which its card's
+  // Shockley curve is fitted (diode_refit.h); a diode not listed gets the ifit decade pair.
+  std::map<std::string, DiodeCurrentRanges> diode_ranges;
   std::optional<double> bjtcap;  // base–emitter capacitance of every transistor (`.options bjtcap=`)
   // The run's time scales (a lossy line's kernel is fitted over the band they span; 0: unknown)
   // and the target relative error of that fit.

@@ -8,26 +8,51 @@ double shockley_voltage(const DiodeModel& model, double current) {
   return model.n * kThermalVoltage * std::log1p(current / model.is) + model.rs * current;
 }
 
-ResolvedDiodeLaw resolve_diode_law(const DiodeModel& model, double ifit) {
+namespace {
+
+ResolvedDiodeLaw fitted_law(const JunctionCurve& curve, double ifit, const CurrentRange& range) {
+  const LineFit f = range.empty() ? chord_fit(curve, ifit / 10, ifit * 10)
+                                  : minimax_fit(curve, range.lo, range.hi);
   ResolvedDiodeLaw r;
+  r.law = f.law;
+  r.fitted = true;
+  r.circuit_fit = !range.empty();
+  r.fit_i1 = f.i1;
+  r.fit_i2 = f.i2;
+  r.fit_error = f.max_error;
+  r.fit_error_fraction = f.error_fraction;
+  return r;
+}
+
+}  // namespace
+
+ResolvedDiodeLaw resolve_diode_law(const DiodeModel& model, double ifit, const CurrentRange& range) {
   if (model.von || model.ron) {
+    ResolvedDiodeLaw r;
     r.law.von = model.von.value_or(0.0);
     r.law.ron = model.ron.value_or(0.0);
     return r;
   }
-  r.fitted = true;
-  r.fit_i1 = ifit / 10;
-  r.fit_i2 = ifit * 10;
-  const double v1 = shockley_voltage(model, r.fit_i1), v2 = shockley_voltage(model, r.fit_i2);
-  r.law.ron = (v2 - v1) / (r.fit_i2 - r.fit_i1);
-  r.law.von = v1 - r.law.ron * r.fit_i1;
-  return r;
+  return fitted_law(forward_curve(model.is, model.n, model.rs), ifit, range);
+}
+
+ResolvedDiodeLaw resolve_breakdown_law(const DiodeModel& model, double ifit, const CurrentRange& range) {
+  if (model.von || model.ron || model.rrev) {
+    ResolvedDiodeLaw r;
+    r.law.von = *model.bv;
+    r.law.ron = model.rrev.value_or(model.ron.value_or(0.0));
+    return r;
+  }
+  return fitted_law(breakdown_curve(*model.bv, model.ibv, model.n, model.rs), ifit, range);
 }
 
 SmoothDiodeLaw smooth_equivalent(const DiodeModel& card, const ResolvedDiodeLaw& law,
                                  double emission, double saturation_current) {
-  if (law.fitted || card.has_is || card.has_n || card.has_rs) return {0.0, card.is, card.n, card.rs};
-  return {law.law.von, saturation_current, emission, law.law.ron};
+  if (law.fitted || card.has_is || card.has_n || card.has_rs)
+    return {0.0, card.is, card.n, card.rs, card.bv, card.ibv};
+  SmoothDiodeLaw s{law.law.von, saturation_current, emission, law.law.ron, card.bv, card.ibv};
+  if (card.bv) s.ibv = saturation_current * (*card.bv + law.law.von) / kThermalVoltage;
+  return s;
 }
 
 namespace {
@@ -39,32 +64,68 @@ const DiodeModel& model_of(const Element& element, const Netlist& netlist) {
 }
 
 // The card of `area` diodes in parallel (the element's value: area times m; 0 when not set, 1):
-// the saturation current times the area, the series and on-resistances divided by it, VON and N
-// as they are.
+// the saturation and breakdown currents times the area, the series, on- and breakdown
+// resistances divided by it, VON, N and BV as they are.
 DiodeModel parallel_card(DiodeModel card, double area) {
   if (!(area > 0) || area == 1.0) return card;
   card.is *= area;
+  card.ibv *= area;
   card.rs /= area;
   if (card.ron) *card.ron /= area;
+  if (card.rrev) *card.rrev /= area;
   return card;
+}
+
+CurrentRange range_of(const DeviceOptions& options, const std::string& name, bool reverse) {
+  const auto it = options.diode_ranges.find(name);
+  if (it == options.diode_ranges.end()) return {};
+  return reverse ? it->second.reverse : it->second.forward;
 }
 }  // namespace
 
 Diode::Diode(const Element& element, const Netlist& netlist, const DeviceOptions& options)
-    : Device(element), card_(parallel_card(model_of(element, netlist), element.value)), law_(resolve_diode_law(card_, options.ifit)) {}
-
-std::vector<BranchDecl> Diode::branches() const {
-  return {{name(), BranchClass::Diode, element_.nodes.at(0), element_.nodes.at(1)}};
+    : Device(element),
+      card_(parallel_card(model_of(element, netlist), element.value)),
+      law_(resolve_diode_law(card_, options.ifit, range_of(options, element.name, false))) {
+  if (card_.bv) breakdown_ = resolve_breakdown_law(card_, options.ifit, range_of(options, element.name, true));
 }
 
-void Diode::stamp(const StampContext& context, Stamps& stamps) const {
+std::vector<BranchDecl> Diode::branches() const {
+  const std::string &anode = element_.nodes.at(0), &cathode = element_.nodes.at(1);
+  std::vector<BranchDecl> out{{name(), BranchClass::Diode, anode, cathode}};
+  if (breakdown_) out.push_back({name() + ":bv", BranchClass::Diode, cathode, anode});
+  return out;
+}
+
+std::vector<std::pair<int, double>> Diode::element_current() const {
+  if (!breakdown_) return {};
+  return {{0, 1.0}, {1, -1.0}};  // forward minus breakdown current
+}
+
+namespace {
+PairLaw pair_law(const std::string& name, int element, const ResolvedDiodeLaw& law, SmoothJunction smooth) {
   PairLaw pair;
-  pair.name = name();
-  pair.element = element_index();
-  pair.law = law_.law;
-  pair.fitted = law_.fitted;
-  pair.smooth = {card_.is, card_.n};
-  stamps.pairs.push_back({context.branch(0), pair});
+  pair.name = name;
+  pair.element = element;
+  pair.law = law.law;
+  pair.fitted = law.fitted;
+  pair.circuit_fit = law.circuit_fit;
+  pair.fit_i1 = law.fit_i1;
+  pair.fit_i2 = law.fit_i2;
+  pair.fit_error = law.fit_error;
+  pair.fit_error_fraction = law.fit_error_fraction;
+  pair.smooth = smooth;
+  return pair;
+}
+}  // namespace
+
+void Diode::stamp(const StampContext& context, Stamps& stamps) const {
+  stamps.pairs.push_back({context.branch(0), pair_law(name(), element_index(), law_, {card_.is, card_.n})});
+  // The smooth method's breakdown junction: I = IBV (exp((v_r - BV) / (N Vt)) - 1) over the
+  // reverse voltage v_r beyond the law's threshold BV, ngspice's breakdown branch (to IBV).
+  if (breakdown_)
+    stamps.pairs.push_back({context.branch(1), pair_law(name() + ":bv", element_index(), *breakdown_,
+                                                        {card_.ibv, card_.n})});
 }
 
 std::string ngspice_junction(const std::string& tag, const std::string& anode, const std::string& cathode,
@@ -74,8 +135,13 @@ std::string ngspice_junction(const std::string& tag, const std::string& anode, c
   const std::string meter = context.fresh(Device::deck_name('v', "thr_" + tag));
   const std::string model = context.fresh("lcs_m_" + tag);
   cards.lines.push_back(meter + " " + anode + " " + mid + " DC " + Device::number(smooth.series_von));
+  // ngspice's BV is the junction's, behind the threshold source: the branch breaks down at -bv.
+  const std::string breakdown = smooth.bv ? " BV=" + Device::number(*smooth.bv + smooth.series_von) +
+                                                " IBV=" + Device::number(smooth.ibv)
+                                          : "";
   cards.models.push_back(".model " + model + " D(IS=" + Device::number(smooth.is) + " N=" +
-                         Device::number(smooth.n) + " RS=" + Device::number(smooth.rs * context.ron_factor) + ")");
+                         Device::number(smooth.n) + " RS=" + Device::number(smooth.rs * context.ron_factor) +
+                         breakdown + ")");
   if (context.open)
     cards.lines.push_back(Device::deck_name('r', "open_" + tag) + " " + mid + " " + cathode + " 1e15");
   else

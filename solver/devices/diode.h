@@ -10,14 +10,25 @@ namespace lcs {
 struct ResolvedDiodeLaw {
   IdealDiodeLaw law;
   bool fitted = false;  // VON/RON came from the Shockley fit, not from the card
+  bool circuit_fit = false;  // ... over the currents this circuit carried (diode_refit.h)
   double fit_i1 = 0, fit_i2 = 0;
+  double fit_error = 0, fit_error_fraction = 0;  // the line's worst error over [fit_i1, fit_i2]
 };
 
-// A card with VON and/or RON uses them (a missing one is 0). A card with neither gets the chord
-// of its Shockley curve v(i) = N*Vt*ln(1 + i/IS) + RS*i between i1 = ifit/10 and i2 = 10*ifit
-// (ifit from `.options ifit=`, default 10 mA): the simplest model that matches the smooth diode
-// where a power circuit operates.
-ResolvedDiodeLaw resolve_diode_law(const DiodeModel& model, double ifit);
+// A card with VON and/or RON uses them (a missing one is 0). A card with neither gets a line
+// through its Shockley curve v(i) = N*Vt*ln(1 + i/IS) + RS*i (junction_fit.h):
+//  - with no circuit range, the chord between i1 = ifit/10 and i2 = 10*ifit (ifit from
+//    `.options ifit=`, default 10 mA), where a power circuit operates;
+//  - over `range`, the currents the diode carried in this circuit, the least-max-error line.
+ResolvedDiodeLaw resolve_diode_law(const DiodeModel& model, double ifit, const CurrentRange& range = {});
+
+// The breakdown pair's law (the card has BV), the reverse pair at -BV (SPEC §2):
+//  - a card with VON, RON or Rrev (an ideal or LTspice card): VON = BV, RON = Rrev, else RON
+//    (LTspice's Rrev defaults to Ron);
+//  - else a line through ngspice's breakdown curve v(i) = BV + N Vt ln(i/IBV) + RS i (the reverse
+//    voltage at reverse current i), fitted as the forward curve is, over the same default
+//    decade pair or over the reverse currents carried.
+ResolvedDiodeLaw resolve_breakdown_law(const DiodeModel& model, double ifit, const CurrentRange& range = {});
 
 double shockley_voltage(const DiodeModel& model, double current);
 
@@ -27,9 +38,14 @@ double shockley_voltage(const DiodeModel& model, double current);
 // tends to the ideal law; at current i it needs about N Vt ln(i/IS) more voltage. A card that
 // gives its own IS, N or RS keeps them (and no series source): the user's smooth diode, against
 // which lcspice's ideal law is compared.
+// With BV the smooth diode has ngspice's breakdown branch, I = -IBV exp(-(V + BV) / (N Vt)) with
+// V the whole branch's voltage (an ideal card's: IBV = the saturation current times BV / Vt,
+// which ngspice would raise it to, so the witness breaks down as sharply as it conducts).
 struct SmoothDiodeLaw {
   double series_von = 0;  // V, the threshold source in series
   double is = 1e-14, n = 1, rs = 0;
+  std::optional<double> bv;
+  double ibv = 1e-3;
 };
 SmoothDiodeLaw smooth_equivalent(const DiodeModel& card, const ResolvedDiodeLaw& law,
                                  double emission, double saturation_current);
@@ -52,12 +68,17 @@ class Diode : public Device {
   NgspiceCards ngspice(const NgspiceDeckContext& context) const override;
   std::vector<std::string> notes() const override;
 
+  std::vector<std::pair<int, double>> element_current() const override;
+
   const DiodeModel& card() const { return card_; }
   const ResolvedDiodeLaw& law() const { return law_; }
+  // The breakdown pair's law, when the card has BV: a second branch cathode -> anode ("d1:bv").
+  const std::optional<ResolvedDiodeLaw>& breakdown() const { return breakdown_; }
 
  private:
   DiodeModel card_;
   ResolvedDiodeLaw law_;
+  std::optional<ResolvedDiodeLaw> breakdown_;
 };
 
 }  // namespace lcs

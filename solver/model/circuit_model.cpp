@@ -158,6 +158,7 @@ CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& opt
   device_options.switch_on = options.switch_on;
   const NetlistOptions netlist_options = read_netlist_options(netlist);  // NetlistError
   device_options.ifit = netlist_options.ifit.value_or(options.ifit);
+  device_options.diode_ranges = options.diode_ranges;
   device_options.bjtcap = netlist_options.bjtcap;
   device_options.tstop = options.t1;
   device_options.tstep = netlist.tran ? netlist.tran->tstep : 0;
@@ -662,17 +663,21 @@ std::vector<Probe> CircuitModel::default_probes() const {
   return probes;
 }
 
+OutputRow CircuitModel::device_current(const Device& d, const std::vector<std::pair<int, double>>& terms) const {
+  int first = -1;  // the device's branches are consecutive in the graph
+  for (int b = 0; b < static_cast<int>(graph_.branches.size()) && first < 0; ++b)
+    if (graph_.branches[b].element == d.element_index()) first = b;
+  Eigen::RowVectorXd r = Eigen::RowVectorXd::Zero(branch_i_.cols());
+  for (auto [local, coeff] : terms) r += coeff * Eigen::RowVectorXd(branch_i_.row(first + local));
+  return row_from_physical(r);
+}
+
 OutputRow CircuitModel::terminal_current(const Probe& p) const {
   for (const std::shared_ptr<Device>& d : devices_) {
     if (d->name() != p.a) continue;
     const std::vector<std::pair<int, double>> terms = d->terminal_current(p.terminal);
     if (terms.empty()) break;
-    int first = -1;  // the device's branches are consecutive in the graph
-    for (int b = 0; b < static_cast<int>(graph_.branches.size()) && first < 0; ++b)
-      if (graph_.branches[b].element == d->element_index()) first = b;
-    Eigen::RowVectorXd r = Eigen::RowVectorXd::Zero(branch_i_.cols());
-    for (auto [local, coeff] : terms) r += coeff * Eigen::RowVectorXd(branch_i_.row(first + local));
-    return row_from_physical(r);
+    return device_current(*d, terms);
   }
   throw NetlistError(p.loc, "probe " + p.name() + ": no transistor '" + p.a + "'");
 }
@@ -712,7 +717,13 @@ OutputMap CircuitModel::output_map(const std::vector<Probe>& probes) const {
         const int branch = found == branch_by_name.end() ? -1 : found->second;
         if (branch < 0)
           throw NetlistError(p.loc, "probe " + p.name() + ": no two-terminal element '" + p.a + "'");
-        row = branch_current(branch);
+        const int element = graph_.branches[branch].element;
+        // A device's own name is its i(element) (a diode with breakdown: both branches); its
+        // other branches ("d1:bv") are probed alone.
+        const bool whole = element >= 0 && devices_[element]->name() == p.a;
+        const std::vector<std::pair<int, double>> terms =
+            whole ? devices_[element]->element_current() : std::vector<std::pair<int, double>>{};
+        row = terms.empty() ? branch_current(branch) : device_current(*devices_[element], terms);
         break;
       }
     }

@@ -31,6 +31,7 @@
 #include "graph/spanning_tree.h"
 #include "graph/topology.h"
 #include "netlist/netlist.h"
+#include "solver/devices/junction_fit.h"
 #include "solver/model/lcs_problem.h"
 
 namespace lcs {
@@ -56,6 +57,7 @@ struct StorageInfo {
 
 struct ModelOptions {
   double ifit = 10e-3;        // diode fit current, `.options ifit=`
+  std::map<std::string, DiodeCurrentRanges> diode_ranges{};  // DeviceOptions::diode_ranges
   double t0 = 0, t1 = 0;      // interval over which sources are checked (Figure 5.5 test)
   // Switches: the configuration to form (switch name -> on); see DeviceOptions::switch_on.
   std::map<std::string, bool> switch_on;
@@ -101,7 +103,8 @@ class CircuitModel : public LcsProblem {
   OutputMap output_map(const std::vector<Probe>& probes) const;
 
  private:
-  OutputRow row_from_physical(const Eigen::RowVectorXd& r) const;  // [x z u du] -> shifted row
+  OutputRow row_from_physical(const Eigen::RowVectorXd& r) const;
+  OutputRow device_current(const Device& d, const std::vector<std::pair<int, double>>& terms) const;  // [x z u du] -> shifted row
   Eigen::RowVectorXd node_row(int node) const;                     // physical, memoised
 
   Netlist netlist_;

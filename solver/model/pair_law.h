@@ -23,6 +23,11 @@ struct PairLaw {
   int element = -1;     // index into Netlist::elements
   IdealDiodeLaw law;    // VON [V], RON [ohm]
   bool fitted = false;  // VON/RON fitted to the card's Shockley curve
+  // The fit (when `fitted`): the current range [A] and the line's worst voltage error over it
+  // [V, and as a fraction of the junction's voltage at fit_i1]; circuit_fit: the range is the
+  // one this circuit's run carried (diode_refit.h), not the `.options ifit` decade pair.
+  double fit_i1 = 0, fit_i2 = 0, fit_error = 0, fit_error_fraction = 0;
+  bool circuit_fit = false;
   SmoothJunction smooth;
   // A transistor junction: its current drives a transfer source, which couples the pairs
   // non-symmetrically; only such circuits can have several operating points (5.4.7).
