@@ -19,10 +19,13 @@ void check(const std::vector<Case>& cases) {
 
 TEST(ParseDiagnostics, SyntaxAndElements) {
   check({
-      {"t\nY1 a b 1\n", "t.cir:2:1: error: unknown element type 'y'\nY1 a b 1\n^~"},
+      {"t\nY1 a b 1\n",
+       "t.cir:2:1: error: TXL transmission lines ('Y' cards) are outside lcspice's scope (ideal diodes and bipolar "
+       "transistors)\nY1 a b 1\n^~"},
+      {"t\n1R a b 1\n", "t.cir:2:1: error: unknown element type '1'\n1R a b 1\n^~"},
       {"t\nE1 a 0 value={2*v(b)}\n",
-       "t.cir:2:8: error: 'e1': the behavioural form 'value' is not supported (only linear controlled sources: "
-       "n+ n- nc+ nc- gain)\nE1 a 0 value={2*v(b)}\n       ^~~~~"},
+       "t.cir:2:8: error: behavioural sources (VALUE=) are outside lcspice's scope (ideal diodes and bipolar "
+       "transistors)\nE1 a 0 value={2*v(b)}\n       ^~~~~"},
       {"t\nV1 a 0 1\nF1 b 0 r9 2\n", "t.cir:3:8: error: 'f1': controlling voltage source 'r9' is not defined\nF1 b 0 r9 2\n       ^~"},
       {"t\nV1 a 0 1\nR9 a 0 1\nH1 b 0 r9 2\n",
        "t.cir:4:8: error: 'h1': 'r9' is not a voltage source (it is a resistor); F and H are controlled by a V "
