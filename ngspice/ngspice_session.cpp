@@ -385,6 +385,11 @@ void Engine::read_plot(const std::string& plot, NgspiceResult& result) {
     for (size_t k = 0; k < data.size(); ++k)
       data[k] = info->v_realdata ? info->v_realdata[k] : info->v_compdata[k].cx_real;
     std::string key = lower(name);
+    // ngspice names a node's vector by the node ("out"), but a numeric node's as "V(3)": a bare
+    // number would read as a constant. The deck translation asks for nodes by name.
+    if (key.size() > 3 && key.compare(0, 2, "v(") == 0 && key.back() == ')' &&
+        key.find(',') == std::string::npos)
+      key = key.substr(2, key.size() - 3);
     if (key == "time")
       time = std::move(data);
     else
