@@ -353,8 +353,13 @@ int validate_with_faults(const ValidateArgs& args, const NgspiceDeckFaults& faul
 
   if (find_method(run.method)->adaptive()) refuse_switches(netlist, run.method);
   CircuitModel model = build_model(netlist, 0.0, run.tstop);
-  if (const MethodEntry& entry = *find_method(run.method); entry.applies && !entry.applies(model, &why))
-    throw CliError(kExitUsage, "error: method " + run.method + ": " + why);  // an SFFM source and event
+  if (const MethodEntry& entry = *find_method(run.method); entry.applies && !entry.applies(model, &why)) {
+    if (!args.method.empty())
+      throw CliError(kExitUsage, "error: method " + run.method + ": " + why);  // an SFFM source and event
+    // The default (exact) method cannot integrate this circuit: the fixed-step default, as `run`.
+    run.method = fixed_step_default_method().name;
+    std::cerr << "lcspice: note: method " << run.method << ": the default method does not apply (" << why << ")\n";
+  }
   // Cards without VON/RON: fitted to the currents this circuit carries, as `run` fits them.
   std::map<std::string, DiodeCurrentRanges> diode_ranges;
   if (!find_method(run.method)->smooth_model) {
