@@ -19,6 +19,14 @@ void scale_for_parallel_copies(Element& e, double m) {
     case ElementKind::CurrentSource:
       e.waveform = e.waveform.scaled(m);
       break;
+    case ElementKind::Vccs:  // m copies of a controlled current source: m times the current
+    case ElementKind::Cccs:
+      e.value *= m;
+      break;
+    case ElementKind::Vcvs:  // controlled voltage sources and switches: as ngspice, unscaled
+    case ElementKind::Ccvs:
+    case ElementKind::VSwitch:
+    case ElementKind::CSwitch:
     case ElementKind::Coupling:
     case ElementKind::VoltageSource:
     case ElementKind::Line:

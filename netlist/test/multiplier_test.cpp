@@ -98,3 +98,20 @@ TEST(ParseElements, NegativeAndZeroCouplings) {
 
 }  // namespace
 }  // namespace lcs
+
+namespace lcs {
+namespace {
+
+// m copies of a G or F source draw m times the current; E, H and switches are not scaled.
+TEST(ParseMultiplier, ControlledCurrentSourcesScaleInsideAnInstance) {
+  Netlist n = parse(
+      "t\n.subckt s a b\nG1 a b a 0 2m\nF1 a b vs 3\nE1 c 0 a 0 4\nH1 d 0 vs 5\nVs a e 0\nR1 e b 1k\n"
+      "R2 c 0 1\nR3 d 0 1\n.ends\nX1 p 0 s m=3\nR9 p 0 1\n");
+  EXPECT_DOUBLE_EQ(element(n, "x1.g1").value, 6e-3);
+  EXPECT_DOUBLE_EQ(element(n, "x1.f1").value, 9.0);
+  EXPECT_DOUBLE_EQ(element(n, "x1.e1").value, 4.0);
+  EXPECT_DOUBLE_EQ(element(n, "x1.h1").value, 5.0);
+}
+
+}  // namespace
+}  // namespace lcs
