@@ -80,7 +80,7 @@ std::string unknown_label(const CircuitModel& model, int j) {
   return "the DC wave " + model.inputs()[model.delayed()[j - n].input].label;
 }
 
-StaticProblem static_problem(const CircuitModel& model, double t) {
+StaticProblem static_problem(const CircuitModel& model, double t, double regularisation = 1e-9) {
   const DcForm f = dc_form(model, t);
   const int n = static_cast<int>(f.A.rows());
   StaticProblem p;
@@ -92,7 +92,7 @@ StaticProblem static_problem(const CircuitModel& model, double t) {
       for (int j = 0; j < n; ++j)
         if (kernel.row(j).cwiseAbs().maxCoeff() > 1e-9) p.undetermined.push_back(unknown_label(model, j));
       const double scale = A.size() > 0 ? A.cwiseAbs().maxCoeff() : 0.0;
-      A -= (scale > 0 ? 1e-9 * scale : 1e-9) * Eigen::MatrixXd::Identity(n, n);
+      A -= (scale > 0 ? regularisation * scale : regularisation) * Eigen::MatrixXd::Identity(n, n);
     }
     Eigen::PartialPivLU<Eigen::MatrixXd> lu_reg(A);
     p.XofZ = -solve_or_empty(lu_reg, f.B);
@@ -211,6 +211,44 @@ bool polish(const CircuitModel& model, double t, OperatingPoint& op) {
   return false;
 }
 
+// Lemke's numerical failure on the static LCP. Where the DC network ties nodes only through
+// junctions (the emitters of a differential pair fed by a transistor's collector, the node
+// between two diode-connected transistors), A is singular and the regularised M = D - C A^-1 B
+// carries entries ~1/eps (1e12 next to 1e3, condition ~1e13): Lemke's tableau on it drifts and
+// ends on a complementary basis a pivot or two from the solution. The regularisation is a
+// conductance eps across each capacitor (a GMIN); a larger one keeps M well conditioned, and the
+// conducting set Lemke finds with it is then solved exactly on the unreduced DC equations (no
+// regularisation) by polish, which accepts it only if the result is complementary.
+bool repair_numerical_failure(const CircuitModel& model, double t, OperatingPoint& op) {
+  if (polish(model, t, op)) return true;
+  for (double regularisation : {1e-7, 1e-5, 1e-3}) {
+    const StaticProblem p = static_problem(model, t, regularisation);
+    if (p.undetermined.empty()) return false;  // A regular: no regularisation to relax
+    const LcpSolution sol = solve_lemke(p.M, p.q);
+    if (sol.status != LcpStatus::Solved && sol.status != LcpStatus::NumericalFailure) continue;
+    OperatingPoint trial = point_from(p, sol.z);
+    if (!polish(model, t, trial)) continue;
+    op = trial;
+    return true;
+  }
+  return false;
+}
+
+// Where A is singular the regularised M has solutions of its own: a junction held "off" by the
+// 1e-9 leak the regularisation puts across a capacitor (a differential pair's emitter node, fed
+// only by a transistor's collector, lets either side take the whole tail current). Only the
+// solutions whose conducting set solves the unreduced DC equations complementarily (polish) are
+// the circuit's; if none does, the enumeration is kept as it is.
+std::vector<Eigen::VectorXd> exact_solutions(const CircuitModel& model, double t, const StaticProblem& p,
+                                             const std::vector<Eigen::VectorXd>& zs) {
+  if (p.undetermined.empty()) return zs;
+  std::vector<Eigen::VectorXd> exact;
+  for (const Eigen::VectorXd& z : zs) {
+    OperatingPoint op = point_from(p, z);
+    if (polish(model, t, op)) exact.push_back(z);
+  }
+  return exact.empty() ? zs : exact;
+}
 
 // The elements (transistors) whose pairs are on in some solutions and off in others.
 std::vector<std::string> elements_that_differ(const CircuitModel& model, const std::vector<Eigen::VectorXd>& zs) {
@@ -293,7 +331,8 @@ OperatingPoint solve_operating_point(const CircuitModel& model, double t) {
   const PMatrixReport report = model.has_transfer_pairs() ? p_matrix_report(p.M, 0) : PMatrixReport{};
   if (model.has_transfer_pairs() && !report.symmetric_psd && report.verdict != PMatrixReport::Verdict::P) {
     if (m <= kMaxCheckedPairs) {
-      const std::vector<Eigen::VectorXd> zs = distinct_in_w(p.M, p.q, enumerate_lcp_solutions(p.M, p.q));
+      const std::vector<Eigen::VectorXd> zs =
+          exact_solutions(model, t, p, distinct_in_w(p.M, p.q, enumerate_lcp_solutions(p.M, p.q)));
       if (zs.size() > 1) return choose_among(model, p, t, zs);
     } else {
       notes.push_back("the static problem of this transistor circuit is not checked for several "
@@ -302,6 +341,15 @@ OperatingPoint solve_operating_point(const CircuitModel& model, double t) {
     }
   }
   LcpSolution sol = solve_lemke(p.M, p.q);
+  if (sol.status == LcpStatus::NumericalFailure) {
+    OperatingPoint op = point_from(p, sol.z);
+    if (repair_numerical_failure(model, t, op)) {
+      op.pivots = sol.pivots;
+      op.warnings = notes;
+      finish(model, op);
+      return op;
+    }
+  }
   if (sol.status != LcpStatus::Solved) {
     // At a ray termination the pairs growing along the ray are the ones no current through them
     // can satisfy: the elements the sources drive against (a current source into a reverse
