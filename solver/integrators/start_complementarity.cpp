@@ -1,4 +1,6 @@
 #include "solver/integrators/start_complementarity.h"
+
+#include <stdexcept>
 #include "solver/model/empty_safe.h"
 
 #include <algorithm>
@@ -102,6 +104,7 @@ bool sparse_start_z(const LcsProblem& model, const SparseLcs& s, double t0, doub
     try {
       z = event_mode_z(model, t0, h_run, x);
     } catch (const NumericalFailure&) {
+    } catch (const std::invalid_argument&) {  // sources the event method cannot hold (SFFM)
     }
   }
   return true;
@@ -155,6 +158,7 @@ Eigen::VectorXd consistent_start_z(const LcsProblem& model, double t0, double h_
     try {
       return event_mode_z(model, t0, h_run, x);
     } catch (const NumericalFailure&) {
+    } catch (const std::invalid_argument&) {  // sources the event method cannot hold (SFFM)
     }
   }
   return sol.z;
