@@ -31,6 +31,19 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
           !(netlist.tran->tstop / w.params[6] <= 10000))
         return;
     }
+    // The adaptive methods follow every period of a sine-like source (SIN, AM carrier, SFFM):
+    // more than 1000 periods (ngspice's AM/FM example: 6400 of a 100 kHz carrier) is minutes
+    // of IDA steps in this build, work in proportion to the deck.
+    if (entry.adaptive())
+      for (const lcs::Element& e : netlist.elements) {
+        const lcs::Waveform& w = e.waveform;
+        double f = 0;
+        if (w.kind == lcs::Waveform::Kind::Sin && w.params.size() >= 3) f = w.params[2];
+        if (w.kind == lcs::Waveform::Kind::Am && w.params.size() >= 5) f = w.params[4] + std::abs(w.params[3]);
+        if (w.kind == lcs::Waveform::Kind::Sffm && w.params.size() >= 5)
+          f = w.params[2] + std::abs(w.params[3] * w.params[4]);
+        if (!(std::abs(f) * netlist.tran->tstop <= 1000)) return;
+      }
     // Every method steps at most one line delay at a time: the same for a delay 1e4 times
     // shorter than the run. And the event method's known limit (README): on a nearly lossless
     // line network its wavefronts multiply with the round trips, so more than 30 of them are
