@@ -23,7 +23,8 @@ constexpr double kMaxGuardedSteps = 1e7;
 
 // `.options method=` and `theta=` (read_netlist_options: registry names and ngspice's trap,
 // theta 0.5; gear is accepted with a warning and the default method).
-void apply_netlist_options(const Netlist& netlist, TransientOptions& options) {
+// Returns whether the deck names a method (`.options method=`, gear aside).
+bool apply_netlist_options(const Netlist& netlist, TransientOptions& options) {
   NetlistOptions read;
   try {
     read = read_netlist_options(netlist);
@@ -33,14 +34,7 @@ void apply_netlist_options(const Netlist& netlist, TransientOptions& options) {
   if (!read.method.empty()) options.method = read.method;
   if (read.gear) warn(".options method=gear: lcspice has no Gear method; using the default method");
   if (read.theta) options.method_options.theta = *read.theta;
-}
-
-bool netlist_names_method(const Netlist& netlist) {
-  try {
-    return !read_netlist_options(netlist).method.empty();
-  } catch (const NetlistError&) {
-    return false;  // apply_netlist_options has reported it
-  }
+  return !read.method.empty();
 }
 
 void note(const std::string& message) { std::cerr << "lcspice: note: " << message << "\n"; }
@@ -127,7 +121,7 @@ ModelOptions refit_model_options(double tstop) {
 int run_command(const RunArgs& args) {
   Netlist netlist = load_netlist(args.netlist, !(args.step && args.tstop));
   TransientOptions options;
-  apply_netlist_options(netlist, options);
+  const bool deck_names_method = apply_netlist_options(netlist, options);
   if (!args.method.empty()) {
     if (!find_method(args.method))
       throw CliError(kExitUsage, "error: unknown method '" + args.method + "' (known: " +
@@ -188,7 +182,7 @@ int run_command(const RunArgs& args) {
   CircuitModel model = build_model(netlist, 0.0, options.tstop);
   // SPEC §1: event wherever it applies, unless a method is named (--method, .options method=,
   // --diode shockley).
-  if (args.method.empty() && args.diode != "shockley" && !netlist_names_method(netlist)) {
+  if (args.method.empty() && args.diode != "shockley" && !deck_names_method) {
     std::string why;
     options.method = default_method_for(model, &why).name;
     if (const Element* s = first_switch(netlist); s && method_of(options).adaptive()) {

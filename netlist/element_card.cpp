@@ -255,6 +255,23 @@ void parse_lossy_line(const Card& card, const Reader& r, ParsedElement& out) {
   }
 }
 
+// The control of E, G, S (nodes nc+ nc- at tokens 3, 4) or of F, H, W (a V source's name at
+// token 3); returns the index of the token after it.
+std::size_t read_control(const Card& card, const Reader& r, bool voltage_controlled, ParsedElement& out) {
+  Element& e = out.element;
+  if (voltage_controlled) {
+    r.node(3, e);
+    r.node(4, e);
+    return 5;
+  }
+  if (card.size() <= 3) throw NetlistError(card.after_last(), "missing controlling voltage source for " + quote(r.name));
+  if (!card[3].is_word())
+    throw NetlistError(card.at(3), "expected the name of a voltage source, got " + quote(card[3].text));
+  e.control = r.scope.prefix + card[3].lower;
+  out.control_token = 3;
+  return 4;
+}
+
 // E/G n+ n- nc+ nc- gain and F/H n+ n- vname gain: ngspice's linear controlled sources. Their
 // behavioural forms (VALUE=, VOL=, CUR=, POLY, TABLE, LAPLACE) are nonlinear: refused by name.
 void parse_controlled_source(const Card& card, const Reader& r, char letter, ParsedElement& out) {
@@ -274,19 +291,7 @@ void parse_controlled_source(const Card& card, const Reader& r, char letter, Par
                                          " is not supported (only linear controlled sources: " +
                                          (voltage_controlled ? "n+ n- nc+ nc- gain" : "n+ n- vname gain") + ")");
   }
-  std::size_t gain = 3;
-  if (voltage_controlled) {
-    r.node(3, e);
-    r.node(4, e);
-    gain = 5;
-  } else {
-    if (card.size() <= 3) throw NetlistError(card.after_last(), "missing controlling voltage source for " + quote(r.name));
-    if (!card[3].is_word())
-      throw NetlistError(card.at(3), "expected the name of a voltage source, got " + quote(card[3].text));
-    e.control = r.scope.prefix + card[3].lower;
-    out.control_token = 3;
-    gain = 4;
-  }
+  const std::size_t gain = read_control(card, r, voltage_controlled, out);
   e.value = r.value(gain);
   if (!std::isfinite(e.value)) throw NetlistError(card.at(gain), "the gain of " + quote(r.name) + " must be finite");
   if (card.size() > gain + 1) r.extra(gain + 1);
@@ -299,19 +304,7 @@ void parse_switch(const Card& card, const Reader& r, char letter, ParsedElement&
   r.node(1, e);
   r.node(2, e);
   r.distinct_nodes(e);
-  std::size_t model = 3;
-  if (letter == 's') {
-    r.node(3, e);
-    r.node(4, e);
-    model = 5;
-  } else {
-    if (card.size() <= 3) throw NetlistError(card.after_last(), "missing controlling voltage source for " + quote(r.name));
-    if (!card[3].is_word())
-      throw NetlistError(card.at(3), "expected the name of a voltage source, got " + quote(card[3].text));
-    e.control = r.scope.prefix + card[3].lower;
-    out.control_token = 3;
-    model = 4;
-  }
+  const std::size_t model = read_control(card, r, letter == 's', out);
   if (card.size() <= model) throw NetlistError(card.after_last(), "missing model name for " + quote(r.name));
   if (!card[model].is_word()) throw NetlistError(card.at(model), "expected a model name, got " + quote(card[model].text));
   e.model = card[model].lower;

@@ -1,5 +1,7 @@
 #include "solver/devices/controlled_source.h"
 
+#include "solver/devices/two_terminal_cards.h"
+
 #include <cstdio>
 
 namespace lcs {
@@ -60,20 +62,10 @@ void ControlledSource::stamp(const StampContext& context, Stamps& stamps) const 
 // Written through as ngspice cards: the same letter, nodes and gain, the controlling source under
 // the name it has in the deck.
 NgspiceCards ControlledSource::ngspice(const NgspiceDeckContext& context) const {
-  NgspiceCards cards;
-  std::string plus = element_.nodes.at(0);
-  if (context.current_probed) {
-    const std::string meter = context.fresh("v_amm_" + name());
-    const std::string mid = context.fresh("lcs_" + name() + "_amm");
-    cards.lines.push_back(meter + " " + plus + " " + mid + " DC 0");
-    cards.probes["i(" + name() + ")"] = {meter + "#branch", ""};
-    plus = mid;
-  }
   const std::string control = voltage_control() ? element_.nodes.at(2) + " " + element_.nodes.at(3)
                                                 : deck_name('v', element_.control);
-  cards.lines.push_back(deck_name(letter(), name()) + " " + plus + " " + element_.nodes.at(1) + " " + control + " " +
-                        number(element_.value));
-  return cards;
+  return two_terminal_cards(deck_name(letter(), name()), element_.nodes.at(0), element_.nodes.at(1),
+                            control + " " + number(element_.value), name(), context);
 }
 
 std::vector<std::string> ControlledSource::notes() const {

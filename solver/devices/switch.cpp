@@ -1,5 +1,7 @@
 #include "solver/devices/switch.h"
 
+#include "solver/devices/two_terminal_cards.h"
+
 #include <cstdio>
 
 namespace lcs {
@@ -56,23 +58,14 @@ Probe Switch::control_probe() const {
 
 // Written through: the same card (ON/OFF kept) and its model under a name unique in the deck.
 NgspiceCards Switch::ngspice(const NgspiceDeckContext& context) const {
-  NgspiceCards cards;
-  std::string plus = element_.nodes.at(0);
-  if (context.current_probed) {
-    const std::string meter = context.fresh("v_amm_" + name());
-    const std::string mid = context.fresh("lcs_" + name() + "_amm");
-    cards.lines.push_back(meter + " " + plus + " " + mid + " DC 0");
-    cards.probes["i(" + name() + ")"] = {meter + "#branch", ""};
-    plus = mid;
-  }
   const bool voltage = element_.kind == ElementKind::VSwitch;
   const std::string model = context.fresh("lcs_sw_" + name());
   const std::string control = voltage ? element_.nodes.at(2) + " " + element_.nodes.at(3)
                                       : deck_name('v', element_.control);
-  std::string line = deck_name(voltage ? 's' : 'w', name()) + " " + plus + " " + element_.nodes.at(1) + " " +
-                     control + " " + model;
-  if (element_.initially_on) line += *element_.initially_on ? " ON" : " OFF";
-  cards.lines.push_back(line);
+  std::string rest = control + " " + model;
+  if (element_.initially_on) rest += *element_.initially_on ? " ON" : " OFF";
+  NgspiceCards cards = two_terminal_cards(deck_name(voltage ? 's' : 'w', name()), element_.nodes.at(0),
+                                          element_.nodes.at(1), rest, name(), context);
   cards.models.push_back(".model " + model + (voltage ? " SW(VT=" : " CSW(IT=") + number(card_.vt) +
                          (voltage ? " VH=" : " IH=") + number(card_.vh) + " RON=" + number(card_.ron) +
                          " ROFF=" + number(card_.roff) + ")");
