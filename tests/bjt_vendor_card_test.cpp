@@ -1,7 +1,8 @@
-// A vendor Gummel–Poon card (issue 10): it loads, its junctions get the diode's chord fit of
-// their Shockley curves (I_ES = IS/alphaF with NF, I_CS = IS/alphaR with NR, between ifit/10
-// and 10 ifit), `analyze` prints the fitted values and lists the parameters the ideal model
-// ignores, and a switch built on it runs in every method.
+// A vendor Gummel–Poon card (issue 10): it loads, its junctions get the diode's fit of their
+// Shockley curves (I_ES = IS/alphaF with NF, I_CS = IS/alphaR with NR), refitted to the currents
+// they carry in the circuit (issue 13: the least-max-error line over them), `analyze` prints the
+// fitted values and lists the parameters the ideal model ignores, and a switch built on it runs
+// in every method.
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -22,21 +23,34 @@ const char* kSwitch =
     "+ VJE=.75 TR=46.91n TF=411.1p ITF=.6 VTF=1.7 XTF=3 RB=10 mfg=Philips Vceo=40 Icrate=800m)\n"
     ".tran 10u 1m\n.end\n";
 
-// The chord of v(i) = N Vt ln(1 + i/IS) between 1 mA and 100 mA.
-void chord(double is, double n, double& von, double& ron) {
-  const double vt = 0.025864186, i1 = 1e-3, i2 = 0.1;
-  const double v1 = n * vt * std::log1p(i1 / is), v2 = n * vt * std::log1p(i2 / is);
-  ron = (v2 - v1) / (i2 - i1);
-  von = v1 - ron * i1;
+// The least-max-error line over [i1, i2] of the concave v(i) = N Vt ln(1 + i/IS): the chord
+// raised by half its largest distance below the curve, reached where the curve's slope
+// N Vt / (IS + i) equals the chord's.
+void minimax(double is, double n, double i1, double i2, double& von, double& ron) {
+  const double vt = 0.025864186;
+  auto v = [&](double i) { return n * vt * std::log1p(i / is); };
+  ron = (v(i2) - v(i1)) / (i2 - i1);
+  const double i_star = n * vt / ron - is;
+  const double gap = v(i_star) - (v(i1) + ron * (i_star - i1));
+  von = v(i1) - ron * i1 + gap / 2;
 }
 
-std::string fitted_line(const char* junction, double von, double ron) {
-  char buf[200];
-  std::snprintf(buf, sizeof buf,
-                "transistor q1: %s junction fitted to its Shockley curve between 0.001 A and 0.1 A: VON = %.6g V, "
-                "RON = %.6g ohm",
-                junction, von, ron);
-  return buf;
+struct FittedJunctionNote {
+  double i1 = 0, i2 = 0, von = 0, ron = 0;
+  bool found = false;
+};
+
+// "transistor q1: B-E junction fitted to its Shockley curve between I1 A and I2 A (the currents it
+// carries here): VON = V, RON = R ohm"
+FittedJunctionNote fitted_note(const std::string& out, const char* junction) {
+  FittedJunctionNote n;
+  const std::string head = std::string("transistor q1: ") + junction + " junction fitted to its Shockley curve between ";
+  const size_t at = out.find(head);
+  if (at == std::string::npos) return n;
+  n.found = std::sscanf(out.c_str() + at + head.size(),
+                        "%lf A and %lf A (the currents it carries here): VON = %lf V, RON = %lf ohm", &n.i1, &n.i2,
+                        &n.von, &n.ron) == 4;
+  return n;
 }
 
 TEST(BjtVendorCard, LoadsFitsItsJunctionsAndListsWhatTheIdealModelIgnores) {
@@ -46,11 +60,18 @@ TEST(BjtVendorCard, LoadsFitsItsJunctionsAndListsWhatTheIdealModelIgnores) {
   const Result r = run_lcspice("analyze '" + f.string() + "'", dir);
   ASSERT_EQ(r.code, 0) << r.err;
   const double af = 255.9 / 256.9, ar = 6.092 / 7.092;
-  double von_e, ron_e, von_c, ron_c;
-  chord(14.34e-15 / af, 1.0, von_e, ron_e);
-  chord(14.34e-15 / ar, 1.0, von_c, ron_c);
-  EXPECT_NE(r.out.find(fitted_line("B-E", von_e, ron_e)), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find(fitted_line("B-C", von_c, ron_c)), std::string::npos) << r.out;
+  // Each junction's line is the least-max-error one over the currents it carried: the B-E
+  // junction from the base drive's turn-on to saturation (mA), the B-C one in saturation (uA).
+  for (auto [junction, is] : {std::pair{"B-E", 14.34e-15 / af}, std::pair{"B-C", 14.34e-15 / ar}}) {
+    const FittedJunctionNote note = fitted_note(r.out, junction);
+    ASSERT_TRUE(note.found) << junction << "\n" << r.out;
+    EXPECT_LT(note.i1, note.i2) << junction;
+    EXPECT_LT(note.i2, 20e-3) << junction;  // 10 V over 1 kohm at most, far below the 100 mA chord's end
+    double von, ron;
+    minimax(is, 1.0, note.i1, note.i2, von, ron);
+    EXPECT_NEAR(note.von, von, 1e-8 * von) << junction;
+    EXPECT_NEAR(note.ron, ron, 1e-8 * ron) << junction;
+  }
   for (const char* p : {"vaf", "ikf", "ise", "ne", "rb", "rc", "cjc", "tf", "tr", "mfg", "vceo", "icrate"})
     EXPECT_NE(r.out.find(std::string("transistor q1: model parameter ") + p + " is ignored by the ideal model"),
               std::string::npos)
@@ -74,15 +95,23 @@ TEST(BjtVendorCard, LoadsFitsItsJunctionsAndListsWhatTheIdealModelIgnores) {
     ASSERT_EQ(run.code, 0) << method << ": " << run.err;
     const Csv out = parse_csv(read_file(csv));
     int active_rows = 0;
+    std::vector<std::pair<double, double>> loop;  // (junction current, its voltage)
     for (const std::vector<double>& row : out.rows) {
       const double ib = row[3], ic = row[4];
       if (ic <= 1e-9 || row[2] < 1.0) continue;  // cutoff, or saturated
       ++active_rows;
       EXPECT_NEAR(ic / ib, 255.9, 1e-9 * 255.9) << method << " t = " << row[0];
-      // Base loop: v_in = Rb ib + VON + RON (ib + ic).
-      EXPECT_NEAR(row[1], 100e3 * ib + von_e + ron_e * (ib + ic), 1e-9) << method << " t = " << row[0];
+      // Base loop: v_in - Rb ib = VON + RON (ib + ic), one line (each method's own refit).
+      loop.push_back({ib + ic, row[1] - 100e3 * ib});
     }
     EXPECT_GT(active_rows, 5) << method;
+    if (loop.size() < 2) continue;
+    const auto [i0, v0] = loop.front();
+    const auto [i1, v1] = loop.back();
+    const double ron = (v1 - v0) / (i1 - i0), von = v0 - ron * i0;
+    EXPECT_GT(ron, 0) << method;
+    EXPECT_GT(von, 0.4) << method;
+    for (auto [i, v] : loop) EXPECT_NEAR(v, von + ron * i, 1e-9) << method << " i = " << i;
   }
 }
 

@@ -39,8 +39,8 @@ Bjt::Bjt(const Element& element, const Netlist& netlist, const DeviceOptions& op
   alpha_r_ = alpha(card_.br);
   card_e_ = junction_card(card_, Junction::BaseEmitter, area_);
   card_c_ = junction_card(card_, Junction::BaseCollector, area_);
-  law_e_ = resolve_diode_law(card_e_, options.ifit);
-  law_c_ = resolve_diode_law(card_c_, options.ifit);
+  law_e_ = resolve_diode_law(card_e_, options.ifit, junction_range(options, name() + ":be", false));
+  law_c_ = resolve_diode_law(card_c_, options.ifit, junction_range(options, name() + ":bc", false));
   if (card_.smooth) {  // the smooth method: Shockley junctions (smooth_netlist)
     for (auto [card, law] : {std::pair{&card_e_, &law_e_}, std::pair{&card_c_, &law_c_}}) {
       const SmoothDiodeLaw s = smooth_equivalent(*card, *law, card_.smooth->emission,
@@ -88,12 +88,7 @@ void Bjt::stamp(const StampContext& context, Stamps& stamps) const {
   const Layout l = layout();
   auto pair = [&](int local, const char* junction, const DiodeModel& card, const ResolvedDiodeLaw& law) {
     if (local < 0) return;
-    PairLaw p;
-    p.name = name() + ":" + junction;
-    p.element = element_index();
-    p.law = law.law;
-    p.fitted = law.fitted;
-    p.smooth = {card.is, card.n};
+    PairLaw p = junction_pair_law(name() + ":" + junction, element_index(), law, {card.is, card.n});
     p.transfer = true;
     stamps.pairs.push_back({context.branch(local), p});
   };
@@ -184,18 +179,29 @@ NgspiceCards Bjt::ngspice(const NgspiceDeckContext& context) const {
   return cards;
 }
 
+// The junctions' branches carry exactly the junction currents i_DE, i_DC (the transfer sources
+// and the base-emitter capacitance are branches of their own).
+std::vector<FittedJunction> Bjt::fitted_junctions() const {
+  const Layout l = layout();
+  std::vector<FittedJunction> out;
+  if (l.de >= 0 && law_e_.fitted) out.push_back({name() + ":be", false, name() + ":be", 1.0, card_e_, law_e_.law});
+  if (l.dc >= 0 && law_c_.fitted) out.push_back({name() + ":bc", false, name() + ":bc", 1.0, card_c_, law_c_.law});
+  return out;
+}
+
 std::vector<std::string> Bjt::notes() const {
   std::vector<std::string> out;
-  char buf[200];
+  char buf[320];
   std::snprintf(buf, sizeof buf, "transistor %s: %s, alphaF = %.6g, alphaR = %.6g", name().c_str(),
                 card_.pnp ? "PNP" : "NPN", alpha_f_, alpha_r_);
   out.push_back(buf);
   for (auto [tag, law] : {std::pair{"B-E", &law_e_}, std::pair{"B-C", &law_c_}}) {
     if (!law->fitted) continue;
     std::snprintf(buf, sizeof buf,
-                  "transistor %s: %s junction fitted to its Shockley curve between %.3g A and %.3g A: "
-                  "VON = %.6g V, RON = %.6g ohm",
-                  name().c_str(), tag, law->fit_i1, law->fit_i2, law->law.von, law->law.ron);
+                  "transistor %s: %s junction fitted to its Shockley curve between %.9g A and %.9g A (%s): "
+                  "VON = %.9g V, RON = %.9g ohm",
+                  name().c_str(), tag, law->fit_i1, law->fit_i2,
+                  law->circuit_fit ? "the currents it carries here" : ".options ifit", law->law.von, law->law.ron);
     out.push_back(buf);
   }
   for (const std::string& p : card_.ignored)

@@ -35,6 +35,7 @@ class Bjt : public Device {
   std::vector<std::pair<int, double>> terminal_current(char terminal) const override;
   NgspiceCards ngspice(const NgspiceDeckContext& context) const override;
   std::vector<std::string> notes() const override;
+  std::vector<FittedJunction> fitted_junctions() const override;
 
   const BjtModel& card() const { return card_; }
   double alpha_f() const { return alpha_f_; }

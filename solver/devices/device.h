@@ -114,6 +114,17 @@ struct NgspiceCards {
   std::string witness;       // what stands in for the device, when `validate` should say so
 };
 
+// A complementarity pair whose ideal law is a line fitted to the junction's Shockley curve (a
+// card with no VON/RON): diode_refit.h refits it over the currents it carries in the circuit.
+struct FittedJunction {
+  std::string range_key;   // its entry in DeviceOptions::diode_ranges
+  bool breakdown = false;  // its currents are that entry's reverse range (a Zener's pair)
+  std::string probe;       // the element or branch whose current i(probe) it is ...
+  double sign = 1;         // ... times this
+  DiodeModel card;         // the curve's card (a transistor junction's as a diode)
+  IdealDiodeLaw law;       // the line it has now
+};
+
 class Device {
  public:
   explicit Device(const Element& element) : element_(element) {}
@@ -149,6 +160,8 @@ class Device {
   virtual NgspiceCards ngspice(const NgspiceDeckContext& context) const = 0;
   // What `analyze` warns about it (parameters the ideal model ignores, fits).
   virtual std::vector<std::string> notes() const { return {}; }
+  // Its pairs whose laws were fitted to a Shockley curve, for the refit to this circuit's currents.
+  virtual std::vector<FittedJunction> fitted_junctions() const { return {}; }
 
   // ngspice reads the element type from the first letter of the name: `r1` of instance `x1`
   // (flattened "x1.r1") is written `r_x1.r1`.
@@ -163,8 +176,9 @@ class Device {
 // What model formation passes to every device it creates.
 struct DeviceOptions {
   double ifit = 10e-3;  // diode fit current (`.options ifit=`)
-  // Per diode (by element name): the currents it carried in this circuit, over which its card's
-  // Shockley curve is fitted (diode_refit.h); a diode not listed gets the ifit decade pair.
+  // Per fitted junction (FittedJunction::range_key: a diode's element name, a transistor's
+  // "q1:be" / "q1:bc"): the currents it carried in this circuit, over which its card's Shockley
+  // curve is fitted (diode_refit.h); a junction not listed gets the ifit decade pair.
   std::map<std::string, DiodeCurrentRanges> diode_ranges;
   std::optional<double> bjtcap;  // base–emitter capacitance of every transistor (`.options bjtcap=`)
   // The run's time scales (a lossy line's kernel is fitted over the band they span; 0: unknown)

@@ -76,18 +76,19 @@ DiodeModel parallel_card(DiodeModel card, double area) {
   return card;
 }
 
-CurrentRange range_of(const DeviceOptions& options, const std::string& name, bool reverse) {
-  const auto it = options.diode_ranges.find(name);
-  if (it == options.diode_ranges.end()) return {};
-  return reverse ? it->second.reverse : it->second.forward;
-}
 }  // namespace
+
+CurrentRange junction_range(const DeviceOptions& options, const std::string& key, bool breakdown) {
+  const auto it = options.diode_ranges.find(key);
+  if (it == options.diode_ranges.end()) return {};
+  return breakdown ? it->second.reverse : it->second.forward;
+}
 
 Diode::Diode(const Element& element, const Netlist& netlist, const DeviceOptions& options)
     : Device(element),
       card_(parallel_card(model_of(element, netlist), element.value)),
-      law_(resolve_diode_law(card_, options.ifit, range_of(options, element.name, false))) {
-  if (card_.bv) breakdown_ = resolve_breakdown_law(card_, options.ifit, range_of(options, element.name, true));
+      law_(resolve_diode_law(card_, options.ifit, junction_range(options, element.name, false))) {
+  if (card_.bv) breakdown_ = resolve_breakdown_law(card_, options.ifit, junction_range(options, element.name, true));
 }
 
 std::vector<BranchDecl> Diode::branches() const {
@@ -102,8 +103,7 @@ std::vector<std::pair<int, double>> Diode::element_current() const {
   return {{0, 1.0}, {1, -1.0}};  // forward minus breakdown current
 }
 
-namespace {
-PairLaw pair_law(const std::string& name, int element, const ResolvedDiodeLaw& law, SmoothJunction smooth) {
+PairLaw junction_pair_law(const std::string& name, int element, const ResolvedDiodeLaw& law, SmoothJunction smooth) {
   PairLaw pair;
   pair.name = name;
   pair.element = element;
@@ -117,14 +117,21 @@ PairLaw pair_law(const std::string& name, int element, const ResolvedDiodeLaw& l
   pair.smooth = smooth;
   return pair;
 }
-}  // namespace
+
+// i(d) is the forward minus the breakdown current; the two never conduct together.
+std::vector<FittedJunction> Diode::fitted_junctions() const {
+  std::vector<FittedJunction> out;
+  if (law_.fitted) out.push_back({name(), false, name(), 1.0, card_, law_.law});
+  if (breakdown_ && breakdown_->fitted) out.push_back({name(), true, name(), -1.0, card_, breakdown_->law});
+  return out;
+}
 
 void Diode::stamp(const StampContext& context, Stamps& stamps) const {
-  stamps.pairs.push_back({context.branch(0), pair_law(name(), element_index(), law_, {card_.is, card_.n})});
+  stamps.pairs.push_back({context.branch(0), junction_pair_law(name(), element_index(), law_, {card_.is, card_.n})});
   // The smooth method's breakdown junction: I = IBV (exp((v_r - BV) / (N Vt)) - 1) over the
   // reverse voltage v_r beyond the law's threshold BV, ngspice's breakdown branch (to IBV).
   if (breakdown_)
-    stamps.pairs.push_back({context.branch(1), pair_law(name() + ":bv", element_index(), *breakdown_,
+    stamps.pairs.push_back({context.branch(1), junction_pair_law(name() + ":bv", element_index(), *breakdown_,
                                                         {card_.ibv, card_.n})});
 }
 

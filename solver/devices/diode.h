@@ -30,6 +30,12 @@ ResolvedDiodeLaw resolve_diode_law(const DiodeModel& model, double ifit, const C
 //    decade pair or over the reverse currents carried.
 ResolvedDiodeLaw resolve_breakdown_law(const DiodeModel& model, double ifit, const CurrentRange& range = {});
 
+// The pair of a junction with law `law` (its fit carried along for `analyze` and the warnings).
+PairLaw junction_pair_law(const std::string& name, int element, const ResolvedDiodeLaw& law, SmoothJunction smooth);
+
+// The range a junction's current was given (DeviceOptions::diode_ranges), or none.
+CurrentRange junction_range(const DeviceOptions& options, const std::string& key, bool breakdown);
+
 double shockley_voltage(const DiodeModel& model, double current);
 
 // The smooth diode that stands in for an ideal one (ngspice decks in `validate`, and the smooth
@@ -67,6 +73,7 @@ class Diode : public Device {
   bool current_probed_by_default() const override { return true; }
   NgspiceCards ngspice(const NgspiceDeckContext& context) const override;
   std::vector<std::string> notes() const override;
+  std::vector<FittedJunction> fitted_junctions() const override;
 
   std::vector<std::pair<int, double>> element_current() const override;
 

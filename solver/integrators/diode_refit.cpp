@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "solver/devices/bjt.h"
 #include "solver/devices/diode.h"
 #include "solver/model/netlist_options.h"
 #include "solver/model/numerical_failure.h"
@@ -24,15 +25,33 @@ CurrentRange conducting_range(std::vector<double> samples, double low_quantile) 
 
 namespace {
 
-struct Refitted {
-  const Diode* diode;
-  int column;  // of i(diode) in the pass's rows
-};
+bool moved(const IdealDiodeLaw& before, const IdealDiodeLaw& after, const DiodeRefitOptions& o) {
+  return std::abs(after.von - before.von) > o.von_tolerance ||
+         std::abs(after.ron - before.ron) > o.ron_tolerance * std::abs(before.ron);
+}
 
-bool moved(const ResolvedDiodeLaw& before, const ResolvedDiodeLaw& after, const DiodeRefitOptions& o) {
-  if (!before.fitted) return false;
-  return std::abs(after.law.von - before.law.von) > o.von_tolerance ||
-         std::abs(after.law.ron - before.law.ron) > o.ron_tolerance * std::abs(before.law.ron);
+ResolvedDiodeLaw resolve(const FittedJunction& j, double ifit, const CurrentRange& range) {
+  return j.breakdown ? resolve_breakdown_law(j.card, ifit, range) : resolve_diode_law(j.card, ifit, range);
+}
+
+// A D card with neither VON nor RON, or a transistor card whose junction has neither: the only
+// cards whose laws are fitted (no model is formed for a circuit without any).
+bool has_fitted_card(const Netlist& netlist) {
+  return std::any_of(netlist.elements.begin(), netlist.elements.end(), [&](const Element& el) {
+    if (el.kind == ElementKind::Diode) {
+      const auto card = netlist.diode_models.find(el.model);
+      return card != netlist.diode_models.end() && !card->second.von && !card->second.ron;
+    }
+    if (el.kind == ElementKind::Bjt) {
+      const auto card = netlist.bjt_models.find(el.model);
+      if (card == netlist.bjt_models.end()) return false;
+      for (Junction j : {Junction::BaseEmitter, Junction::BaseCollector}) {
+        const DiodeModel d = junction_card(card->second, j, 1.0);
+        if (!d.von && !d.ron) return true;
+      }
+    }
+    return false;
+  });
 }
 
 }  // namespace
@@ -40,30 +59,25 @@ bool moved(const ResolvedDiodeLaw& before, const ResolvedDiodeLaw& after, const 
 DiodeRefitResult refit_diodes(const Netlist& netlist, const ModelOptions& model_options,
                               const TransientOptions& options, const DiodeRefitOptions& refit) {
   DiodeRefitResult result;
-  // No D card without VON/RON (or with BV and no VON/RON/Rrev): nothing to fit, no model to form.
-  const bool any = std::any_of(netlist.elements.begin(), netlist.elements.end(), [&](const Element& el) {
-    if (el.kind != ElementKind::Diode) return false;
-    const auto card = netlist.diode_models.find(el.model);
-    return card != netlist.diode_models.end() && !card->second.von && !card->second.ron;
-  });
-  if (!any) return result;
+  if (!has_fitted_card(netlist)) return result;
   const double cpu0 = process_cpu_seconds();
   ModelOptions mo = model_options;
   mo.ifit = read_netlist_options(netlist).ifit.value_or(mo.ifit);  // as CircuitModel::build reads it
+  // The ranges the last pass that reached TSTOP ran with: the fallback when a later pass fails.
+  std::map<std::string, DiodeCurrentRanges> completed = mo.diode_ranges;
   for (int pass = 1; pass <= refit.max_passes; ++pass) {
     const CircuitModel model = CircuitModel::build(netlist, mo);
-    std::vector<Refitted> diodes;
+    std::vector<FittedJunction> junctions;
     std::vector<Probe> probes;
-    for (const std::shared_ptr<Device>& d : model.devices()) {
-      const auto* diode = dynamic_cast<const Diode*>(d.get());
-      if (!diode || !(diode->law().fitted || (diode->breakdown() && diode->breakdown()->fitted))) continue;
-      Probe p;
-      p.kind = Probe::Kind::ElementCurrent;
-      p.a = diode->name();
-      diodes.push_back({diode, static_cast<int>(probes.size())});
-      probes.push_back(p);
-    }
-    if (diodes.empty()) break;
+    for (const std::shared_ptr<Device>& d : model.devices())
+      for (FittedJunction& j : d->fitted_junctions()) {
+        Probe p;
+        p.kind = Probe::Kind::ElementCurrent;
+        p.a = j.probe;
+        probes.push_back(p);
+        junctions.push_back(std::move(j));
+      }
+    if (junctions.empty()) break;
     const OutputMap outputs = model.output_map(probes);
     MemorySink sink;
     TransientOptions quiet = options;
@@ -73,30 +87,21 @@ DiodeRefitResult refit_diodes(const Netlist& netlist, const ModelOptions& model_
       run_transient(model, outputs, quiet, sink);
     } catch (const NumericalFailure& e) {
       result.failure = e.what();
+      mo.diode_ranges = completed;
       break;
     }
-    // i(d) is the forward minus the breakdown current; the two never conduct together.
+    completed = mo.diode_ranges;  // before this pass's refit
     bool any_moved = false;
-    for (const Refitted& r : diodes) {
-      std::vector<double> forward, reverse;
-      for (const Eigen::VectorXd& row : sink.rows) {
-        forward.push_back(row(r.column));
-        reverse.push_back(-row(r.column));
-      }
-      DiodeCurrentRanges& ranges = mo.diode_ranges[r.diode->name()];
-      if (r.diode->law().fitted) {
-        const CurrentRange f = conducting_range(forward, refit.low_quantile);
-        if (!f.empty()) ranges.forward = f;
-      }
-      if (r.diode->breakdown() && r.diode->breakdown()->fitted) {
-        const CurrentRange b = conducting_range(reverse, refit.low_quantile);
-        if (!b.empty()) ranges.reverse = b;
-      }
-      const DiodeModel& card = r.diode->card();
-      if (moved(r.diode->law(), resolve_diode_law(card, mo.ifit, ranges.forward), refit)) any_moved = true;
-      if (r.diode->breakdown() &&
-          moved(*r.diode->breakdown(), resolve_breakdown_law(card, mo.ifit, ranges.reverse), refit))
-        any_moved = true;
+    for (size_t k = 0; k < junctions.size(); ++k) {
+      const FittedJunction& j = junctions[k];
+      std::vector<double> carried;
+      carried.reserve(sink.rows.size());
+      for (const Eigen::VectorXd& row : sink.rows) carried.push_back(j.sign * row(static_cast<int>(k)));
+      const CurrentRange range = conducting_range(carried, refit.low_quantile);
+      if (range.empty()) continue;  // it did not conduct: its previous range stays
+      DiodeCurrentRanges& ranges = mo.diode_ranges[j.range_key];
+      (j.breakdown ? ranges.reverse : ranges.forward) = range;
+      if (moved(j.law, resolve(j, mo.ifit, range).law, refit)) any_moved = true;
     }
     if (!any_moved) {
       result.converged = true;
@@ -112,7 +117,7 @@ std::string DiodeRefitResult::BriefReport() const {
   char buf[200];
   std::snprintf(buf, sizeof buf, "diode refit: %d transient pass%s, %s, %.3g s CPU", passes,
                 passes == 1 ? "" : "es", converged ? "converged" : "not converged", cpu_seconds);
-  return buf;
+  return buf + (failure.empty() ? "" : "; a pass failed (" + failure + ")");
 }
 
 // 5 % of a junction's voltage is about 30 mV at 0.6 V, 1.2 Vt: an exponential junction's

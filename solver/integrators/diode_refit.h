@@ -10,13 +10,18 @@
 //   line over [the 10 % quantile, the max] of the currents it carried in pass k while
 //   conducting (samples above 1e-6 of its peak; its off phases carry exactly 0 A);
 //   stop when no refitted law moves by more than 1 mV in VON and 2 % in RON, or after
-//   max_passes transients.
+//   max_passes transients, or when a pass fails.
+//
+// When a pass fails, the result is the ranges the last pass that ran to TSTOP was built with: the
+// final run repeats a model that ran, so refitting does not make a circuit fail that ran with the
+// default fit (a TTL adder's fourth pass has no operating point).
 //
 // The passes run the final run's own method and options (what the final run will see is what
 // the fit was made from; a cheaper method would fit to a different waveform), without writing
-// output rows anywhere but memory. A diode that does not conduct in a pass keeps its previous
-// range. Cards with VON or RON are never refitted; transistor junctions keep the ifit chord
-// (their currents are not probed separately; a transistor's junction fit is left for later).
+// output rows anywhere but memory. A junction that does not conduct in a pass keeps its previous
+// range. Cards with VON or RON are never refitted. A transistor's junctions are refitted as
+// diodes are (Device::fitted_junctions: its B-E and B-C junction currents, without the transfer
+// currents or the base-emitter capacitance).
 #pragma once
 
 #include <map>
