@@ -1,0 +1,28 @@
+// Ideal switches (S, W) with the event method (issue 13). A configuration of the switches is a
+// discrete mode of the circuit, like a diode's active set: inside it the event method integrates
+// that configuration's model exactly, with each switch's control a guard (SwitchGuards,
+// event_driven.h) whose zero, where the control crosses VT + VH (an off switch) or VT - VH (an
+// on one), is located by the same bisection as a mode change (to --rtol x TSTEP). There the run
+// continues in the next configuration's model (SwitchFamily) from the same x, its complementarity
+// mode chosen afresh. Configurations that ask at once for another are passed through at the same
+// instant; more than 64 changes there are chattering (NumericalFailure), as with fixed steps.
+#pragma once
+
+#include <Eigen/Dense>
+
+#include "solver/integrators/method_registry.h"
+#include "solver/integrators/output_sink.h"
+#include "solver/integrators/transient.h"
+#include "solver/model/switch_family.h"
+
+namespace lcs {
+
+// From configuration `config` and state x0 at t = 0 to options.tstop, rows of the probes named in
+// `outputs` (each configuration writes them through its own output map). `entry` makes the
+// guarded event method (MethodEntry::make_guarded). Throws NumericalFailure; `summary` then
+// holds the statistics so far.
+void run_switched_event(SwitchFamily& family, const SwitchConfig& config, const OutputMap& outputs,
+                        const TransientOptions& options, const MethodEntry& entry, const Eigen::VectorXd& x0,
+                        OutputSink& sink, TransientSummary& summary, double cpu0);
+
+}  // namespace lcs
