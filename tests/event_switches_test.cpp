@@ -68,8 +68,8 @@ TEST(EventSwitches, RcChargedThroughARampedSwitchIsTheClosedForm) {
 }
 
 // Implicit Euler at h = 0.1 us against the event method on the same grid: the RC's first-order
-// global error (h / 2 tau) (t / tau) e^(-t / tau) 5 V <= 9.2e-5 V, and the switching instant,
-// exact for this linear control in both.
+// global error (h / 2 tau) (t / tau) e^(-t / tau) 5 V, at most 9.197e-5 V at t - t_on = tau
+// (measured 9.196e-5 V), and the switching instant, exact for this linear control in both.
 TEST(EventSwitches, EventAgreesWithEulerAtASmallStep) {
   const fs::path deck = write_deck("ramped_rc_euler", kRampedRc);
   const Csv ev = run_csv(deck, "event", "--step 0.1u --probe 'v(out)'");
@@ -176,6 +176,57 @@ S1 c 0 c 0 swr
     if (t[k] <= t1) continue;
     ASSERT_TRUE(v[k] > 1.5 - 1e-9 && v[k] < 3.5 + 1e-9) << t[k] << " " << v[k];
   }
+}
+
+// A buck converter: S1 (driven by a 100 kHz PULSE gate, 10 ns edges) and a freewheeling diode D1
+// on an LC filter: switch changes and diode mode changes interleave. The switch closes where the
+// gate rises through VT + VH = 3 V (6 ns into each rising edge) and opens where it falls through
+// 2 V (4.016 us into each period): rows there, to 1e-9. Between them the event method is exact, so
+// implicit Euler converges to it at first order: its distance to the event rows halves with h
+// (measured: 9.5e-5 V and 2.4e-5 A at h = 1 ns), away from the switching rows (where the two
+// methods' rows fall on either side of the same instant).
+TEST(EventSwitches, BuckConverterSwitchAndDiodeEulerConvergesToEvent) {
+  const fs::path deck = write_deck("buck", R"(buck converter: ideal switch, freewheeling diode
+VIN in 0 DC 12
+VG g 0 PULSE(0 5 0 10n 10n 4u 10u)
+S1 in sw g 0 swm
+D1 0 sw dfw
+L1 sw out 100u
+C1 out 0 10u
+RL out 0 5
+.model swm SW(VT=2.5 VH=0.5 RON=0.05 ROFF=1e9)
+.model dfw D(VON=0.5 RON=0.01)
+.tran 1u 100u UIC
+.end
+)");
+  const Csv ev = run_csv(deck, "event", "--probe 'v(out),i(l1)'");
+  const std::vector<double> te = column(ev, "time"), ve = column(ev, "v(out)"), ie = column(ev, "i(l1)");
+  for (int k = 0; k < 10; ++k) {
+    const double on = k * 10e-6 + 6e-9, off = k * 10e-6 + 4.016e-6;
+    EXPECT_NEAR(te[row_at(te, on)], on, kTimeRel * on) << k;
+    EXPECT_NEAR(te[row_at(te, off)], off, kTimeRel * off) << k;
+  }
+  // Euler's largest distance to the event method's rows at the 1 us grid times.
+  auto distance = [&](const char* step) {
+    const Csv eu = run_csv(deck, "euler", std::string("--step ") + step + " --probe 'v(out),i(l1)'");
+    const std::vector<double> tu = column(eu, "time"), vu = column(eu, "v(out)"), iu = column(eu, "i(l1)");
+    std::pair<double, double> worst{0, 0};
+    size_t j = 0;
+    for (size_t k = 0; k < te.size(); ++k) {
+      const double grid = std::round(te[k] / 1e-6) * 1e-6;
+      if (std::abs(te[k] - grid) > 1e-15) continue;  // an event row
+      while (j < tu.size() && tu[j] < te[k] - 1e-15) ++j;
+      if (j == tu.size() || std::abs(tu[j] - te[k]) > 1e-15) continue;
+      worst.first = std::max(worst.first, std::abs(vu[j] - ve[k]));
+      worst.second = std::max(worst.second, std::abs(iu[j] - ie[k]));
+    }
+    return worst;
+  };
+  const auto fine = distance("1n"), coarse = distance("2n");
+  EXPECT_LT(fine.first, 2e-4);
+  EXPECT_LT(fine.second, 5e-5);
+  EXPECT_NEAR(coarse.first / fine.first, 2.0, 0.2);
+  EXPECT_NEAR(coarse.second / fine.second, 2.0, 0.2);
 }
 
 // S1 is controlled by v(c) = v(r) - v(out): the ramp r (2 V/ms) brings v(c) to VT = 1 V at 0.5 ms
