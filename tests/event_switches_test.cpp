@@ -110,6 +110,37 @@ R1 out 0 1k
   }
 }
 
+// A control that jumps: PULSE with zero edges steps v(c) 0 -> 1 V at 0.5 ms and back at 1.5 ms,
+// past VT + VH = 0.6 V and VT - VH = 0.4 V at the source's breakpoints themselves. S1 (RON = 1 k)
+// closes there: C1 = 1 uF charges toward 2.5 V with tau = 0.5 ms (RON || R1), then discharges
+// through R1 || ROFF (tau 1 ms) toward 5 nV. Every row is that closed form (the breakpoint is the
+// switching instant, not a bisection bracket after it).
+TEST(EventSwitches, ControlJumpingAtASourceBreakpoint) {
+  const fs::path deck = write_deck("jump", R"(switch on a jumping control
+VDD dd 0 DC 5
+VC c 0 PULSE(0 1 0.5m 0 0 1m 2m)
+S1 dd out c 0 sw1
+R1 out 0 1k
+C1 out 0 1u
+.model sw1 SW(VT=0.5 VH=0.1 RON=1k ROFF=1e12)
+.tran 10u 2m UIC
+.end
+)");
+  const Csv csv = run_csv(deck, "event", "--probe 'v(out)' --stats");
+  const std::vector<double> t = column(csv, "time"), v = column(csv, "v(out)");
+  const double roff = 1e12, R = 1e3, C = 1e-6;
+  const double v_off = 5 * R / (R + roff), tau_off = C * R * roff / (R + roff);
+  const double v0 = v_off * -std::expm1(-0.5e-3 / tau_off);
+  const double v1 = 2.5 - (2.5 - v0) * std::exp(-1e-3 / 0.5e-3);
+  auto expected = [&](double s) {
+    if (s <= 0.5e-3) return v_off * -std::expm1(-s / tau_off);
+    if (s <= 1.5e-3) return 2.5 - (2.5 - v0) * std::exp(-(s - 0.5e-3) / 0.5e-3);
+    return v_off + (v1 - v_off) * std::exp(-(s - 1.5e-3) / tau_off);
+  };
+  EXPECT_EQ(t.size(), 201u);  // the grid only: both changes fall on grid times
+  for (size_t k = 0; k < t.size(); ++k) ASSERT_NEAR(v[k], expected(t[k]), 1e-11) << t[k];
+}
+
 // A W switch: i(vsense) = v(in)/1k ramps 0 -> 1 mA over 1 ms; IT = 0.5 mA, IH = 0.105 mA: on at
 // 0.605 mA, t = 0.605 ms. The output: 5 * 1000/1001 V on, 5 * 1000 / (1e12 + 1000) V off.
 TEST(EventSwitches, CurrentControlledSwitch) {

@@ -963,7 +963,15 @@ std::optional<GuardCrossing> EventDriven::RunSegment(const SegmentStart& start, 
         // loop, the flux of an inductor/source cutset), and x_phys jumps by Gamma du
         // (circuit_model.h), as in the time-stepping methods.
         if (history) history->mark_break(st.t);
-        if (restart(st.t, r.state(), nullptr)) {
+        const bool switched = restart(st.t, r.state(), nullptr);
+        // A jump of a source can put a switch's control past its threshold: the configuration
+        // changes at the breakpoint itself (the next segment takes this stop again).
+        if (std::vector<int> crossed = r.guards_below(r.X); !crossed.empty()) {
+          GuardCrossing c = crossing(std::move(crossed));
+          c.at.t = st.t;
+          return c;
+        }
+        if (switched) {
           ++r.stats.mode_switches;
           ++r.stats.events;
           emit_now(st.t, true);
