@@ -20,7 +20,7 @@
 #include <Eigen/Dense>
 
 #include "solver/integrators/continuous_method.h"
-#include "solver/integrators/dyadic_time.h"
+#include "solver/integrators/guarded_method.h"
 
 namespace lcs {
 
@@ -35,48 +35,18 @@ struct EventOptions {
   std::size_t exponential_cache_bytes = std::size_t(256) << 20;
 };
 
-// Ideal switches (S, W) as the event method's guards (switched_event.h): guard k is
-// sign_k (control_k - threshold_k), the control a linear output G x + H z + J u + K u' of one
-// configuration's model, and stays positive while switch k keeps its state (off: VT + VH -
-// control; on: control - (VT - VH)). A guard falling below zero is an event, located by the
-// same bisection as a mode change, that ends the run segment: the configuration changes there.
-struct SwitchGuards {
-  Eigen::MatrixXd G, H, J, K;
-  Eigen::VectorXd threshold, sign;
-};
-
-// Where a run segment starts: a time of the run's dyadic grid (of the output step h0) and its
-// value in seconds, the state x, and the sources' state reached there by the segment before
-// (sigma of `signature`; empty: read from the waveforms at t).
-struct SegmentStart {
-  DyadicTime at;
-  double t = 0;
-  Eigen::VectorXd x;
-  std::string signature;
-  Eigen::VectorXd sigma;
-};
-
-// Where a segment ended: the first point of the located bracket past a guard's zero (as for a
-// mode change), the state and sources there, and the guards below zero at it.
-struct GuardCrossing {
-  SegmentStart at;
-  std::vector<int> crossed;
-};
-
-class EventDriven : public ContinuousMethod {
+class EventDriven : public ContinuousMethod, public GuardedMethod {
  public:
   EventDriven(const LcsProblem& model, const EventOptions& options);
   ~EventDriven() override;
   StepperStats stats() const override;
 
-  // The switch guards of the configuration this model is (before the first segment).
-  void set_guards(const SwitchGuards& guards);
-  // From `start` to grid.tstop, or to the first guard crossing (returned; no row is emitted
-  // there, the next configuration's segment writes it). A guard already below zero at the
-  // start (beyond rounding) is a crossing at the start itself. Modes and exponentials are kept
-  // from one segment to the next on the same grid.
+  // Guards as rows over the mode's [x; sigma], located by the bisection of a mode change to
+  // 2^-stop_level TSTEP; a crossing is the first point of the bracket past the zero. Modes and
+  // exponentials are kept from one segment to the next on the same grid.
+  void set_guards(const SwitchGuards& guards) override;
   std::optional<GuardCrossing> RunSegment(const SegmentStart& start, const OutputGrid& grid, const Emit& emit,
-                                          const Progress& progress = {});
+                                          const Progress& progress = {}) override;
 
  protected:
   void DoRun(const Eigen::VectorXd& x0, const OutputGrid& grid, const Emit& emit,

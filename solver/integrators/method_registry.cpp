@@ -105,15 +105,19 @@ std::vector<MethodEntry> make_table() {
   smooth.smooth_model = true;
   smooth.history_degree = 4;  // IDA's BDF runs up to order 5
   smooth.smooth_reference = true;
+  smooth.make_guarded = [](const LcsProblem& m, const MethodOptions& o) {
+    return std::make_unique<SmoothMethod>(m, o);
+  };
+  // Switch guards are IDA root functions: a circuit without states has no IDA run.
   smooth.applies = [](const LcsProblem& problem, std::string* why) {
     const auto* circuit = dynamic_cast<const CircuitModel*>(&problem);
-    if (!circuit) return true;
+    if (!circuit || problem.lcs().states() > 0) return true;
     const SwitchFamily switches(*circuit);
     if (switches.empty()) return true;
     if (why)
       *why = "switch " + switches.switches().front().name +
-             ": the smooth method does not locate switch changes; use --method event, euler, theta, "
-             "radau3 or radau5";
+             ": the smooth method locates switch changes only in a circuit with states (capacitors "
+             "or inductors); use --method event, euler, theta, radau3 or radau5";
     return false;
   };
   table.push_back(smooth);

@@ -12,7 +12,7 @@
 
 namespace lcs {
 
-class EventDriven;
+class GuardedMethod;
 
 struct MethodOptions {
   double theta = 0.5;  // `--theta`, used by "theta"
@@ -57,10 +57,10 @@ struct MethodEntry {
   // Whether the method can integrate this circuit; null: every circuit. On false, *why says
   // which element stops it and what to use instead (event: an SFFM source, source_system.h).
   std::function<bool(const LcsProblem&, std::string* why)> applies;
-  // Adaptive methods that locate switch changes (S, W) themselves: one guarded event method per
-  // configuration of the switches (switched_event.h). Fixed-step methods handle switches by
+  // Adaptive methods that locate switch changes (S, W) themselves: one guarded method per
+  // configuration of the switches (guarded_method.h, switched_event.h). Fixed-step methods handle switches by
   // interpolation (transient.cpp); an adaptive method without this refuses them in `applies`.
-  std::function<std::unique_ptr<EventDriven>(const LcsProblem&, const MethodOptions&)> make_guarded;
+  std::function<std::unique_ptr<GuardedMethod>(const LcsProblem&, const MethodOptions&)> make_guarded;
 
   bool adaptive() const { return static_cast<bool>(make_continuous); }
   bool fixed_step() const { return static_cast<bool>(make_stepper); }

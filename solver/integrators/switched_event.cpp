@@ -5,7 +5,7 @@
 #include <optional>
 
 #include "solver/integrators/distinct_rows.h"
-#include "solver/integrators/event_driven.h"
+#include "solver/integrators/guarded_method.h"
 #include "solver/integrators/row_writer.h"
 #include "solver/model/numerical_failure.h"
 
@@ -53,7 +53,7 @@ void run_switched_event(SwitchFamily& family, const SwitchConfig& start_config, 
   // visit (an oscillator cycles through a few configurations).
   struct Configuration {
     const CircuitModel* model = nullptr;
-    std::unique_ptr<EventDriven> method;
+    std::unique_ptr<GuardedMethod> method;
     OutputMap outputs;
     std::unique_ptr<RowWriter> writer;
   };
