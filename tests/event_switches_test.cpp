@@ -260,6 +260,27 @@ RL out 0 5
   EXPECT_NEAR(coarse.second / fine.second, 2.0, 0.2);
 }
 
+// The relaxation oscillator against ngspice (validate, its default method event): ngspice
+// changes the switch at one of its time points, so its period depends on its step; at
+// --max-step 1e-10 (about 1e-4 of the 86 ns discharge per switching) every probe stays inside
+// the tube over four periods (4.9e-5 of v(c)'s range outside it, measured; at 1e-9 the phase
+// has drifted 13 % of the range out by 38 us).
+TEST(EventSwitches, RelaxationOscillatorAgreesWithNgspice) {
+  const fs::path deck = write_deck("relax_validate", R"(relaxation oscillator
+VDD dd 0 DC 5
+R1 dd c 10k
+C1 c 0 1n
+S1 c 0 c 0 swr
+.model swr SW(VT=2.5 VH=1 RON=100 ROFF=1e12)
+.tran 0.1u 40u UIC
+.end
+)");
+  const Result r = run_lcspice("validate '" + deck.string() + "' --max-step 1e-10", deck.parent_path());
+  EXPECT_EQ(r.code, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("lcspice: ideal diodes, event,"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("PASS: every probe within 0.02 of its range"), std::string::npos) << r.out;
+}
+
 // S1 is controlled by v(c) = v(r) - v(out): the ramp r (2 V/ms) brings v(c) to VT = 1 V at 0.5 ms
 // + 2.5 ps (v(out) = 5 nV through ROFF), S1 closes, the output jumps to 5 V and the control to
 // -4 V: S1 opens at once, the control is back at 1 V, and so on at one instant. Both kinds of
