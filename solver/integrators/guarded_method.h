@@ -1,5 +1,5 @@
 // Adaptive methods that integrate one configuration of a circuit's switches at a time
-// (switched_event.h): they watch the switches' controls as guards and end a run segment where
+// (switched_adaptive.h): they watch the switches' controls as guards and end a run segment where
 // one crosses its threshold, so that the next configuration's model continues from there.
 #pragma once
 
@@ -15,7 +15,7 @@
 
 namespace lcs {
 
-// Ideal switches (S, W) as guards of an adaptive method (switched_event.h): guard k is
+// Ideal switches (S, W) as guards of an adaptive method (switched_adaptive.h): guard k is
 // sign_k (control_k - threshold_k), the control a linear output G x + H z + J u + K u' of one
 // configuration's model, and stays positive while switch k keeps its state (off: VT + VH -
 // control; on: control - (VT - VH)). A guard falling below zero is an event, located as the

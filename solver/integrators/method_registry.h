@@ -58,8 +58,9 @@ struct MethodEntry {
   // which element stops it and what to use instead (event: an SFFM source, source_system.h).
   std::function<bool(const LcsProblem&, std::string* why)> applies;
   // Adaptive methods that locate switch changes (S, W) themselves: one guarded method per
-  // configuration of the switches (guarded_method.h, switched_event.h). Fixed-step methods handle switches by
-  // interpolation (transient.cpp); an adaptive method without this refuses them in `applies`.
+  // configuration of the switches (guarded_method.h, switched_adaptive.h). Fixed-step methods
+  // handle switches by interpolation (transient.cpp); where an adaptive method cannot, its
+  // `applies` says so.
   std::function<std::unique_ptr<GuardedMethod>(const LcsProblem&, const MethodOptions&)> make_guarded;
 
   bool adaptive() const { return static_cast<bool>(make_continuous); }

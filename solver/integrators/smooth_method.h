@@ -32,7 +32,7 @@ class SmoothMethod : public ContinuousMethod, public GuardedMethod {
   ~SmoothMethod() override;
   StepperStats stats() const override { return stats_; }
 
-  // Switches (switched_event.h): the guards are IDA root functions after the pairs', falling
+  // Switches (switched_adaptive.h): the guards are IDA root functions after the pairs', falling
   // through zero only; a root among them ends the segment. Circuits with states only.
   void set_guards(const SwitchGuards& guards) override;
   std::optional<GuardCrossing> RunSegment(const SegmentStart& start, const OutputGrid& grid, const Emit& emit,

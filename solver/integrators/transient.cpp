@@ -4,7 +4,7 @@
 
 #include "solver/integrators/distinct_rows.h"
 #include "solver/integrators/row_writer.h"
-#include "solver/integrators/switched_event.h"
+#include "solver/integrators/switched_adaptive.h"
 
 #include <algorithm>
 #include <cmath>
@@ -350,7 +350,7 @@ TransientSummary run_transient(const CircuitModel& model, const OutputMap& outpu
       InitialState init = initial_state(switches.model(start), options.uic, 0.0);
       summary.warnings = init.warnings;
       if (entry.make_guarded)
-        run_switched_event(switches, start, outputs, options, entry, init.x, sink, summary, cpu0);
+        run_switched_adaptive(switches, start, outputs, options, entry, init.x, sink, summary, cpu0);
       else
         run_switched_fixed_step(switches, start, outputs, options, entry, init.x, init.z, sink, summary, cpu0);
       sink.finish();

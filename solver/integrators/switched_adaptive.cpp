@@ -1,8 +1,11 @@
-#include "solver/integrators/switched_event.h"
+#include "solver/integrators/switched_adaptive.h"
 
+#include <algorithm>
+#include <cstdint>
 #include <map>
 #include <memory>
 #include <optional>
+#include <string>
 
 #include "solver/integrators/distinct_rows.h"
 #include "solver/integrators/guarded_method.h"
@@ -44,13 +47,13 @@ SwitchGuards guards_of(const SwitchFamily& family, const CircuitModel& model, co
 
 }  // namespace
 
-void run_switched_event(SwitchFamily& family, const SwitchConfig& start_config, const OutputMap& outputs,
-                        const TransientOptions& options, const MethodEntry& entry, const Eigen::VectorXd& x0,
-                        OutputSink& sink, TransientSummary& summary, double cpu0) {
+void run_switched_adaptive(SwitchFamily& family, const SwitchConfig& start_config, const OutputMap& outputs,
+                           const TransientOptions& options, const MethodEntry& entry, const Eigen::VectorXd& x0,
+                           OutputSink& sink, TransientSummary& summary, double cpu0) {
   std::vector<Probe> probes;
   for (const std::string& name : outputs.names) probes.push_back(parse_probe(name, {}));
-  // One event method per configuration visited: its modes and exponentials serve every later
-  // visit (an oscillator cycles through a few configurations).
+  // One guarded method per configuration visited: the event method's modes and exponentials
+  // serve every later visit (an oscillator cycles through a few configurations).
   struct Configuration {
     const CircuitModel* model = nullptr;
     std::unique_ptr<GuardedMethod> method;
