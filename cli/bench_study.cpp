@@ -171,18 +171,21 @@ CircuitStudy study_circuit(const std::string& path, const std::string& probe_lis
   study.ideal_reference_check = compare(ref_check.sink, ref.sink, ref_scale, h);
 
   // The smooth reference: the same circuit with Shockley diodes, as ngspice gets it.
+  // None where the smooth method does not apply (switches): ngspice is then compared with the
+  // ideal reference, as without a smooth method.
   const MethodEntry* smooth_entry = smooth_reference_method();
-  const bool have_smooth = smooth_entry != nullptr;
-  const std::string smooth_ref = have_smooth ? smooth_entry->name : "";
   SmoothingOptions smoothing;
   study.emission = smoothing.emission;
   Prepared smooth;
+  if (smooth_entry) smooth = prepare(smooth_netlist(netlist, smoothing));
+  const bool have_smooth =
+      smooth_entry != nullptr && (!smooth_entry->applies || smooth_entry->applies(*smooth.model, nullptr));
+  const std::string smooth_ref = have_smooth ? smooth_entry->name : "";
   Timed sref;
   std::vector<double> sref_scale;
   study.smooth_reference_check = kNaN;
   if (have_smooth) {
     report("reference (" + smooth_ref + ")", 0.05);
-    smooth = prepare(smooth_netlist(netlist, smoothing));
     smooth.outputs = output_map_or_exit(*smooth.model, probes);
     try {
       sref = run(smooth, smooth_ref, h, 1e-10, 1e-13, {}, 0);

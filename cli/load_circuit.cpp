@@ -55,14 +55,6 @@ const Element* first_switch(const Netlist& netlist) {
   return nullptr;
 }
 
-void refuse_switches(const Netlist& netlist, const std::string& method) {
-  if (const Element* el = first_switch(netlist))
-    throw CliError(kExitNetlist, NetlistError(el->loc, "switch " + el->name + ": method " + method +
-                                                           " does not locate switch changes; use --method euler, "
-                                                           "theta, radau3 or radau5")
-                                     .formatted());
-}
-
 std::vector<Probe> parse_probe_list(const std::string& list) {
   std::vector<Probe> probes;
   int depth = 0;

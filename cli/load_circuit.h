@@ -21,11 +21,8 @@ std::vector<Probe> parse_probe_list(const std::string& list);
 // The netlist's probes, else the model's defaults.
 std::vector<Probe> probes_for(const Netlist& netlist, const CircuitModel& model,
                               const std::string& cli_list);
-// Switches are integrated by the fixed-step methods only (transient.cpp): exit 2 at the first
-// switch card for an adaptive `method`.
 // The netlist's first S or W element; nullptr: none.
 const Element* first_switch(const Netlist& netlist);
-void refuse_switches(const Netlist& netlist, const std::string& method);
 OutputMap output_map_or_exit(const CircuitModel& model, const std::vector<Probe>& probes);
 void warn(const std::string& text);  // "lcspice: warning: ..." on stderr
 

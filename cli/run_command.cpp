@@ -185,13 +185,8 @@ int run_command(const RunArgs& args) {
   if (args.method.empty() && args.diode != "shockley" && !deck_names_method) {
     std::string why;
     options.method = default_method_for(model, &why).name;
-    if (const Element* s = first_switch(netlist); s && method_of(options).adaptive()) {
-      options.method = fixed_step_default_method().name;
-      why = "switch " + s->name + ": the event method does not locate switch changes";
-    }
     if (!why.empty()) note("method " + options.method + ": the default method does not apply (" + why + ")");
   }
-  if (method_of(options).adaptive()) refuse_switches(netlist, options.method);
   // A method that cannot integrate this circuit is a usage error (the netlist is fine, as another
   // method shows), like --diode shockley with a complementarity method.
   std::string not_applicable;

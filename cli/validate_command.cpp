@@ -351,7 +351,6 @@ int validate_with_faults(const ValidateArgs& args, const NgspiceDeckFaults& faul
   if (args.max_step && !positive(*args.max_step))
     throw CliError(kExitUsage, "error: --max-step must be a positive number");
 
-  if (find_method(run.method)->adaptive()) refuse_switches(netlist, run.method);
   CircuitModel model = build_model(netlist, 0.0, run.tstop);
   if (const MethodEntry& entry = *find_method(run.method); entry.applies && !entry.applies(model, &why)) {
     if (!args.method.empty())

@@ -76,6 +76,9 @@ struct Mode {
   Eigen::MatrixXd Z;                // z = Z [x; σ]
   Eigen::MatrixXd Pc;               // index-one constraints as rows over [x; σ]
   int level = 0;                    // coarsest step level: h <= 0.5 / (largest oscillation)
+  // Switch guards (SwitchGuards) as rows over [x; σ]: guard = Guard [x; σ] - guard_offset.
+  Eigen::MatrixXd Guard, GuardM, Guardabs;
+  Eigen::VectorXd guard_offset, Guardnorm;
 };
 
 struct EventDriven::Impl {
@@ -92,6 +95,12 @@ struct EventDriven::Impl {
   double event_width = 0;      // and its length in seconds
   int n = 0, m = 0;
   bool step_levels = true;  // modes get their step level (an eigenvalue problem); not to select one
+  double prepared_h0 = 0, prepared_tstop = -1;  // prepare()'s grid: segments on it keep the modes
+
+  // Switch guards: their values and slopes at X, and scratch at a step's end.
+  SwitchGuards guards;
+  int guard_count = 0;
+  Eigen::VectorXd gga, gda, ggb, gdb, gscale;
 
   // Mode selection: implicit Euler with the tiny step eta, LCP(Csel x + Fsel u(t + eta), Msel).
   double eta = 0;
@@ -129,6 +138,9 @@ struct EventDriven::Impl {
   bool far_past(const Eigen::VectorXd& g, const Eigen::VectorXd& scale) const;
   bool right_far = false;
   bool violated(const Eigen::VectorXd& Xv, Eigen::VectorXd& g, Eigen::VectorXd& scale) const;
+  // Guard values at Xv (into g, their tolerance scale into scale) and which are below zero.
+  void guard_values(const Eigen::VectorXd& Xv, Eigen::VectorXd& g, Eigen::VectorXd& scale) const;
+  std::vector<int> guards_below(const Eigen::VectorXd& Xv) const;
   Eigen::VectorXd right;  // bisection: the violated end
   bool advance_to(const DyadicTime& target, const Progress& progress);
   Eigen::VectorXd state() const { return X.head(n); }
@@ -179,6 +191,17 @@ Mode& EventDriven::Impl::mode(const std::vector<bool>& active, const std::string
     md->GMnorm = md->GM.rowwise().norm();
     md->GMMnorm = md->GMM.rowwise().norm();
     md->Pcnorm = md->Pc.rowwise().norm();
+    if (guard_count > 0) {
+      // control = G x + H z + J u + K u' with z = Z [x; σ], u = P σ, u' = P S σ.
+      Eigen::MatrixXd R = guards.H * md->Z;
+      if (n > 0) R.leftCols(n) += guards.G;
+      if (p > 0) R.rightCols(p) += guards.J * P + guards.K * P * S;
+      md->Guard = guards.sign.asDiagonal() * R;
+      md->guard_offset = guards.sign.cwiseProduct(guards.threshold);
+      md->GuardM = md->Guard * md->M;
+      md->Guardabs = md->Guard.cwiseAbs();
+      md->Guardnorm = md->Guard.rowwise().norm();
+    }
     double omega = 0;
     if (md->q > 0 && step_levels) {
       Eigen::EigenSolver<Eigen::MatrixXd> es(md->M, false);
@@ -494,6 +517,29 @@ void EventDriven::Impl::refresh_constraints() {
   below_at_start.resize(m);
   for (int i = 0; i < m; ++i)
     below_at_start[i] = ga(i) < -kTol * scale(i) && da(i) >= -kZeroTol * slope_scale(i);
+  if (guard_count > 0 && cur->Guard.rows() == guard_count) {
+    guard_values(X, gga, gscale);
+    gda.noalias() = cur->GuardM * X;
+  }
+}
+
+// A guard is below zero past the rounding of its terms (its threshold among them): the
+// crossing is then located where the control is past its threshold by 1e-12 of its size.
+void EventDriven::Impl::guard_values(const Eigen::VectorXd& Xv, Eigen::VectorXd& g, Eigen::VectorXd& scale) const {
+  g.noalias() = cur->Guard * Xv;
+  g -= cur->guard_offset;
+  row_scales(cur->Guardabs, cur->Guardnorm, Xv, W.cwiseProduct(Xv).norm(), scale);
+  scale += cur->guard_offset.cwiseAbs();
+}
+
+std::vector<int> EventDriven::Impl::guards_below(const Eigen::VectorXd& Xv) const {
+  std::vector<int> out;
+  if (guard_count == 0 || cur->Guard.rows() != guard_count) return out;
+  Eigen::VectorXd g, sc;
+  guard_values(Xv, g, sc);
+  for (int k = 0; k < guard_count; ++k)
+    if (g(k) < -(kTol * sc(k) + 1e-300)) out.push_back(k);
+  return out;
 }
 
 void EventDriven::Impl::project() {
@@ -506,7 +552,7 @@ bool EventDriven::Impl::violated(const Eigen::VectorXd& Xv, Eigen::VectorXd& g, 
   row_scales(cur->Gabs, cur->Gnorm, Xv, W.cwiseProduct(Xv).norm(), scale);
   for (int i = 0; i < m; ++i)
     if (g(i) < -(kTol * scale(i) + 1e-300) && !below_at_start[i]) return true;
-  return false;
+  return !guards_below(Xv).empty();
 }
 
 // A constraint is violated when it ends the step below zero. One that starts the mode slightly
@@ -535,10 +581,28 @@ bool EventDriven::Impl::step(int j) {
                        std::min(-tol, std::min(ga(i), g(i)) - tol);
     }
   }
+  const bool guarded = guard_count > 0 && cur->Guard.rows() == guard_count;
+  if (guarded) {
+    // The guards' values and slopes at the step's end: a control that crosses its threshold
+    // and comes back within the step dips like a pair's constraint.
+    Eigen::VectorXd gsc;
+    guard_values(xb, ggb, gsc);
+    gdb.noalias() = cur->GuardM * xb;
+    if (j < std::min(stop_level, cur->level + kSuspicionLevels))
+      for (int k = 0; k < guard_count && !suspicious; ++k) {
+        const double tol = kTol * gsc(k) + 1e-300;
+        suspicious = (gda(k) < 0 || gdb(k) > 0) &&
+                     hermite_min(gga(k), ggb(k), gda(k) * L, gdb(k) * L) < std::min(-tol, std::min(gga(k), ggb(k)) - tol);
+      }
+  }
   if (suspicious) return step(j + 1) && step(j + 1);
   X.swap(xb);
   ga.swap(g);
   da.swap(d);
+  if (guarded) {
+    gga.swap(ggb);
+    gda.swap(gdb);
+  }
   pos = pos.plus(j);
   for (int i = 0; i < m; ++i)
     if (below_at_start[i] && ga(i) >= -kTol * sc[j](i)) below_at_start[i] = 0;
@@ -618,10 +682,27 @@ StepperStats EventDriven::stats() const {
   return s;
 }
 
+void EventDriven::set_guards(const SwitchGuards& guards) {
+  impl_->guards = guards;
+  impl_->guard_count = static_cast<int>(guards.threshold.size());
+  impl_->prepared_tstop = -1;  // the modes are formed again, with their guard rows
+}
+
 void EventDriven::DoRun(const Eigen::VectorXd& x0, const OutputGrid& grid, const Emit& emit,
                         const Progress& progress) {
+  SegmentStart start;
+  start.x = x0;
+  RunSegment(start, grid, emit, progress);
+}
+
+std::optional<GuardCrossing> EventDriven::RunSegment(const SegmentStart& start, const OutputGrid& grid,
+                                                     const Emit& emit, const Progress& progress) {
   Impl& r = *impl_;
-  r.prepare(grid.tstep, grid.tstop);
+  if (r.prepared_h0 != grid.tstep || r.prepared_tstop != grid.tstop) {
+    r.prepare(grid.tstep, grid.tstop);
+    r.prepared_h0 = grid.tstep;
+    r.prepared_tstop = grid.tstop;
+  }
   const double h0 = r.h0;
   const int n = r.n;
 
@@ -668,11 +749,14 @@ void EventDriven::DoRun(const Eigen::VectorXd& x0, const OutputGrid& grid, const
   // edge (5e12 V/s) had u 8.6e-8 V below the propagated value, and the capacitor an RON = 0
   // diode clamps to it jumped to the read value, off the conducting mode's constraint by as much
   // (EventDriven.SteepEdgeDoesNotSwampTheConsistencyCheck).
-  auto restart = [&](double t, Eigen::VectorXd x, const Eigen::VectorXd* propagated) {
+  // A segment's start takes the sources' state its predecessor propagated (`from_signature`).
+  auto restart = [&](double t, Eigen::VectorXd x, const Eigen::VectorXd* propagated,
+                     const std::string* from_signature = nullptr) {
     const std::string sig = r.sources->signature(t);
     Mode* before = r.cur;
+    const std::string* had = before ? &before->signature : from_signature;
     Eigen::VectorXd sigma, u;
-    if (propagated && before && before->signature == sig) {
+    if (propagated && had && *had == sig) {
       sigma = *propagated;
       u = r.sources->P(sig) * sigma;
     } else {
@@ -688,10 +772,28 @@ void EventDriven::DoRun(const Eigen::VectorXd& x0, const OutputGrid& grid, const
     return before != nullptr && before->active != r.cur->active;
   };
 
-  r.pos = DyadicTime{};
+  // Where a guard is below zero the segment ends: the crossing is the point reached.
+  auto crossing = [&](std::vector<int> crossed) {
+    GuardCrossing c;
+    c.at.at = r.pos;
+    c.at.t = r.pos.seconds(h0);
+    c.at.x = r.state();
+    c.at.signature = r.cur->signature;
+    c.at.sigma = r.X.tail(r.X.size() - n);
+    c.crossed = std::move(crossed);
+    ++r.stats.events;
+    return c;
+  };
+
+  r.pos = start.at;
   r.cur = nullptr;
-  restart(0.0, x0, nullptr);
-  emit_now(0.0, false);
+  restart(start.t, start.x, start.sigma.size() > 0 ? &start.sigma : nullptr, &start.signature);
+  if (std::vector<int> crossed = r.guards_below(r.X); !crossed.empty()) {
+    GuardCrossing c = crossing(std::move(crossed));
+    c.at.t = start.t;
+    return c;
+  }
+  emit_now(start.t, start.t > 0);
 
   // Lines (1.3.3): their history inputs are, on each step, polynomials fitted to the exact past
   // (SourceSystem::fit_history), and that past is this method's own: every advance is one
@@ -764,6 +866,7 @@ void EventDriven::DoRun(const Eigen::VectorXd& x0, const OutputGrid& grid, const
   if (history) history->mark_break(0.0);  // the waves start (from their past before the run)
 
   size_t next_stop = 0;
+  while (next_stop < stops.size() && stops[next_stop].at < r.pos) ++next_stop;  // before the segment
   int events_here = 0;
   DyadicTime last_event{-1, 0};
   DyadicTime last_breakpoint{-1, 0};
@@ -823,6 +926,7 @@ void EventDriven::DoRun(const Eigen::VectorXd& x0, const OutputGrid& grid, const
     if (history) record_segment(t_start, X_start, mode_start, r.pos.seconds(h0));
     accept_here();
     if (!reached) {
+      if (std::vector<int> crossed = r.guards_below(r.X); !crossed.empty()) return crossing(std::move(crossed));
       const double t = r.pos.seconds(h0);
       ++r.stats.events;
       events_here = (r.pos.k == last_event.k && r.pos.f - last_event.f < (std::uint64_t(1) << 24))
@@ -859,7 +963,15 @@ void EventDriven::DoRun(const Eigen::VectorXd& x0, const OutputGrid& grid, const
         // loop, the flux of an inductor/source cutset), and x_phys jumps by Gamma du
         // (circuit_model.h), as in the time-stepping methods.
         if (history) history->mark_break(st.t);
-        if (restart(st.t, r.state(), nullptr)) {
+        const bool switched = restart(st.t, r.state(), nullptr);
+        // A jump of a source can put a switch's control past its threshold: the configuration
+        // changes at the breakpoint itself (the next segment takes this stop again).
+        if (std::vector<int> crossed = r.guards_below(r.X); !crossed.empty()) {
+          GuardCrossing c = crossing(std::move(crossed));
+          c.at.t = st.t;
+          return c;
+        }
+        if (switched) {
           ++r.stats.mode_switches;
           ++r.stats.events;
           emit_now(st.t, true);
@@ -886,6 +998,7 @@ void EventDriven::DoRun(const Eigen::VectorXd& x0, const OutputGrid& grid, const
       }
     }
   }
+  return std::nullopt;
 }
 
 }  // namespace lcs

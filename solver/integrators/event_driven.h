@@ -13,10 +13,14 @@
 
 #include <cstddef>
 #include <memory>
+#include <optional>
+#include <string>
+#include <vector>
 
 #include <Eigen/Dense>
 
 #include "solver/integrators/continuous_method.h"
+#include "solver/integrators/guarded_method.h"
 
 namespace lcs {
 
@@ -31,11 +35,18 @@ struct EventOptions {
   std::size_t exponential_cache_bytes = std::size_t(256) << 20;
 };
 
-class EventDriven : public ContinuousMethod {
+class EventDriven : public ContinuousMethod, public GuardedMethod {
  public:
   EventDriven(const LcsProblem& model, const EventOptions& options);
   ~EventDriven() override;
   StepperStats stats() const override;
+
+  // Guards as rows over the mode's [x; sigma], located by the bisection of a mode change to
+  // 2^-stop_level TSTEP; a crossing is the first point of the bracket past the zero. Modes and
+  // exponentials are kept from one segment to the next on the same grid.
+  void set_guards(const SwitchGuards& guards) override;
+  std::optional<GuardCrossing> RunSegment(const SegmentStart& start, const OutputGrid& grid, const Emit& emit,
+                                          const Progress& progress = {}) override;
 
  protected:
   void DoRun(const Eigen::VectorXd& x0, const OutputGrid& grid, const Emit& emit,

@@ -7,6 +7,7 @@
 #include "solver/integrators/radau_iia.h"
 #include "solver/integrators/smooth_method.h"
 #include "solver/integrators/theta_method.h"
+#include "solver/model/switch_family.h"
 
 namespace lcs {
 
@@ -52,15 +53,17 @@ std::vector<MethodEntry> make_table() {
   euler.is_fixed_step_default = true;
   table.push_back(euler);
 
+  auto make_event = [](const LcsProblem& m, const MethodOptions& o) {
+    EventOptions e;
+    if (o.rtol > 0) e.rtol = o.rtol;
+    return std::make_unique<EventDriven>(m, e);
+  };
   MethodEntry event = adaptive(
       "event",
-      "event-driven: exact matrix exponentials inside each mode, events located by bisection "
-      "(--rtol on event times, default 1e-13), next mode from a tiny-step LCP",
-      [](const LcsProblem& m, const MethodOptions& o) {
-        EventOptions e;
-        if (o.rtol > 0) e.rtol = o.rtol;
-        return std::make_unique<EventDriven>(m, e);
-      });
+      "event-driven: exact matrix exponentials inside each mode, events (mode and switch changes) "
+      "located by bisection (--rtol on event times, default 1e-13), next mode from a tiny-step LCP",
+      make_event);
+  event.make_guarded = make_event;
   event.exact_reference = true;
   event.is_default = true;
   event.serves_as_default = [](const LcsProblem& m, std::string* why) {
@@ -102,6 +105,21 @@ std::vector<MethodEntry> make_table() {
   smooth.smooth_model = true;
   smooth.history_degree = 4;  // IDA's BDF runs up to order 5
   smooth.smooth_reference = true;
+  smooth.make_guarded = [](const LcsProblem& m, const MethodOptions& o) {
+    return std::make_unique<SmoothMethod>(m, o);
+  };
+  // Switch guards are IDA root functions: a circuit without states has no IDA run.
+  smooth.applies = [](const LcsProblem& problem, std::string* why) {
+    const auto* circuit = dynamic_cast<const CircuitModel*>(&problem);
+    if (!circuit || problem.lcs().states() > 0) return true;
+    const SwitchFamily switches(*circuit);
+    if (switches.empty()) return true;
+    if (why)
+      *why = "switch " + switches.switches().front().name +
+             ": the smooth method locates switch changes only in a circuit with states (capacitors "
+             "or inductors); use --method event, euler, theta, radau3 or radau5";
+    return false;
+  };
   table.push_back(smooth);
 
   MethodEntry theta = fixed_step(

@@ -12,6 +12,8 @@
 
 namespace lcs {
 
+class GuardedMethod;
+
 struct MethodOptions {
   double theta = 0.5;  // `--theta`, used by "theta"
   // `--rtol`, `--atol` of the adaptive methods; 0 means the method's default (event: rtol 1e-13
@@ -55,6 +57,11 @@ struct MethodEntry {
   // Whether the method can integrate this circuit; null: every circuit. On false, *why says
   // which element stops it and what to use instead (event: an SFFM source, source_system.h).
   std::function<bool(const LcsProblem&, std::string* why)> applies;
+  // Adaptive methods that locate switch changes (S, W) themselves: one guarded method per
+  // configuration of the switches (guarded_method.h, switched_adaptive.h). Fixed-step methods
+  // handle switches by interpolation (transient.cpp); where an adaptive method cannot, its
+  // `applies` says so.
+  std::function<std::unique_ptr<GuardedMethod>(const LcsProblem&, const MethodOptions&)> make_guarded;
 
   bool adaptive() const { return static_cast<bool>(make_continuous); }
   bool fixed_step() const { return static_cast<bool>(make_stepper); }

@@ -101,9 +101,11 @@ class ShockleyDae {
   // error weights. Returns false (s unchanged) when it does not converge. Counts its iterations
   // in *iterations (may be null).
   bool solve_pairs(double t, const Eigen::VectorXd& x, Eigen::VectorXd& s, long* iterations) const;
+  // The sources at t; at the segment's end their values before it (a jump there is the next
+  // segment's).
+  Eigen::VectorXd inputs(double t) const;
 
  private:
-  Eigen::VectorXd inputs(double t) const;
   // The diodes' part of error_weights, at states x and parameters s.
   void pair_weights(const Eigen::Ref<const Eigen::VectorXd>& x,
                     const Eigen::Ref<const Eigen::VectorXd>& s, Eigen::Ref<Eigen::VectorXd> w) const;

@@ -27,9 +27,19 @@ namespace {
 // Steps IDA may take between two output times before it reports IDA_TOO_MUCH_WORK.
 constexpr long kMaxStepsPerOutput = 100000;
 
-// IDA callbacks; user_data is the ShockleyDae.
+// What IDA's callbacks see: the DAE, and the switch guards (GuardedMethod) as root functions
+// after the pairs'.
+struct IdaUserData {
+  ShockleyDae* dae = nullptr;
+  int guard_count = 0;
+  std::function<void(double t, const Eigen::VectorXd& y, double* g)> guards;
+};
+
+const ShockleyDae& dae_of(void* user_data) { return *static_cast<const IdaUserData*>(user_data)->dae; }
+
+// IDA callbacks; user_data is an IdaUserData.
 int residual_fn(realtype t, N_Vector yy, N_Vector yp, N_Vector rr, void* user_data) {
-  const auto& dae = *static_cast<const ShockleyDae*>(user_data);
+  const auto& dae = dae_of(user_data);
   const int n = dae.size();
   Eigen::Map<Eigen::VectorXd> r(N_VGetArrayPointer(rr), n);
   const bool finite = dae.residual(t, Eigen::Map<const Eigen::VectorXd>(N_VGetArrayPointer(yy), n),
@@ -39,7 +49,7 @@ int residual_fn(realtype t, N_Vector yy, N_Vector yp, N_Vector rr, void* user_da
 
 int jacobian_fn(realtype t, realtype cj, N_Vector yy, N_Vector, N_Vector, SUNMatrix J,
                 void* user_data, N_Vector, N_Vector, N_Vector) {
-  const auto& dae = *static_cast<const ShockleyDae*>(user_data);
+  const auto& dae = dae_of(user_data);
   const int n = dae.size();
   // SUNDIALS' dense matrix is column-major, like Eigen's default.
   Eigen::Map<Eigen::MatrixXd> jac(SUNDenseMatrix_Data(J), n, n);
@@ -48,18 +58,26 @@ int jacobian_fn(realtype t, realtype cj, N_Vector yy, N_Vector, N_Vector, SUNMat
 }
 
 // The root functions are the curve parameters themselves: s_k has the sign of diode k's margin
-// and of its current, so it crosses zero exactly where the current does.
-int crossings_fn(realtype, N_Vector yy, N_Vector, realtype* gout, void* user_data) {
-  const auto& dae = *static_cast<const ShockleyDae*>(user_data);
+// and of its current, so it crosses zero exactly where the current does. The switch guards follow.
+int crossings_fn(realtype t, N_Vector yy, N_Vector, realtype* gout, void* user_data) {
+  const auto& data = *static_cast<const IdaUserData*>(user_data);
+  const ShockleyDae& dae = *data.dae;
   const double* y = N_VGetArrayPointer(yy);
   std::copy(y + dae.states(), y + dae.size(), gout);
+  if (data.guard_count > 0)
+    data.guards(t, Eigen::Map<const Eigen::VectorXd>(y, dae.size()), gout + dae.pairs());
   return 0;
 }
 
+// user_data: the ShockleyDae (the Newton solver's weights).
 int weights_fn(N_Vector yy, N_Vector ewt, void* user_data) {
   const auto& dae = *static_cast<const ShockleyDae*>(user_data);
   Eigen::Map<Eigen::VectorXd> w(N_VGetArrayPointer(ewt), dae.size());
   return dae.error_weights(Eigen::Map<const Eigen::VectorXd>(N_VGetArrayPointer(yy), dae.size()), w) ? 0 : -1;
+}
+
+int ida_weights_fn(N_Vector yy, N_Vector ewt, void* user_data) {
+  return weights_fn(yy, ewt, static_cast<IdaUserData*>(user_data)->dae);
 }
 
 void error_fn(int, const char*, const char* function, char* msg, void* user_data) {
@@ -71,7 +89,8 @@ void error_fn(int, const char*, const char* function, char* msg, void* user_data
 // One IDA integrator for the DAE, restarted at breakpoints.
 class SmoothMethod::IdaRun {
  public:
-  explicit IdaRun(ShockleyDae& dae)
+  explicit IdaRun(ShockleyDae& dae, int guard_count = 0,
+                  std::function<void(double, const Eigen::VectorXd&, double*)> guards = {})
       : dae_(dae),
         ctx_(sundials::make_context()),
         y_(sundials::checked(N_VNew_Serial(dae.size(), ctx_.get()))),
@@ -86,6 +105,9 @@ class SmoothMethod::IdaRun {
     id.tail(dae.pairs()).setZero();
     N_VConst(0.0, y_.get());
     N_VConst(0.0, yp_.get());
+    user_.dae = &dae;
+    user_.guard_count = guard_count;
+    user_.guards = std::move(guards);
   }
 
   Eigen::Map<Eigen::VectorXd> y() { return {N_VGetArrayPointer(y_.get()), dae_.size()}; }
@@ -102,16 +124,24 @@ class SmoothMethod::IdaRun {
     void* mem = mem_.get();
     if (!initialised_) {
       check(IDAInit(mem, residual_fn, t, y_.get(), yp_.get()), t, "IDAInit");
-      check(IDASetUserData(mem, &dae_), t, "IDASetUserData");
+      check(IDASetUserData(mem, &user_), t, "IDASetUserData");
       check(IDASetErrHandlerFn(mem, error_fn, &last_error_), t, "IDASetErrHandlerFn");
-      check(IDAWFtolerances(mem, weights_fn), t, "IDAWFtolerances");
+      check(IDAWFtolerances(mem, ida_weights_fn), t, "IDAWFtolerances");
       check(IDASetLinearSolver(mem, solver_.get(), matrix_.get()), t, "IDASetLinearSolver");
       check(IDASetJacFn(mem, jacobian_fn), t, "IDASetJacFn");
       check(IDASetNonlinearSolver(mem, newton_.get()), t, "IDASetNonlinearSolver");
       check(IDASetId(mem, id_.get()), t, "IDASetId");
       check(IDASetMaxNumSteps(mem, kMaxStepsPerOutput), t, "IDASetMaxNumSteps");
       if (std::isfinite(dae_.max_step())) check(IDASetMaxStep(mem, dae_.max_step()), t, "IDASetMaxStep");
-      if (m > 0) check(IDARootInit(mem, m, crossings_fn), t, "IDARootInit");
+      const int roots = m + user_.guard_count;
+      if (roots > 0) check(IDARootInit(mem, roots, crossings_fn), t, "IDARootInit");
+      if (user_.guard_count > 0) {
+        // A guard ends the segment only falling through zero (it starts positive, or just
+        // below within rounding of its threshold, and rising).
+        std::vector<int> direction(roots, 0);
+        std::fill(direction.begin() + m, direction.end(), -1);
+        check(IDASetRootDirection(mem, direction.data()), t, "IDASetRootDirection");
+      }
       initialised_ = true;
     } else {
       check(IDAReInit(mem, t, y_.get(), yp_.get()), t, "IDAReInit");
@@ -122,6 +152,17 @@ class SmoothMethod::IdaRun {
   }
 
   void set_stop(double t) { check(IDASetStopTime(mem_.get(), t), t, "IDASetStopTime"); }
+
+  // After a root: the switch guards among the root functions that crossed.
+  std::vector<int> guards_crossed() {
+    const int m = dae_.pairs(), roots = m + user_.guard_count;
+    std::vector<int> found(roots, 0), out;
+    if (user_.guard_count == 0) return out;
+    check(IDAGetRootInfo(mem_.get(), found.data()), t0_, "IDAGetRootInfo");
+    for (int k = m; k < roots; ++k)
+      if (found[k] != 0) out.push_back(k - m);
+    return out;
+  }
 
   // Integrates towards tout; true when it stopped earlier at a root (t is then the root's time).
   // With `on_step`, IDA goes one internal step at a time and reports each (and each root) to it,
@@ -192,6 +233,7 @@ class SmoothMethod::IdaRun {
   }
 
   ShockleyDae& dae_;
+  IdaUserData user_;
   // Declared in order of creation, so destroyed in reverse: IDA first, the context last.
   sundials::Context ctx_;
   sundials::Vector y_, yp_, id_;
@@ -284,13 +326,60 @@ void SmoothMethod::at_rest(Eigen::VectorXd& s) const {
     if (std::abs(s(k)) <= atol_) s(k) = 0.0;
 }
 
+void SmoothMethod::set_guards(const SwitchGuards& guards) {
+  guards_ = guards;
+  guard_count_ = static_cast<int>(guards.threshold.size());
+}
+
+// Guard k = sign_k (control_k - threshold_k), the control read from x, the pairs' smooth
+// variables z(s) and the sources.
+Eigen::VectorXd SmoothMethod::guard_values(double t, const Eigen::Ref<const Eigen::VectorXd>& y) const {
+  const int n = dae_.states(), m = dae_.pairs();
+  Eigen::VectorXd c = guards_.J * dae_.inputs(t) + guards_.K * model_.input_derivatives(t);
+  if (n > 0) c += guards_.G * y.head(n);
+  if (m > 0) c += guards_.H * dae_.complementarity_variables(y.tail(m));
+  return guards_.sign.cwiseProduct(c - guards_.threshold);
+}
+
+// The guards below zero beyond 1e-9 of the control's threshold (IDA puts a root within rounding
+// of it, on either side).
+std::vector<int> SmoothMethod::guards_below(double t, const Eigen::Ref<const Eigen::VectorXd>& y) const {
+  std::vector<int> out;
+  if (guard_count_ == 0) return out;
+  const Eigen::VectorXd g = guard_values(t, y);
+  for (int k = 0; k < guard_count_; ++k)
+    if (g(k) < -1e-9 * (std::abs(guards_.threshold(k)) + std::abs(g(k) * guards_.sign(k) + guards_.threshold(k))) - 1e-300)
+      out.push_back(k);
+  return out;
+}
+
 void SmoothMethod::DoRun(const Eigen::VectorXd& x0, const OutputGrid& grid, const Emit& emit,
                          const Progress& progress) {
-  stats_ = {};
+  SegmentStart start;
+  start.x = x0;
+  RunSegment(start, grid, emit, progress);
+}
+
+std::optional<GuardCrossing> SmoothMethod::RunSegment(const SegmentStart& start, const OutputGrid& grid,
+                                                      const Emit& emit, const Progress& progress) {
+  const double t0 = start.t;
+  const Eigen::VectorXd& x0 = start.x;
+  if (t0 == 0) stats_ = {};  // a later segment of the same configuration adds to its counts
   const Schedule schedule = make_schedule(model_, grid);
   const int n = dae_.states(), m = dae_.pairs();
   const std::vector<double>& outs = schedule.outputs;
   const std::vector<double>& stops = schedule.stops;
+  size_t first = 0;  // the first stop after the segment's start
+  while (first + 1 < stops.size() && stops[first] <= t0) ++first;
+  auto crossing = [&](double t, const Eigen::VectorXd& y, std::vector<int> crossed) {
+    GuardCrossing c;
+    c.at.t = t;
+    c.at.at = DyadicTime::from(t, grid.tstep);
+    c.at.x = y.head(n);
+    c.crossed = std::move(crossed);
+    ++stats_.events;
+    return c;
+  };
 
   double voltage_scale = 0;
   for (const InputSignal& in : model_.inputs().signals()) {
@@ -299,19 +388,19 @@ void SmoothMethod::DoRun(const Eigen::VectorXd& x0, const OutputGrid& grid, cons
     voltage_scale = std::max({voltage_scale, std::abs(lo), std::abs(hi)});
   }
   dae_.set_tolerances(rtol_, atol_, voltage_scale);
-  dae_.set_segment_end(stops.front());
+  dae_.set_segment_end(stops[first]);
   Eigen::VectorXd s = Eigen::VectorXd::Zero(m);
   if (m > 0) {
     // The ideal solution is the better first guess: zero currents are far from a conducting diode.
     try {
       ideal_ = std::make_unique<ThetaMethod>(model_, 1.0);
       Eigen::VectorXd z_ideal(m);
-      ideal_->Start(0.0, schedule.tstep, x0, z_ideal);
-      s = dae_.parameters_from_ideal(0.0, x0, z_ideal);
+      ideal_->Start(t0, schedule.tstep, x0, z_ideal);
+      s = dae_.parameters_from_ideal(t0, x0, z_ideal);
     } catch (const NumericalFailure&) {
       s.setZero();
     }
-    consistent_pairs(0.0, x0, s, schedule.tstep);
+    consistent_pairs(t0, x0, s, schedule.tstep);
     at_rest(s);
   }
 
@@ -345,17 +434,22 @@ void SmoothMethod::DoRun(const Eigen::VectorXd& x0, const OutputGrid& grid, cons
   };
   Eigen::VectorXd y(n + m);
   y << x0, s;
-  emit_state(0.0, y, false);
-  if (n == 0) {
+  if (std::vector<int> crossed = guards_below(t0, y); !crossed.empty()) return crossing(t0, y, std::move(crossed));
+  emit_state(t0, y, t0 > 0);
+  if (n == 0) {  // switches need states here (the registry's `applies`)
     run_algebraic(schedule, s, emit_state);
-    return;
+    return std::nullopt;
   }
 
-  IdaRun ida(dae_);
+  IdaRun ida(dae_, guard_count_, [this](double t, const Eigen::VectorXd& yy, double* g) {
+    const Eigen::VectorXd v = guard_values(t, yy);
+    std::copy(v.data(), v.data() + v.size(), g);
+  });
   ida.y() = y;
-  ida.start(0.0, stops.front());
-  size_t out = 1;
-  for (size_t k = 0; k < stops.size(); ++k) {
+  ida.start(t0, stops[first]);
+  size_t out = 0;
+  while (out < outs.size() && outs[out] <= t0) ++out;
+  for (size_t k = first; k < stops.size(); ++k) {
     const double b = stops[k];
     dae_.set_segment_end(b);
     ida.set_stop(b);
@@ -363,6 +457,10 @@ void SmoothMethod::DoRun(const Eigen::VectorXd& x0, const OutputGrid& grid, cons
       const double target = out < outs.size() && outs[out] < b ? outs[out] : b;
       double t = 0;
       if (ida.advance(target, t, on_step)) {
+        if (std::vector<int> crossed = ida.guards_crossed(); !crossed.empty()) {
+          ida.add_stats(stats_);
+          return crossing(t, ida.y(), std::move(crossed));
+        }
         ++stats_.events;
         emit_state(t, ida.y(), true);
         continue;
@@ -381,6 +479,11 @@ void SmoothMethod::DoRun(const Eigen::VectorXd& x0, const OutputGrid& grid, cons
       consistent_pairs(b, x, sb, schedule.tstep);
       at_rest(sb);
       y.tail(m) = sb;
+      // A source jump that puts a switch's control past its threshold: a crossing at b.
+      if (std::vector<int> crossed = guards_below(b, y); !crossed.empty()) {
+        ida.add_stats(stats_);
+        return crossing(b, y, std::move(crossed));
+      }
       if (switched(s_before, sb)) {  // a source jump switched a diode: an event at b itself
         ++stats_.events;
         emit_state(b, y, true);
@@ -397,6 +500,7 @@ void SmoothMethod::DoRun(const Eigen::VectorXd& x0, const OutputGrid& grid, cons
     }
   }
   ida.add_stats(stats_);
+  return std::nullopt;
 }
 
 void SmoothMethod::run_algebraic(const Schedule& schedule, Eigen::VectorXd s,

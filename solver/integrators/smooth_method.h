@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "solver/integrators/continuous_method.h"
+#include "solver/integrators/guarded_method.h"
 #include "solver/integrators/method_registry.h"
 #include "solver/integrators/shockley_dae.h"
 
@@ -23,12 +24,19 @@ namespace lcs {
 
 class ThetaMethod;
 
-class SmoothMethod : public ContinuousMethod {
+class SmoothMethod : public ContinuousMethod, public GuardedMethod {
  public:
   static constexpr double kDefaultRtol = 1e-6, kDefaultAtol = 1e-9;
 
   SmoothMethod(const LcsProblem& model, const MethodOptions& options);
   ~SmoothMethod() override;
+  StepperStats stats() const override { return stats_; }
+
+  // Switches (switched_adaptive.h): the guards are IDA root functions after the pairs', falling
+  // through zero only; a root among them ends the segment. Circuits with states only.
+  void set_guards(const SwitchGuards& guards) override;
+  std::optional<GuardCrossing> RunSegment(const SegmentStart& start, const OutputGrid& grid, const Emit& emit,
+                                          const Progress& progress = {}) override;
 
  protected:
   void DoRun(const Eigen::VectorXd& x0, const OutputGrid& grid, const Emit& emit,
@@ -48,7 +56,12 @@ class SmoothMethod : public ContinuousMethod {
   void run_algebraic(const Schedule& schedule, Eigen::VectorXd s,
                      const std::function<void(double, const Eigen::VectorXd&, bool)>& emit_state);
 
+  Eigen::VectorXd guard_values(double t, const Eigen::Ref<const Eigen::VectorXd>& y) const;
+  std::vector<int> guards_below(double t, const Eigen::Ref<const Eigen::VectorXd>& y) const;
+
   ShockleyDae dae_;
+  SwitchGuards guards_;
+  int guard_count_ = 0;
   double rtol_, atol_;  // atol in volts (ShockleyDae::set_tolerances)
   std::unique_ptr<ThetaMethod> ideal_;  // for starting guesses, made when first needed
 };

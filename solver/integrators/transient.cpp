@@ -3,6 +3,8 @@
 #include <Eigen/Sparse>
 
 #include "solver/integrators/distinct_rows.h"
+#include "solver/integrators/row_writer.h"
+#include "solver/integrators/switched_adaptive.h"
 
 #include <algorithm>
 #include <cmath>
@@ -97,50 +99,6 @@ std::string TransientSummary::BriefReport() const {
 }
 
 namespace {
-
-// One output row y = G x + H z + J u(t) + K u'(t), without allocating.
-class RowWriter {
- public:
-  RowWriter(const LcsProblem& model, const OutputMap& outputs, OutputSink& sink)
-      : model_(model), outputs_(outputs), sink_(sink), y_(outputs.names.size()),
-        u_(model.lcs().inputs()), has_k_(outputs.K.size() > 0 && !outputs.K.isZero()) {
-    // Small output maps are multiplied dense (faster at a handful of entries); large ones sparse,
-    // O(probes) per row.
-    dense_ = outputs.G.rows() * (outputs.G.cols() + outputs.H.cols()) < kSparseOutputSize;
-    if (dense_) {
-      Gd_ = Eigen::MatrixXd(outputs.G);
-      Hd_ = Eigen::MatrixXd(outputs.H);
-    }
-  }
-  void write(double t, const Eigen::VectorXd& x, const Eigen::VectorXd& z) {
-    model_.input_values(t, u_);
-    if (dense_) {
-      y_.noalias() = Gd_ * x;
-      y_.noalias() += Hd_ * z;
-    } else {
-      y_.noalias() = outputs_.G * x;
-      y_.noalias() += outputs_.H * z;
-    }
-    y_.noalias() += outputs_.J * u_;
-    if (has_k_) y_.noalias() += outputs_.K * model_.input_derivatives(t);
-    if (!y_.allFinite()) {  // never written: SPEC §3 rows hold numbers
-      Eigen::Index k = 0;
-      while (std::isfinite(y_(k))) ++k;
-      throw NumericalFailure(t, outputs_.names[k] + " is not a finite number");
-    }
-    sink_.row(t, y_);
-  }
-
- private:
-  const LcsProblem& model_;
-  static constexpr Eigen::Index kSparseOutputSize = 1 << 16;
-  const OutputMap& outputs_;
-  Eigen::MatrixXd Gd_, Hd_;
-  bool dense_ = true;
-  OutputSink& sink_;
-  Eigen::VectorXd y_, u_;
-  bool has_k_;
-};
 
 // Adaptive methods: they step and emit on their own; rows at the same or an earlier time than
 // the last (an event on a grid time), or printing alike (DistinctRows), and before TSTART are
@@ -384,14 +342,17 @@ TransientSummary run_transient(const CircuitModel& model, const OutputMap& outpu
   try {
     SwitchFamily switches(model);
     if (!switches.empty()) {
-      if (entry.adaptive())
+      if (entry.adaptive() && !entry.make_guarded)
         throw NumericalFailure(0.0, "method " + options.method + " does not locate switch changes (switches: " +
                                         switches.describe(switches.config_of(model)) +
-                                        "); use a fixed-step method: euler, theta, radau3 or radau5");
+                                        "); use event or a fixed-step method: euler, theta, radau3 or radau5");
       const SwitchConfig start = initial_configuration(switches, switches.config_of(model), options.uic);
       InitialState init = initial_state(switches.model(start), options.uic, 0.0);
       summary.warnings = init.warnings;
-      run_switched_fixed_step(switches, start, outputs, options, entry, init.x, init.z, sink, summary, cpu0);
+      if (entry.make_guarded)
+        run_switched_adaptive(switches, start, outputs, options, entry, init.x, sink, summary, cpu0);
+      else
+        run_switched_fixed_step(switches, start, outputs, options, entry, init.x, init.z, sink, summary, cpu0);
       sink.finish();
       return summary;
     }

@@ -56,6 +56,14 @@ struct PairInfo : PairLaw {
 
 class LcsProblem {
  public:
+  // Polymorphic so that a method's `applies` can ask a circuit (CircuitModel) for its switches.
+  LcsProblem() = default;
+  LcsProblem(const LcsProblem&) = default;
+  LcsProblem(LcsProblem&&) = default;
+  LcsProblem& operator=(const LcsProblem&) = default;
+  LcsProblem& operator=(LcsProblem&&) = default;
+  virtual ~LcsProblem() = default;
+
   const Lcs& lcs() const { return lcs_; }
   const std::vector<StateInfo>& states() const { return states_; }
   const std::vector<PairInfo>& pairs() const { return pairs_; }
