@@ -41,7 +41,9 @@ Netlist cockcroft_walton(int stages, double tstop) {
 
 // The output voltage v(rN) at the multiples of TSTEP.
 std::vector<double> output_voltage(int stages, double tstop, const std::string& method, double step) {
-  CircuitModel model = CircuitModel::build(cockcroft_walton(stages, tstop), ModelOptions{.t1 = tstop});
+  ModelOptions options;
+  options.t1 = tstop;
+  CircuitModel model = CircuitModel::build(cockcroft_walton(stages, tstop), options);
   TransientOptions o;
   o.method = method;
   o.step = step;
