@@ -18,7 +18,7 @@ struct Deck {
   const char* path;  // under ngspice/
   int exit_code;
   const char* diagnostic;  // a substring of the first line on standard error that is not a warning
-  bool heavy = false;      // 8 s in Release, past ctest's 600 s timeout under the sanitizers (measured)
+  bool heavy = false;      // Release only: 40 s and 7 min CPU (the refit's transients), measured
 };
 
 #if LCS_UNDER_ASAN || !defined(NDEBUG)
@@ -50,14 +50,15 @@ const Deck kDecks[] = {
     {"tests/general/rtlinv.cir", 0, "lcspice: wrote "},
     {"tests/general/schmitt.cir", 0, "lcspice: wrote "},
     {"tests/general/rca3040.cir", 0, "lcspice: wrote 179 rows"},
-    // The operating point solves (tests/bjt_operating_point_test.cpp); a step's LCP of these
-    // 466-pair transistor gates then defeats Lemke (iteration limit), reported with the time.
+    // 466-pair TTL gates. Their step LCPs solve since Lemke restarts a path that rounding
+    // broke (it cycled: exit 3 at 6 ns / 7 ns before), so the diode refit's transient passes now
+    // run to the end. adder_bip's refit converges (3 passes) and the run ends (RealWorldAdders
+    // below checks its sum); fourbitadder's 4th pass leaves a model whose operating point Lemke
+    // misses (numerical failure on the regularised static LCP, not repaired by the GMIN retries).
     {"tests/general/fourbitadder.cir", 3,
-     "lcspice: error: numerical failure at t = 6e-09 s: the step's LCP has no solution (Lemke: iteration limit)",
+     "lcspice: error: numerical failure at t = 0 s: the operating point has no solution (Lemke: numerical failure)",
      true},
-    {"examples/digital/compare/adder_bip.cir", 3,
-     "lcspice: error: numerical failure at t = 7e-09 s: the step's LCP has no solution (Lemke: iteration limit)",
-     true},
+    {"examples/digital/compare/adder_bip.cir", 0, "lcspice: wrote 6401 rows", true},
 };
 
 std::string first_non_warning(const Result& r) {
@@ -76,7 +77,7 @@ class RealWorldDeck : public ::testing::TestWithParam<Deck> {};
 TEST_P(RealWorldDeck, RunsOrIsRefusedForAReasonOutsideTheScope) {
   const fs::path deck = kRealWorld / GetParam().path;
   if (!fs::exists(deck)) GTEST_SKIP() << deck << " is missing (../shared beside the clone)";
-  if (GetParam().heavy && kInstrumented) GTEST_SKIP() << deck << ": Release builds only (Lemke on 466 pairs)";
+  if (GetParam().heavy && kInstrumented) GTEST_SKIP() << deck << ": Release builds only (466 pairs, refit transients)";
   const fs::path dir = scratch_dir("realworld_" + deck.stem().string());
   const Result r = run_lcspice("run '" + deck.string() + "' -o '" + (dir / "out.csv").string() + "'", dir);
   EXPECT_EQ(r.code, GetParam().exit_code) << r.err;
