@@ -36,7 +36,7 @@ struct LcpSolution {
   LcpStatus status = LcpStatus::Solved;
   Eigen::VectorXd z, w;        // w = M z + q
   int pivots = 0;              // Lemke pivots spent (0 for the warm path), over all paths
-  int restarts = 0;            // Lemke paths restarted on a shifted q (Cycling, NumericalFailure)
+  int restarts = 0;            // Lemke paths restarted on a shifted q (after Cycling)
   // RayTermination: the pairs whose z grows along the unbounded ray (the certificate's support:
   // what the data drives against its constraints). Empty otherwise.
   std::vector<int> ray;
@@ -44,9 +44,8 @@ struct LcpSolution {
 
 // Lemke's complementary pivoting with covering vector d = (1,...,1) and lexicographic
 // degeneracy resolution (2.2.1): never cycles in exact arithmetic; where rounding makes the path
-// revisit a basis (Cycling) or end on a basis that does not solve the LCP (NumericalFailure), it
-// restarts on q shifted by a small generic vector (lemke.cpp), and reports the first status
-// again if that does not solve it. For q >= 0 returns z = 0 without pivoting.
+// revisit a basis (Cycling), it restarts on q shifted by a small generic vector (lemke.cpp).
+// For q >= 0 returns z = 0 without pivoting.
 // Implementation notes (lemke.cpp): M is first equilibrated by exact power-of-two row/column
 // scaling (an equivalent LCP; d = 1 refers to the scaled problem) and q normalised, so the
 // tolerances are relative to the data; on a complementary basis z is re-solved from M_JJ,

@@ -16,9 +16,7 @@
 // A revisited basis is impossible on the exact path, so it proves this failure: it is detected
 // (a hash of the basis, updated per pivot) and the path restarted on q moved by a small generic
 // vector, which makes the degenerate values differ by far more than their noise (the perturbation
-// the lexicographic rule stands for, Stewart 2.2.1, made finite). The same noise can also end the
-// path on a complementary basis that is infeasible for q (NumericalFailure; the adders'
-// operating point did): that path is restarted the same way.
+// the lexicographic rule stands for, Stewart 2.2.1, made finite).
 #include <algorithm>
 #include <cstdint>
 #include <cmath>
@@ -310,12 +308,14 @@ void LemkeEngine::solve(const Eigen::MatrixXd& M, const Eigen::VectorXd& q,
   }
   const double qn = normalise_q(eq_, q, qt_);
   solve_path(M, q, qn, options, 0.0, out);
-  // Rounding broke the lexicographic rule: the path came back to a basis (Cycling), or ended on
-  // a complementary basis that does not solve the LCP (NumericalFailure: a degenerate ratio test
-  // decided by noise let a basic variable go negative). Restart on a generically shifted q.
+  // Rounding broke the lexicographic rule: the path came back to a basis. Restart on a
+  // generically shifted q. (Not after a NumericalFailure: its callers repair that basis on
+  // the problem as given -- the warm solver by principal pivoting, the operating point on the
+  // unreduced DC equations -- and a restart there ends on another solution of a regularised
+  // problem: rca3040's operating point lost its symmetry.)
   LcpSolution retry;
   for (double shift : kDegenerateShifts) {
-    if (out.status != LcpStatus::Cycling && out.status != LcpStatus::NumericalFailure) break;
+    if (out.status != LcpStatus::Cycling) break;
     retry.pivots = out.pivots;
     solve_path(M, q, qn, options, shift, retry);
     const bool better = retry.status == LcpStatus::Solved || out.status == LcpStatus::Cycling;

@@ -142,9 +142,8 @@ namespace {
 
 // Lemke's method ends on a basis that misses its tolerance at some steps of a 30-stage
 // multiplier (before: exit 3, "the step's LCP has no solution (Lemke: numerical failure)").
-// Lemke restarts such a path on a generically shifted q (solver/lcp/lemke.cpp), and principal
-// pivoting from the final basis repairs what that leaves (since the restart: none here). The
-// run is first order: h = 10 us and h = 2 us end within 1e-3 V of each other on a 20.7 V output
+// Principal pivoting from that basis repairs them (a path that rounding made cycle would be
+// restarted instead, solver/lcp/lemke.cpp: either repair counts). The run is first order: h = 10 us and h = 2 us end within 1e-3 V of each other on a 20.7 V output
 // (measured 4.7e-4).
 TEST(SparseStep, MultiplierStepsThroughLemkesNumericalFailures) {
   const std::string text = multiplier(30);
