@@ -58,6 +58,10 @@ std::string TransientSummary::BriefReport() const {
                   stepper.lcp.solves, hit_rate, stepper.lcp.lemke_calls, stepper.lcp.lemke_pivots,
                   stepper.factorisations);
     out += buf;
+    if (stepper.lcp.lemke_restarts > 0) {  // rounding broke a path (solve_lemke)
+      std::snprintf(buf, sizeof buf, ", %ld Lemke paths restarted on a shifted q", stepper.lcp.lemke_restarts);
+      out += buf;
+    }
   }
   if (stepper.sparse.solves > 0) {
     std::snprintf(buf, sizeof buf,

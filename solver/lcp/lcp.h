@@ -20,6 +20,9 @@ enum class LcpStatus {
   NumericalFailure, // Lemke reached a complementary basis (the artificial variable left) but the
                     // solution recomputed from it misses feas_tol: basis too ill-conditioned.
                     // z, w are the best available (residual-minimal) point; do not trust them.
+  Cycling,          // Lemke's path returned to a basis it had left (impossible in exact arithmetic:
+                    // rounding decided a degenerate ratio test), also on q shifted to break the
+                    // degeneracy. Nothing is known about solutions; z is not one.
 };
 const char* lcp_status_name(LcpStatus s);
 
@@ -32,14 +35,17 @@ struct LemkeOptions {
 struct LcpSolution {
   LcpStatus status = LcpStatus::Solved;
   Eigen::VectorXd z, w;        // w = M z + q
-  int pivots = 0;              // Lemke pivots spent (0 for the warm path)
+  int pivots = 0;              // Lemke pivots spent (0 for the warm path), over all paths
+  int restarts = 0;            // Lemke paths restarted on a shifted q (after Cycling)
   // RayTermination: the pairs whose z grows along the unbounded ray (the certificate's support:
   // what the data drives against its constraints). Empty otherwise.
   std::vector<int> ray;
 };
 
 // Lemke's complementary pivoting with covering vector d = (1,...,1) and lexicographic
-// degeneracy resolution (2.2.1): never cycles. For q >= 0 returns z = 0 without pivoting.
+// degeneracy resolution (2.2.1): never cycles in exact arithmetic; where rounding makes the path
+// revisit a basis (Cycling), it restarts on q shifted by a small generic vector (lemke.cpp).
+// For q >= 0 returns z = 0 without pivoting.
 // Implementation notes (lemke.cpp): M is first equilibrated by exact power-of-two row/column
 // scaling (an equivalent LCP; d = 1 refers to the scaled problem) and q normalised, so the
 // tolerances are relative to the data; on a complementary basis z is re-solved from M_JJ,
@@ -79,10 +85,12 @@ struct LcpWarmStats {
   long lemke_calls = 0;
   long lemke_pivots = 0;
   long polished = 0;           // Lemke's numerical failures repaired by principal pivoting
+  long lemke_restarts = 0;     // Lemke paths restarted on a shifted q (see solve_lemke)
 
   LcpWarmStats& operator+=(const LcpWarmStats& o) {
     solves += o.solves;
     polished += o.polished;
+    lemke_restarts += o.lemke_restarts;
     warm_hits += o.warm_hits;
     lemke_calls += o.lemke_calls;
     lemke_pivots += o.lemke_pivots;

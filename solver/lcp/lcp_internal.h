@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <string>
+#include <unordered_set>
 #include <vector>
 
 #include <Eigen/Dense>
@@ -57,6 +58,8 @@ class LemkeEngine {
   int lexicographic_leaving_row(double pivot_tol);
   void refactor();
   LcpStatus pivot_to_end(const LemkeOptions& options, int& pivots);
+  void solve_path(const Eigen::MatrixXd& M, const Eigen::VectorXd& q, double qn,
+                  const LemkeOptions& options, double shift, LcpSolution& out);
   void finish(const Eigen::MatrixXd& M, const Eigen::VectorXd& q, double qn,
               const LemkeOptions& options, bool solved, LcpSolution& out);
 
@@ -70,6 +73,7 @@ class LemkeEngine {
   std::vector<int> basis_;      // variable in each row: w_i = i, z_i = n + i, s = 2n
   std::vector<int> ray_;        // at a ray termination: the z_i growing along the ray
   std::vector<int> keep_, keep2_;
+  std::unordered_set<std::uint64_t> visited_;  // hashes of the bases on the current path
   int since_refactor_ = 0;
 };
 

@@ -7,10 +7,22 @@
 // basis is w = I, the rows [b_k, Binv_k] are exactly the rows [b_k, a_k1 .. a_kn] of the book's
 // lexicographic rule restricted to the initial-basis columns, which already decide every tie
 // (Binv is non-singular), so the rule never cycles (Lemma 2.9).
+//
+// In exact arithmetic. In floating point the rule's first component compares basic values that
+// are zero at a degenerate vertex with a tolerance, and an ill-conditioned basis carries rounding
+// noise above it: then rounding, not the rule, picks the leaving row, the picks are not
+// consistent from one pivot to the next, and the path can return to a basis it has left (the
+// 466-pair TTL adders' step LCPs did, with a period of 72 pivots, until the iteration limit).
+// A revisited basis is impossible on the exact path, so it proves this failure: it is detected
+// (a hash of the basis, updated per pivot) and the path restarted on q moved by a small generic
+// vector, which makes the degenerate values differ by far more than their noise (the perturbation
+// the lexicographic rule stands for, Stewart 2.2.1, made finite).
 #include <algorithm>
+#include <cstdint>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <unordered_set>
 #include <vector>
 
 #include "solver/lcp/lcp.h"
@@ -24,6 +36,7 @@ const char* lcp_status_name(LcpStatus s) {
     case LcpStatus::RayTermination: return "ray termination";
     case LcpStatus::IterationLimit: return "iteration limit";
     case LcpStatus::NumericalFailure: return "numerical failure";
+    case LcpStatus::Cycling: return "cycling: rounding decides the ratio test at a degenerate vertex";
     case LcpStatus::NotUnique: return "several solutions, none continuous with the previous one";
   }
   return "unknown";
@@ -43,6 +56,22 @@ constexpr double kClampTol = 1e-12;
 // Shift of the normalised q (max-norm 1) along the covering vector after a ray: a hundred times
 // below LemkeOptions::feas_tol's default, far above the rounding of the circuit's elimination.
 constexpr double kRoundingShift = 1e-12;
+// Sizes of the generic shift of the normalised q after a broken path, tried in turn: a thousand times
+// above the rounding noise of the bases seen (1e-12 .. 1e-11 on the adders), below the accepted
+// residual's scale once finish() re-solves the final basis on the q as given (1e-6 was too far
+// on the adders: that basis missed feas_tol).
+constexpr double kDegenerateShifts[] = {1e-9, 1e-7};
+
+// Zobrist key of a tableau variable: the basis hash is the XOR of its variables' keys.
+std::uint64_t basis_key(int var) {
+  std::uint64_t x = static_cast<std::uint64_t>(var) + 0x9E3779B97F4A7C15ull;  // splitmix64
+  x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
+  x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
+  return x ^ (x >> 31);
+}
+
+// Component i of the generic shift: 1 + frac((i + 1) * golden ratio), in [1, 2), all distinct.
+double generic_shift(int i) { return 1.0 + std::fmod(0.6180339887498949 * (i + 1), 1.0); }
 
 }  // namespace
 
@@ -213,9 +242,10 @@ void LemkeEngine::finish(const Eigen::MatrixXd& M, const Eigen::VectorXd& q, dou
 }
 
 // Complementary pivoting on the normalised data qt_ from the all-w basis until the artificial
-// variable leaves (Solved), a ray, or the pivot limit. Leaves the final basis in basis_/b_.
+// variable leaves (Solved), a ray, a revisited basis (Cycling) or the pivot limit (per path;
+// `pivots` counts all paths). Leaves the final basis in basis_/b_.
 LcpStatus LemkeEngine::pivot_to_end(const LemkeOptions& options, int& pivots) {
-  const int max_pivots = options.max_pivots > 0 ? options.max_pivots : 50 * (n_ + 1);
+  const int max_pivots = (options.max_pivots > 0 ? options.max_pivots : 50 * (n_ + 1)) + pivots;
   const int s = 2 * n_;
   Binv_.setIdentity();
   b_ = qt_;
@@ -234,6 +264,10 @@ LcpStatus LemkeEngine::pivot_to_end(const LemkeOptions& options, int& pivots) {
   int leaving = basis_[r];
   pivot(r, s);
   ++pivots;
+  std::uint64_t hash = 0;
+  for (int i = 0; i < n_; ++i) hash ^= basis_key(basis_[i]);
+  visited_.clear();
+  visited_.insert(hash);
 
   const int refactor_every = std::max(64, n_);
   for (;;) {
@@ -253,6 +287,8 @@ LcpStatus LemkeEngine::pivot_to_end(const LemkeOptions& options, int& pivots) {
     leaving = basis_[r];
     pivot(r, entering);
     ++pivots;
+    hash ^= basis_key(leaving) ^ basis_key(entering);
+    if (!visited_.insert(hash).second) return LcpStatus::Cycling;
     if (++since_refactor_ >= refactor_every) refactor();
   }
 }
@@ -262,6 +298,7 @@ void LemkeEngine::solve(const Eigen::MatrixXd& M, const Eigen::VectorXd& q,
   check_square(M, q, "solve_lemke");
   if (M.rows() != n_) throw std::invalid_argument("LemkeEngine: matrix size changed");
   out.pivots = 0;
+  out.restarts = 0;
   out.status = LcpStatus::Solved;
   if ((q.array() >= 0.0).all()) {
     for (int i = 0; i < n_; ++i) basis_[i] = i;  // the all-w basis
@@ -270,7 +307,37 @@ void LemkeEngine::solve(const Eigen::MatrixXd& M, const Eigen::VectorXd& q,
     return;
   }
   const double qn = normalise_q(eq_, q, qt_);
-  LcpStatus status = pivot_to_end(options, out.pivots);
+  solve_path(M, q, qn, options, 0.0, out);
+  // Rounding broke the lexicographic rule: the path came back to a basis. Restart on a
+  // generically shifted q. (Not after a NumericalFailure: its callers repair that basis on
+  // the problem as given -- the warm solver by principal pivoting, the operating point on the
+  // unreduced DC equations -- and a restart there ends on another solution of a regularised
+  // problem: rca3040's operating point lost its symmetry.)
+  LcpSolution retry;
+  for (double shift : kDegenerateShifts) {
+    if (out.status != LcpStatus::Cycling) break;
+    retry.pivots = out.pivots;
+    solve_path(M, q, qn, options, shift, retry);
+    const bool better = retry.status == LcpStatus::Solved || out.status == LcpStatus::Cycling;
+    retry.restarts = out.restarts + 1;
+    if (better) std::swap(out, retry);
+    else out.pivots = retry.pivots, out.restarts = retry.restarts;
+  }
+}
+
+// One complementary path on qt_ + shift * generic_shift (qt_ itself is left as it was), then the
+// answer for the q as given.
+void LemkeEngine::solve_path(const Eigen::MatrixXd& M, const Eigen::VectorXd& q, double qn,
+                             const LemkeOptions& options, double shift, LcpSolution& out) {
+  const Eigen::VectorXd qt_given = qt_;
+  auto path_on = [&](double uniform) {
+    for (int i = 0; i < n_; ++i) qt_(i) = qt_given(i) + shift * generic_shift(i) + uniform;
+    const LcpStatus status = pivot_to_end(options, out.pivots);
+    qt_ = qt_given;
+    if (status == LcpStatus::Solved && (shift != 0.0 || uniform != 0.0)) b_.noalias() = Binv_ * qt_;
+    return status;
+  };
+  LcpStatus status = path_on(0.0);
   if (status == LcpStatus::RayTermination) {
     // For copositive-plus M a ray means the LCP is infeasible (Stewart 2.2.1, Theorem 2.10) —
     // but circuit data can be infeasible by rounding alone: where KCL ties a pair's w to the
@@ -278,11 +345,7 @@ void LemkeEngine::solve(const Eigen::MatrixXd& M, const Eigen::VectorXd& q,
     // and comes out of the elimination as -1e-17 leaves no solution. Solve the neighbouring LCP
     // with q moved along the covering vector by far less than the accepted residual; finish()
     // accepts its z only if it solves the LCP as given within feas_tol.
-    const Eigen::VectorXd qt_given = qt_;
-    qt_.array() += kRoundingShift;
-    status = pivot_to_end(options, out.pivots);
-    qt_ = qt_given;
-    if (status == LcpStatus::Solved) b_.noalias() = Binv_ * qt_;
+    status = path_on(kRoundingShift);
   }
   out.status = status;
   out.ray.clear();

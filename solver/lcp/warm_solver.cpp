@@ -238,6 +238,7 @@ const LcpSolution& LcpWarmSolver::solve_once(const Eigen::VectorXd& q) {
   impl_->engine.solve(M_, q, options_, last_);
   ++stats_.lemke_calls;
   stats_.lemke_pivots += last_.pivots;
+  stats_.lemke_restarts += last_.restarts;
   if (last_.status == LcpStatus::NumericalFailure) polish_by_principal_pivoting(q);
   if (last_.status == LcpStatus::Solved) {
     // The final complementary basis, not the support of z (see the warm-hit branch).
