@@ -87,7 +87,6 @@ DiodeRefitResult refit_diodes(const Netlist& netlist, const ModelOptions& model_
       run_transient(model, outputs, quiet, sink);
     } catch (const NumericalFailure& e) {
       result.failure = e.what();
-      mo.diode_ranges = completed;
       break;
     }
     completed = mo.diode_ranges;  // before this pass's refit
@@ -108,7 +107,8 @@ DiodeRefitResult refit_diodes(const Netlist& netlist, const ModelOptions& model_
       break;
     }
   }
-  result.ranges = mo.diode_ranges;
+  // Not converged: the refitted ranges never ran (and a TTL adder's have no operating point).
+  result.ranges = result.converged ? mo.diode_ranges : completed;
   result.cpu_seconds = process_cpu_seconds() - cpu0;
   return result;
 }

@@ -12,16 +12,9 @@
 //   stop when no refitted law moves by more than 1 mV in VON and 2 % in RON, or after
 //   max_passes transients, or when a pass fails.
 //
-// When a pass fails, the result is the ranges the last pass that ran to TSTOP was built with: the
-// final run repeats a model that ran, so refitting does not make a circuit fail that ran with the
-// default fit (a TTL adder's fourth pass has no operating point).
-//
-// The passes run the final run's own method and options (what the final run will see is what
-// the fit was made from; a cheaper method would fit to a different waveform), without writing
-// output rows anywhere but memory. A junction that does not conduct in a pass keeps its previous
-// range. Cards with VON or RON are never refitted. A transistor's junctions are refitted as
-// diodes are (Device::fitted_junctions: its B-E and B-C junction currents, without the transfer
-// currents or the base-emitter capacitance).
+// Unless the fits converged, the result is the ranges the last pass that ran to TSTOP was built
+// with: the final run repeats a model that ran (a pass that fails, or the ranges of a last refit
+// that never ran, could leave a model without an operating point: a TTL adder's fourth pass).
 #pragma once
 
 #include <map>
