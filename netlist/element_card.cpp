@@ -114,8 +114,7 @@ void parse_bjt(const Card& card, const Reader& r, const ElementScope& scope, Par
   while (i < card.size()) {
     const Token& t = card[i];
     if (t.is_word("off")) {
-      warnings.push_back(warning_line(card.at(t), quote(r.name) + ": OFF is ignored (op finds every operating "
-                                                  "point; .ic or .nodeset chooses one)"));
+      e.initially_on = false;  // among several operating points, one with this transistor off
       ++i;
       continue;
     }
@@ -149,6 +148,11 @@ void diode_instance_params(const Card& card, const Reader& r, std::size_t i, Ele
   }
   while (i < card.size()) {
     const Token& t = card[i];
+    if (t.is_word("off")) {
+      e.initially_on = false;  // among several operating points, one with this diode off
+      ++i;
+      continue;
+    }
     if (!(t.is_word() && i + 1 < card.size() && card[i + 1].is(Token::Kind::Equals))) r.extra(i);
     if (i + 2 >= card.size()) throw NetlistError(card.after_last(), "missing value for " + quote(t.lower));
     if (t.lower != "area" && t.lower != "m") r.extra(i);

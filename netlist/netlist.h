@@ -53,7 +53,8 @@ struct Element {
   // E, F, G, H: `value` is the gain (gm, r); F, H, W: `control` is the controlling voltage source
   // (flat name, resolved in the card's own subcircuit instance as ngspice does).
   std::string control;
-  std::optional<bool> initially_on;    // S, W: ON or OFF on the card (the state at t = 0)
+  std::optional<bool> initially_on;    // S, W: ON or OFF on the card (the state at t = 0);
+                                       // D, Q: false for OFF (the operating point to prefer)
   SourceLocation loc;                  // the card (for subcircuit elements: the card inside .subckt)
 };
 

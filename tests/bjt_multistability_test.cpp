@@ -105,6 +105,37 @@ TEST(BjtMultistability, NodesetChoosesTheNearestAndATransientHoldsIt) {
   }
 }
 
+// ngspice starts its DC iteration with an OFF device off; of several operating points lcspice
+// takes the one with every OFF device off (Q1 off: v(c1) high, v(c2) = 0), saying so.
+TEST(BjtMultistability, OffOnACardChoosesThePointWithThatTransistorOff) {
+  std::string deck = kFlipFlop;
+  deck.replace(deck.find("q1 c1 b1 0 qn"), 13, "q1 c1 b1 0 qn off");
+  const fs::path f = write("off", deck + ".tran 1u 10u\n.end\n");
+  const Result op = run_lcspice("op '" + f.string() + "'", f.parent_path());
+  ASSERT_EQ(op.code, 0) << op.err;
+  EXPECT_EQ(op.err_line(0),
+            "lcspice: warning: the circuit has 3 operating points (transistors q1 and q2); the one with q1 off "
+            "(OFF on the card) is taken (`op --all` lists them)");
+  EXPECT_NEAR(value_of(op.out, "v(c1)"), kHigh, 1e-12);
+  EXPECT_NEAR(value_of(op.out, "v(c2)"), 0.0, 1e-12);
+  // OFF on both: no point has both off, so the card is no guide and the refusal stands.
+  std::string both = deck;
+  both.replace(both.find("q2 c2 b2 0 qn"), 13, "q2 c2 b2 0 qn off");
+  const fs::path g = write("off_both", both + ".tran 1u 10u\n.end\n");
+  const Result refused = run_lcspice("op '" + g.string() + "'", g.parent_path());
+  EXPECT_EQ(refused.code, 3);
+  EXPECT_NE(refused.err.find("the operating point is not unique: 3 operating points"), std::string::npos) << refused.err;
+}
+
+// OFF on a diode card is read (ngspice's `D1 a k model OFF`), not refused as an extra token.
+TEST(BjtMultistability, OffOnADiodeCardIsRead) {
+  const fs::path f = write("diode_off", "diode off\nv1 a 0 1\nr1 a k 1k\nd1 k 0 dm off\n"
+                                        ".model dm d(von=0.6 ron=0)\n.tran 1u 2u\n.end\n");
+  const Result op = run_lcspice("op '" + f.string() + "'", f.parent_path());
+  ASSERT_EQ(op.code, 0) << op.err;
+  EXPECT_NEAR(value_of(op.out, "v(k)"), 0.6, 1e-12);  // a unique point: OFF changes nothing
+}
+
 TEST(BjtMultistability, AnalyzeNamesTheTransistorsThatBreakThePProperty) {
   const fs::path f = write("analyze", std::string(kFlipFlop) + ".tran 1u 10u\n.end\n");
   const Result r = run_lcspice("analyze '" + f.string() + "'", f.parent_path());

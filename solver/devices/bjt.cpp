@@ -149,7 +149,7 @@ NgspiceCards Bjt::ngspice(const NgspiceDeckContext& context) const {
     std::string c = inner['c'], e = inner['e'];
     if (context.reversed) std::swap(c, e);
     cards.lines.push_back(deck_name('q', name()) + " " + c + " " + inner['b'] + " " + e + " " + model +
-                          " " + number(area_));
+                          " " + number(area_) + (element_.initially_on.value_or(true) ? "" : " OFF"));
     cards.models.push_back(".model " + model + (n ? " NPN" : " PNP") + "(IS=" + number(card_.is) +
                            " BF=" + number(card_.bf) + " BR=" + number(card_.br) + " NF=" +
                            number(card_.nf) + " NR=" + number(card_.nr) + ")");

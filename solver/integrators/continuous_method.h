@@ -3,6 +3,7 @@
 #pragma once
 
 #include <functional>
+#include <string>
 #include <vector>
 
 #include <Eigen/Dense>
@@ -38,12 +39,24 @@ class ContinuousMethod {
     DoRun(x0, grid, emit, progress);
   }
   virtual StepperStats stats() const { return stats_; }
+  // The run starts at the circuit's DC operating point (not UIC), x0 the ideal model's; `held`
+  // marks the states IC= or .ic set there. A method of the smoothed circuit then starts from that
+  // circuit's own operating point (smooth_method.h); the others from x0 as it is.
+  void StartAtOperatingPoint(std::vector<bool> held) {
+    start_at_rest_ = true;
+    held_ = std::move(held);
+  }
+  // What the run's warnings should say about how the method ran.
+  const std::vector<std::string>& notes() const { return notes_; }
 
  protected:
   virtual void DoRun(const Eigen::VectorXd& x0, const OutputGrid& grid, const Emit& emit,
                      const Progress& progress) = 0;
   const LcsProblem& model_;
   StepperStats stats_;
+  bool start_at_rest_ = false;
+  std::vector<bool> held_;
+  std::vector<std::string> notes_;
 };
 
 }  // namespace lcs

@@ -221,4 +221,53 @@ bool ShockleyDae::solve_pairs(double t, const Eigen::VectorXd& x, Eigen::VectorX
   return false;
 }
 
+bool ShockleyDae::solve_rest_point(double t, Eigen::VectorXd& y, const std::vector<bool>& held,
+                                   long* iterations) const {
+  const Lcs& lcs = model_.lcs();
+  const int size = n_ + m_;
+  const Eigen::VectorXd y0 = y, zero = Eigen::VectorXd::Zero(size);
+  const double pull = 1e-9 * std::max(lcs.A.cwiseAbs().maxCoeff(), 1e-300);
+  Eigen::VectorXd r(size), weights(size);
+  Eigen::MatrixXd J(size, size);
+  auto evaluate = [&](const Eigen::VectorXd& at) {
+    if (!residual(t, at, zero, r)) return false;
+    r.head(n_) += pull * (at.head(n_) - y0.head(n_));  // residual() has x' - f: here -f
+    for (int k = 0; k < n_; ++k)
+      if (k < static_cast<int>(held.size()) && held[k]) r(k) = at(k) - y0(k);
+    return true;
+  };
+  auto norm = [&](const Eigen::VectorXd& d, const Eigen::VectorXd& at) {
+    error_weights(at, weights);
+    return std::sqrt(d.cwiseProduct(weights).squaredNorm() / size);
+  };
+  Eigen::VectorXd yk = y, y_try;
+  for (int it = 0; it < 200; ++it) {
+    if (!evaluate(yk)) return false;
+    if (iterations) ++*iterations;
+    jacobian(t, yk, 0.0, J);
+    J.topLeftCorner(n_, n_).diagonal().array() += pull;
+    for (int k = 0; k < n_; ++k)
+      if (k < static_cast<int>(held.size()) && held[k]) {
+        J.row(k).setZero();
+        J(k, k) = 1.0;
+      }
+    const Eigen::PartialPivLU<Eigen::MatrixXd> lu(J);
+    const Eigen::VectorXd dy = lu.solve(-r);
+    if (!dy.allFinite()) return false;
+    const double dy_norm = norm(dy, yk);
+    if (dy_norm <= 1e-3) {
+      y = yk + dy;
+      return true;
+    }
+    bool accepted = false;  // the natural monotonicity test, as in solve_pairs
+    for (double lambda = 1.0; lambda > 1e-10 && !accepted; lambda *= 0.5) {
+      y_try = yk + lambda * dy;
+      accepted = evaluate(y_try) && norm(lu.solve(-r), yk) <= (1 - lambda / 4) * dy_norm;
+    }
+    if (!accepted) return false;
+    yk = y_try;
+  }
+  return false;
+}
+
 }  // namespace lcs

@@ -101,6 +101,13 @@ class ShockleyDae {
   // error weights. Returns false (s unchanged) when it does not converge. Counts its iterations
   // in *iterations (may be null).
   bool solve_pairs(double t, const Eigen::VectorXd& x, Eigen::VectorXd& s, long* iterations) const;
+  // The smoothed circuit's own DC operating point near the ideal one: y = [x; s] with dx/dt = 0
+  // and the pair rows on their curves, by damped Newton from y (as solve_pairs, on the whole
+  // system). States marked `held` (set by IC= or .ic) keep their value. A state the DC equations
+  // leave free (a capacitor with no DC path) is pulled toward its value in y by a conductance
+  // 1e-9 of A's scale, as the ideal operating point's regularisation does. Returns false (y
+  // unchanged) when Newton's method does not converge. Needs set_tolerances first.
+  bool solve_rest_point(double t, Eigen::VectorXd& y, const std::vector<bool>& held, long* iterations) const;
   // The sources at t; at the segment's end their values before it (a jump there is the next
   // segment's).
   Eigen::VectorXd inputs(double t) const;

@@ -326,6 +326,22 @@ void SmoothMethod::at_rest(Eigen::VectorXd& s) const {
     if (std::abs(s(k)) <= atol_) s(k) = 0.0;
 }
 
+// The run starts at the circuit's DC operating point: the smoothed circuit's own, not the ideal
+// diodes' (whose VON/RON put the nodes tens of millivolts elsewhere, and the run would begin with
+// that difference relaxing, where ngspice, from its own operating point, begins at rest).
+void SmoothMethod::rest_point(double t, Eigen::VectorXd& x, Eigen::VectorXd& s) {
+  const int n = dae_.states(), m = dae_.pairs();
+  Eigen::VectorXd y(n + m);
+  y << x, s;
+  if (dae_.solve_rest_point(t, y, held_, &stats_.newton_iterations)) {
+    x = y.head(n);
+    s = y.tail(m);
+    return;
+  }
+  notes_.push_back("the smoothed circuit's own operating point was not found (Newton's method did not "
+                   "converge from the ideal diodes' one): the run starts from the ideal diodes' operating point");
+}
+
 void SmoothMethod::set_guards(const SwitchGuards& guards) {
   guards_ = guards;
   guard_count_ = static_cast<int>(guards.threshold.size());
@@ -363,7 +379,7 @@ void SmoothMethod::DoRun(const Eigen::VectorXd& x0, const OutputGrid& grid, cons
 std::optional<GuardCrossing> SmoothMethod::RunSegment(const SegmentStart& start, const OutputGrid& grid,
                                                       const Emit& emit, const Progress& progress) {
   const double t0 = start.t;
-  const Eigen::VectorXd& x0 = start.x;
+  Eigen::VectorXd x0 = start.x;
   if (t0 == 0) stats_ = {};  // a later segment of the same configuration adds to its counts
   const Schedule schedule = make_schedule(model_, grid);
   const int n = dae_.states(), m = dae_.pairs();
@@ -401,6 +417,7 @@ std::optional<GuardCrossing> SmoothMethod::RunSegment(const SegmentStart& start,
       s.setZero();
     }
     consistent_pairs(t0, x0, s, schedule.tstep);
+    if (t0 == 0 && start_at_rest_ && n > 0) rest_point(t0, x0, s);
     at_rest(s);
   }
 

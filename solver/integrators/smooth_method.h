@@ -51,6 +51,7 @@ class SmoothMethod : public ContinuousMethod, public GuardedMethod {
   // (complementarity) solution, else from zero. Throws NumericalFailure when none converges.
   void consistent_pairs(double t, const Eigen::VectorXd& x, Eigen::VectorXd& s, double tstep);
   void at_rest(Eigen::VectorXd& s) const;
+  void rest_point(double t, Eigen::VectorXd& x, Eigen::VectorXd& s);
   static bool switched(const Eigen::VectorXd& s, const Eigen::VectorXd& s_next);
   // No states: a Newton solve per output time; emit_state(t, s, event).
   void run_algebraic(const Schedule& schedule, Eigen::VectorXd s,

@@ -108,9 +108,11 @@ namespace {
 // the last (an event on a grid time), or printing alike (DistinctRows), and before TSTART are
 // dropped.
 void run_adaptive(const CircuitModel& model, const OutputMap& outputs, const TransientOptions& options,
-                  const MethodEntry& entry, const Eigen::VectorXd& x0, OutputSink& sink,
+                  const MethodEntry& entry, const InitialState& init, OutputSink& sink,
                   TransientSummary& summary, double cpu0) {
+  const Eigen::VectorXd& x0 = init.x;
   std::unique_ptr<ContinuousMethod> method = entry.make_continuous(model, options.method_options);
+  if (!options.uic) method->StartAtOperatingPoint(init.held);
   OutputGrid grid;
   grid.tstep = options.step;
   grid.tstop = options.tstop;
@@ -138,6 +140,7 @@ void run_adaptive(const CircuitModel& model, const OutputMap& outputs, const Tra
   }
   summary.cpu_steps = process_cpu_seconds() - loop0;
   summary.stepper = method->stats();
+  for (const std::string& note : method->notes()) summary.warnings.push_back(note);
 }
 
 // Fixed-step methods: step k ends at k*h (no accumulated rounding); a last shorter step lands
@@ -364,7 +367,7 @@ TransientSummary run_transient(const CircuitModel& model, const OutputMap& outpu
     if (model.has_history()) model.history().set_degree(entry.history_degree);
     summary.warnings = init.warnings;
     if (entry.adaptive())
-      run_adaptive(model, outputs, options, entry, init.x, sink, summary, cpu0);
+      run_adaptive(model, outputs, options, entry, init, sink, summary, cpu0);
     else
       run_fixed_step(model, outputs, options, entry, init.x, init.z, sink, summary, cpu0);
   } catch (const NumericalFailure&) {

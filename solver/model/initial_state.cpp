@@ -151,6 +151,7 @@ InitialState initial_state(const CircuitModel& model, bool uic, double t0) {
     return model.evaluate_dc(model.node_voltage(node), x_lcs, z, t0);
   };
 
+  init.held.assign(n, false);
   std::set<std::string> used_node_ics(chosen_by.begin(), chosen_by.end());
   std::vector<int> state_of_branch(g.branches.size(), -1);  // windings: their magnetising state
   for (int j = 0; j < n; ++j) {
@@ -173,8 +174,10 @@ InitialState initial_state(const CircuitModel& model, bool uic, double t0) {
     if (!model.states()[j].windings.empty()) continue;  // below
     if (ic) {
       physical(j) = *ic;
+      init.held[j] = true;
     } else if (cap && (node_ic.count(g.nodes[br.from]) || node_ic.count(g.nodes[br.to]))) {
       physical(j) = node_value(br.from) - node_value(br.to);
+      init.held[j] = true;
       used_node_ics.insert(g.nodes[br.from]);
       used_node_ics.insert(g.nodes[br.to]);
     }
@@ -192,6 +195,7 @@ InitialState initial_state(const CircuitModel& model, bool uic, double t0) {
     if (std::optional<double> value = magnetising_ic(model, model.states()[j], current)) {
       physical(j) = *value;
       set_by_ic.push_back(j);
+      init.held[j] = true;
     }
   }
   init.x = model.lcs_state(physical, t0);

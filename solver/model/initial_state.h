@@ -17,6 +17,7 @@ namespace lcs {
 struct InitialState {
   Eigen::VectorXd x;                  // LCS state at t0
   Eigen::VectorXd z;                  // the operating point's z (zeros with UIC)
+  std::vector<bool> held;             // per state: its value set by IC=, .ic or a winding's IC=
   std::vector<std::string> warnings;  // IC= on dependent elements, states with no DC path
 };
 

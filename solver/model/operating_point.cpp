@@ -268,13 +268,47 @@ std::vector<std::string> elements_that_differ(const CircuitModel& model, const s
   return names;
 }
 
+// OFF on a D or Q card is ngspice's start of its DC iteration with that device off; here it
+// keeps, of several operating points, those in which every such device carries no pair current.
+// If none has them all off the card is no guide, and every point stays.
+std::vector<Eigen::VectorXd> with_off_devices_off(const CircuitModel& model, const std::vector<Eigen::VectorXd>& zs,
+                                                  std::vector<std::string>& off_names) {
+  const Netlist& netlist = model.netlist();
+  std::vector<int> off_pairs;
+  for (int i = 0; i < static_cast<int>(model.pairs().size()); ++i) {
+    const Element& e = netlist.elements.at(model.pairs()[i].element);
+    if (e.kind != ElementKind::Bjt && e.kind != ElementKind::Diode) continue;
+    if (e.initially_on.value_or(true)) continue;
+    off_pairs.push_back(i);
+    if (std::find(off_names.begin(), off_names.end(), e.name) == off_names.end()) off_names.push_back(e.name);
+  }
+  if (off_pairs.empty()) return zs;
+  double scale = 1e-300;
+  for (const Eigen::VectorXd& z : zs) scale = std::max(scale, max_abs(z));
+  std::vector<Eigen::VectorXd> kept;
+  for (const Eigen::VectorXd& z : zs)
+    if (std::all_of(off_pairs.begin(), off_pairs.end(), [&](int i) { return z(i) <= 1e-9 * scale; })) kept.push_back(z);
+  if (kept.empty()) off_names.clear();
+  return kept.empty() ? zs : kept;
+}
+
 OperatingPoint choose_among(const CircuitModel& model, const StaticProblem& p, double t,
-                            const std::vector<Eigen::VectorXd>& zs) {
-  const std::vector<std::string> differ = elements_that_differ(model, zs);
+                            const std::vector<Eigen::VectorXd>& all) {
+  const std::vector<std::string> differ = elements_that_differ(model, all);
   const std::string who = differ.empty() ? std::string("the circuit")
                                          : (differ.size() == 1 ? "transistor " : "transistors ") + join_names(differ);
+  const std::string count = std::to_string(all.size()) + " operating points";
+  std::vector<std::string> off_names;
+  const std::vector<Eigen::VectorXd> zs = with_off_devices_off(model, all, off_names);
+  if (zs.size() == 1) {
+    OperatingPoint op = point_from(p, zs[0]);
+    polish(model, t, op);
+    finish(model, op);
+    op.warnings.push_back("the circuit has " + count + " (" + who + "); the one with " + join_names(off_names) +
+                          " off (OFF on the card) is taken (`op --all` lists them)");
+    return op;
+  }
   const std::map<std::string, double> hints = node_hints(model.netlist());
-  const std::string count = std::to_string(zs.size()) + " operating points";
   if (hints.empty())
     throw NumericalFailure(t, "the operating point is not unique: " + count + " (" + who +
                                   " on in some, off in others); list them with `op --all` and choose "

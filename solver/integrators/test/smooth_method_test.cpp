@@ -135,6 +135,31 @@ TEST(RcThroughShockleyDiode, ErrorScalesWithTheTolerance) {
   EXPECT_GT(coarse / fine, 50.0) << coarse << " " << fine;
 }
 
+// (b2) Without UIC the run starts at the smoothed circuit's own operating point, not the ideal
+// diodes' (VON = 0.7, RON = 0 would put v(a) at 0.7 V, and the capacitor would relax from there):
+// the DC current through R and VON + Shockley is the Lambert W form, and every row stays at it.
+// A capacitor voltage set by IC= is held at its value.
+TEST(RestPoint, TheRunStartsAtTheSmoothCircuitsOwnOperatingPoint) {
+  const double V = 5, VON = 0.7, R = 1e3, C = 1e-6, IS = 1e-14;
+  NetlistBuilder b;
+  b.v("v1", "in", "0", NetlistBuilder::dc(V)).r("r1", "in", "a", R).d("d1", "a", "0", VON, 0);
+  b.c("c1", "a", "0", C);
+  SmoothRun r = simulate(shockley(b.build(), 1.0, IS), {"v(a)"}, 1e-4, 1e-3, false);
+  const double exact = V - R * series_current(V - VON, R, IS, kThermalVoltage);
+  ASSERT_GT(exact, VON + 0.5);  // far from the ideal operating point
+  ASSERT_EQ(r.sink.times.size(), 11u);
+  for (size_t k = 0; k < r.sink.times.size(); ++k)
+    EXPECT_NEAR(r.sink.rows[k](0), exact, 1e-8 * V) << "row " << k;
+  EXPECT_TRUE(r.summary.warnings.empty());
+
+  NetlistBuilder held;
+  held.v("v1", "in", "0", NetlistBuilder::dc(V)).r("r1", "in", "a", R).d("d1", "a", "0", VON, 0);
+  held.c("c1", "a", "0", C, 1.0);
+  SmoothRun h = simulate(shockley(held.build(), 1.0, IS), {"v(a)"}, 1e-4, 1e-3, false);
+  EXPECT_NEAR(h.sink.rows[0](0), 1.0, 1e-12);
+  EXPECT_NEAR(h.sink.rows.back()(0), exact, 1e-6 * V);  // and charges to the operating point
+}
+
 // (c) As N -> 0 the smooth diode tends to the ideal one. Half-wave rectifier into R (no states):
 // ideal v(out) = max(0, v_in - VON) R / (R + RON). The smooth diode needs N Vt ln(1 + i/IS) more,
 // so the error is proportional to N, largest at the peak current.
