@@ -211,6 +211,24 @@ TEST(RealWorldSwitches, ValidateTheRingOscillatorOutput) {
   EXPECT_NE(r.out.find("PASS: every probe within 0.02 of its range"), std::string::npos) << r.out;
 }
 
+// The ECL gates of ngspice's lossy-line example with the event method, past the switching at
+// 22.9 ns where it stopped with exit 3, "no consistent mode after a switching event": a pair
+// that the next mode leaves uncoupled (its row rounding, 5.5e-20 where its unit's rows are 1.7)
+// read -5.5e-20 A as a violation against its own row's size. Release only (15 s CPU).
+TEST(RealWorldLines, EclGatesPastTheirFirstSwitchingWithTheEventMethod) {
+  if (kInstrumented) GTEST_SKIP() << "Release builds only";
+  const fs::path deck = kRealWorld / "examples/TransmissionLines/ltra4_1_line.sp";
+  if (!fs::exists(deck)) GTEST_SKIP() << deck << " is missing";
+  const fs::path dir = scratch_dir("realworld_ltra4_event");
+  const Result r = run_lcspice("run '" + deck.string() + "' --method event --tstop 25e-9 -o '" +
+                                   (dir / "out.csv").string() + "'", dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const Csv csv = parse_csv(read_file(dir / "out.csv"));
+  ASSERT_FALSE(csv.rows.empty());
+  EXPECT_EQ(csv.rows.back()[0], 25e-9);
+  EXPECT_GE(csv.rows.size(), 251u);  // every TSTEP = 0.1 ns, and the events
+}
+
 // A deck of its own with numeric nodes only (no ../shared needed): a diode clamp.
 TEST(RealWorldValidate, NumericNodesOnly) {
   const fs::path dir = scratch_dir("validate_numeric_nodes");

@@ -19,8 +19,8 @@ namespace {
 // simulated second (90 MB at 128) against euler's 0.014-0.14. Up to 128 pairs the exact answer
 // is worth that; above it `run` takes the fixed-step default unless asked. Circuits with lines
 // take it too: `/usr/bin/time lcspice run circuits/tline_*.cir --method M` measured 0.25-2.7 s
-// for event against 0.01-0.03 s for euler (and ltra4_1_line.sp of ngspice's examples fails
-// with event at 22.9 ns, "no consistent mode", where euler completes).
+// for event against 0.01-0.03 s for euler (ltra4_1_line.sp of ngspice's examples: 11 s of
+// event steps after the refit).
 constexpr int kEventDefaultMaxPairs = 128;
 
 using StepperFactory = decltype(MethodEntry::make_stepper);
