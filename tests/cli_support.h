@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdlib>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -153,6 +154,21 @@ inline std::vector<double> column(const Csv& csv, const std::string& name) {
   if (c >= 0)
     for (const std::vector<double>& row : csv.rows) out.push_back(row[c]);
   return out;
+}
+
+// A netlist written to a scratch directory of its own (named after `prefix` and `name`).
+inline fs::path write_deck(const std::string& prefix, const std::string& name, const std::string& text) {
+  const fs::path path = scratch_dir(prefix + name) / (name + ".cir");
+  std::ofstream(path) << text;
+  return path;
+}
+
+// The index of the row nearest to time t.
+inline size_t row_at(const std::vector<double>& times, double t) {
+  size_t best = 0;
+  for (size_t k = 1; k < times.size(); ++k)
+    if (std::abs(times[k] - t) < std::abs(times[best] - t)) best = k;
+  return best;
 }
 
 }  // namespace lcs::cli_testing

@@ -12,13 +12,6 @@ namespace {
 
 using namespace cli_testing;
 
-fs::path write_deck(const std::string& name, const std::string& text) {
-  const fs::path dir = scratch_dir("deck_" + name);
-  const fs::path path = dir / (name + ".cir");
-  std::ofstream(path) << text;
-  return path;
-}
-
 // VIN ramps 0 -> 2 V over 1 ms (vin = 2000 t). Every output is memoryless in vin:
 //   inverting amplifier, open-loop gain A = 1e5:   v(out1) = -A R2 vin / (R1 + R2 + A R1)
 //   Norton, G1 = 1 mS into RN = 2 k:                v(n2) = gm RN vin = 2 vin
@@ -52,7 +45,7 @@ double amplifier(double vin) {
 const char* const kProbes = "--probe 'v(in),v(out1),v(n2),v(out3),v(h),v(out4),i(e1),i(g1)'";
 
 TEST(ControlledSources, ClosedFormsWithEveryMethod) {
-  const fs::path deck = write_deck("closed_forms", kClosedForms);
+  const fs::path deck = write_deck("deck_", "closed_forms", kClosedForms);
   for (const char* method : {"event", "euler", "theta", "radau3", "radau5", "smooth"}) {
     SCOPED_TRACE(method);
     const bool smooth = std::string(method) == "smooth";
@@ -88,7 +81,7 @@ TEST(ControlledSources, ClosedFormsWithEveryMethod) {
 TEST(ControlledSources, OperatingPoint) {
   std::string text = kClosedForms;
   text.replace(text.find("PWL(0 0 1m 2)"), 13, "DC 1");
-  const fs::path deck = write_deck("op", text);
+  const fs::path deck = write_deck("deck_", "op", text);
   const Result r = run_lcspice("op '" + deck.string() + "'", deck.parent_path());
   ASSERT_EQ(r.code, 0) << r.err;
   auto value = [&](const std::string& name) {
@@ -105,7 +98,7 @@ TEST(ControlledSources, OperatingPoint) {
 // A capacitor charged by a G source (Norton: gm vin into R || C) has the RC closed form, and the
 // same with an F mirror of a source current and an H source behind a resistor.
 TEST(ControlledSources, NortonChargesACapacitorWithItsTimeConstant) {
-  const fs::path deck = write_deck("norton", R"(Norton with a capacitor
+  const fs::path deck = write_deck("deck_", "norton", R"(Norton with a capacitor
 VIN in 0 DC 1
 RIN in 0 1k
 G1 0 n in 0 2m
@@ -125,7 +118,7 @@ CN n 0 1u
 
 // Inside a subcircuit F and H name the instance's own V source, as ngspice resolves them.
 TEST(ControlledSources, ControlNamesResolveInsideTheirSubcircuit) {
-  const fs::path deck = write_deck("subckt", R"(current mirror in a subcircuit
+  const fs::path deck = write_deck("deck_", "subckt", R"(current mirror in a subcircuit
 .subckt mirror in out
 VS in s 0
 RS s 0 1k
@@ -162,7 +155,7 @@ TEST(ControlledSources, TopologyErrorsNameTheElements) {
   };
   int k = 0;
   for (const TopologyCase& c : cases) {
-    const fs::path deck = write_deck("topology" + std::to_string(k++), c.text);
+    const fs::path deck = write_deck("deck_", "topology" + std::to_string(k++), c.text);
     const Result r = run_lcspice("run '" + deck.string() + "' -o -", deck.parent_path());
     EXPECT_EQ(r.code, 2) << c.text << r.err;
     EXPECT_NE(r.err.find(c.message), std::string::npos) << r.err;

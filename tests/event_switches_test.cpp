@@ -15,20 +15,6 @@ namespace {
 
 using namespace cli_testing;
 
-fs::path write_deck(const std::string& name, const std::string& text) {
-  const fs::path dir = scratch_dir("event_switch_deck_" + name);
-  const fs::path path = dir / (name + ".cir");
-  std::ofstream(path) << text;
-  return path;
-}
-
-size_t row_at(const std::vector<double>& times, double t) {
-  size_t best = 0;
-  for (size_t k = 1; k < times.size(); ++k)
-    if (std::abs(times[k] - t) < std::abs(times[best] - t)) best = k;
-  return best;
-}
-
 // The event method locates a crossing to a bisection bracket of 2^-43 TSTEP, past the threshold
 // by at most 1e-12 of the control's size: far inside 1e-9 of the time.
 constexpr double kTimeRel = 1e-9;
@@ -54,7 +40,7 @@ double ramped_rc(double t) {
 }
 
 TEST(EventSwitches, RcChargedThroughARampedSwitchIsTheClosedForm) {
-  const fs::path deck = write_deck("ramped_rc", kRampedRc);
+  const fs::path deck = write_deck("event_switch_deck_", "ramped_rc", kRampedRc);
   const double t_on = 0.5e-3 / 0.9;
   const Csv csv = run_csv(deck, "event", "--probe 'v(out),v(c)'");
   const std::vector<double> t = column(csv, "time"), v = column(csv, "v(out)"), c = column(csv, "v(c)");
@@ -71,7 +57,7 @@ TEST(EventSwitches, RcChargedThroughARampedSwitchIsTheClosedForm) {
 // global error (h / 2 tau) (t / tau) e^(-t / tau) 5 V, at most 9.197e-5 V at t - t_on = tau
 // (measured 9.196e-5 V), and the switching instant, exact for this linear control in both.
 TEST(EventSwitches, EventAgreesWithEulerAtASmallStep) {
-  const fs::path deck = write_deck("ramped_rc_euler", kRampedRc);
+  const fs::path deck = write_deck("event_switch_deck_", "ramped_rc_euler", kRampedRc);
   const Csv ev = run_csv(deck, "event", "--step 0.1u --probe 'v(out)'");
   const Csv eu = run_csv(deck, "euler", "--step 0.1u --probe 'v(out)'");
   const std::vector<double> te = column(ev, "time"), ve = column(ev, "v(out)");
@@ -90,7 +76,7 @@ TEST(EventSwitches, EventAgreesWithEulerAtASmallStep) {
 // up, off at 0.295 V (1.705 ms) on the way down, not at 0.705 V (1.295 ms). Resistive load: the
 // output is 5 * 1000/1001 while on, 5 * 1000 / (1e12 + 1000) while off.
 TEST(EventSwitches, HysteresisOpensAtVtMinusVh) {
-  const fs::path deck = write_deck("hysteresis", R"(switch hysteresis
+  const fs::path deck = write_deck("event_switch_deck_", "hysteresis", R"(switch hysteresis
 VDD dd 0 DC 5
 VC c 0 PWL(0 0 1m 1 2m 0)
 S1 dd out c 0 sw1
@@ -116,7 +102,7 @@ R1 out 0 1k
 // through R1 || ROFF (tau 1 ms) toward 5 nV. Every row is that closed form (the breakpoint is the
 // switching instant, not a bisection bracket after it).
 TEST(EventSwitches, ControlJumpingAtASourceBreakpoint) {
-  const fs::path deck = write_deck("jump", R"(switch on a jumping control
+  const fs::path deck = write_deck("event_switch_deck_", "jump", R"(switch on a jumping control
 VDD dd 0 DC 5
 VC c 0 PULSE(0 1 0.5m 0 0 1m 2m)
 S1 dd out c 0 sw1
@@ -144,7 +130,7 @@ C1 out 0 1u
 // A W switch: i(vsense) = v(in)/1k ramps 0 -> 1 mA over 1 ms; IT = 0.5 mA, IH = 0.105 mA: on at
 // 0.605 mA, t = 0.605 ms. The output: 5 * 1000/1001 V on, 5 * 1000 / (1e12 + 1000) V off.
 TEST(EventSwitches, CurrentControlledSwitch) {
-  const fs::path deck = write_deck("wswitch", R"(current-controlled switch
+  const fs::path deck = write_deck("event_switch_deck_", "wswitch", R"(current-controlled switch
 VIN in 0 PWL(0 0 1m 1)
 VSENSE in m 0
 RS m 0 1k
@@ -171,7 +157,7 @@ R1 out 0 1k
 //   discharge     td = Rd C ln((3.5 - Vd) / (1.5 - Vd))
 //   rise          tr = Rth C ln((Vth - 1.5) / (Vth - 3.5)),   period tr + td.
 TEST(EventSwitches, RelaxationOscillatorPeriodIsTheClosedForm) {
-  const fs::path deck = write_deck("relaxation", R"(relaxation oscillator: a capacitor and a switch with hysteresis
+  const fs::path deck = write_deck("event_switch_deck_", "relaxation", R"(relaxation oscillator: a capacitor and a switch with hysteresis
 VDD dd 0 DC 5
 R1 dd c 10k
 C1 c 0 1n
@@ -217,7 +203,7 @@ S1 c 0 c 0 swr
 // (measured: 9.5e-5 V and 2.4e-5 A at h = 1 ns), away from the switching rows (where the two
 // methods' rows fall on either side of the same instant).
 TEST(EventSwitches, BuckConverterSwitchAndDiodeEulerConvergesToEvent) {
-  const fs::path deck = write_deck("buck", R"(buck converter: ideal switch, freewheeling diode
+  const fs::path deck = write_deck("event_switch_deck_", "buck", R"(buck converter: ideal switch, freewheeling diode
 VIN in 0 DC 12
 VG g 0 PULSE(0 5 0 10n 10n 4u 10u)
 S1 in sw g 0 swm
@@ -266,7 +252,7 @@ RL out 0 5
 // the tube over four periods (4.9e-5 of v(c)'s range outside it, measured; at 1e-9 the phase
 // has drifted 13 % of the range out by 38 us).
 TEST(EventSwitches, RelaxationOscillatorAgreesWithNgspice) {
-  const fs::path deck = write_deck("relax_validate", R"(relaxation oscillator
+  const fs::path deck = write_deck("event_switch_deck_", "relax_validate", R"(relaxation oscillator
 VDD dd 0 DC 5
 R1 dd c 10k
 C1 c 0 1n
@@ -286,7 +272,7 @@ S1 c 0 c 0 swr
 // -4 V: S1 opens at once, the control is back at 1 V, and so on at one instant. Both kinds of
 // method report it the same way.
 TEST(EventSwitches, ChatteringIsANumericalFailure) {
-  const fs::path deck = write_deck("chatter", R"(a switch that undoes itself
+  const fs::path deck = write_deck("event_switch_deck_", "chatter", R"(a switch that undoes itself
 VDD dd 0 DC 5
 VR r 0 PWL(0 0 1m 2)
 E1 c 0 r out 1
@@ -309,7 +295,7 @@ R1 out 0 1k
 
 // Without --method a switch deck runs with the event method (SPEC §1: event wherever it applies).
 TEST(EventSwitches, EventIsTheDefaultOnSwitchDecks) {
-  const fs::path deck = write_deck("default", kRampedRc);
+  const fs::path deck = write_deck("event_switch_deck_", "default", kRampedRc);
   const fs::path dir = deck.parent_path();
   const Result r = run_lcspice("run '" + deck.string() + "' --stats -o '" + (dir / "out.csv").string() + "'", dir);
   EXPECT_EQ(r.code, 0) << r.err;
@@ -322,14 +308,14 @@ TEST(EventSwitches, EventIsTheDefaultOnSwitchDecks) {
 // within 1e-5 V of the closed form (local error control at --rtol 1e-6 on 5 V, 5e-6 per step;
 // 4.7e-6 measured); the relaxation oscillator's instants within 1e-6 relative (2.5e-7 measured).
 TEST(EventSwitches, SmoothLocatesSwitchesAsRootsOfIda) {
-  const fs::path ramp = write_deck("smooth_ramp", kRampedRc);
+  const fs::path ramp = write_deck("event_switch_deck_", "smooth_ramp", kRampedRc);
   const Csv csv = run_csv(ramp, "smooth", "--probe 'v(out)'");
   const std::vector<double> t = column(csv, "time"), v = column(csv, "v(out)");
   const double t_on = 0.5e-3 / 0.9;
   EXPECT_NEAR(t[row_at(t, t_on)], t_on, kTimeRel * t_on);
   for (size_t k = 0; k < t.size(); ++k) ASSERT_NEAR(v[k], ramped_rc(t[k]), 1e-5) << t[k];
 
-  const fs::path relax = write_deck("smooth_relax", R"(relaxation oscillator
+  const fs::path relax = write_deck("event_switch_deck_", "smooth_relax", R"(relaxation oscillator
 VDD dd 0 DC 5
 R1 dd c 10k
 C1 c 0 1n
@@ -358,7 +344,7 @@ S1 c 0 c 0 swr
 // smooth's guards are IDA's roots: a circuit without states (no IDA run) is refused with the
 // reason and the methods that handle it (a usage error, the netlist is fine).
 TEST(EventSwitches, SmoothRefusesSwitchesWithoutStates) {
-  const fs::path deck = write_deck("smooth_no_states", R"(switch on a resistive load
+  const fs::path deck = write_deck("event_switch_deck_", "smooth_no_states", R"(switch on a resistive load
 VDD dd 0 DC 5
 VC c 0 PWL(0 0 1m 1 2m 0)
 S1 dd out c 0 sw1

@@ -15,21 +15,6 @@ namespace {
 
 using namespace cli_testing;
 
-fs::path write_deck(const std::string& name, const std::string& text) {
-  const fs::path dir = scratch_dir("switch_deck_" + name);
-  const fs::path path = dir / (name + ".cir");
-  std::ofstream(path) << text;
-  return path;
-}
-
-// The row nearest to time t (its index).
-size_t row_at(const std::vector<double>& times, double t) {
-  size_t best = 0;
-  for (size_t k = 1; k < times.size(); ++k)
-    if (std::abs(times[k] - t) < std::abs(times[best] - t)) best = k;
-  return best;
-}
-
 // v(c) ramps 0 -> 0.9 V over 1 ms; the switch (VT 0.4 V, VH 0.1 V) closes where v(c) reaches
 // 0.5 V, t_on = 0.5/0.9 ms (not a multiple of the step), and charges C1 = 1 uF through RON = 1 k
 // from 5 V: v(out) = 5 (1 - exp(-(t - t_on)/1 ms)) after it, ~0 before (from rest, UIC: ROFF =
@@ -45,7 +30,7 @@ C1 out 0 1u
 )";
 
 TEST(Switches, RcChargedThroughARampedSwitch) {
-  const fs::path deck = write_deck("ramped_rc", kRampedRc);
+  const fs::path deck = write_deck("switch_deck_", "ramped_rc", kRampedRc);
   const double t_on = 0.5e-3 / 0.9;
   // radau5: the RC exponential to its fifth-order error; euler: to its first-order global error
   // (h/2 tau) (t/tau) e^(-t/tau) 5 V <= 0.93 mV at h = 1 us, tau = 1 ms.
@@ -69,7 +54,7 @@ TEST(Switches, RcChargedThroughARampedSwitch) {
 // way down, not at 0.705 V (t = 1.295 ms). On: v(out) = 5 * 1000/1001. (Neither time is a
 // multiple of the 10 us step.)
 TEST(Switches, HysteresisOpensAtVtMinusVh) {
-  const fs::path deck = write_deck("hysteresis", R"(switch hysteresis
+  const fs::path deck = write_deck("switch_deck_", "hysteresis", R"(switch hysteresis
 VDD dd 0 DC 5
 VC c 0 PWL(0 0 1m 1 2m 0)
 S1 dd out c 0 sw1
@@ -94,7 +79,7 @@ R1 out 0 1k
 // W1 is controlled by the current of VSENSE, i = v(in)/1k ramping 0 -> 1 mA over 1 ms; with
 // IT = 0.5 mA and IH = 0.105 mA it closes at 0.605 mA, t = 0.605 ms.
 TEST(Switches, CurrentControlledSwitch) {
-  const fs::path deck = write_deck("wswitch", R"(current-controlled switch
+  const fs::path deck = write_deck("switch_deck_", "wswitch", R"(current-controlled switch
 VIN in 0 PWL(0 0 1m 1)
 VSENSE in m 0
 RS m 0 1k
@@ -128,7 +113,7 @@ E1 c 0 dd out 1
   std::string free_text = inverted, on_text = inverted;
   free_text.replace(free_text.find(" STATE"), 6, "");
   on_text.replace(on_text.find("STATE"), 5, "ON");
-  const fs::path free_deck = write_deck("inconsistent", free_text), on_deck = write_deck("on", on_text);
+  const fs::path free_deck = write_deck("switch_deck_", "inconsistent", free_text), on_deck = write_deck("switch_deck_", "on", on_text);
   const Result r = run_lcspice("op '" + free_deck.string() + "'", free_deck.parent_path());
   EXPECT_EQ(r.code, 3) << r.err;
   EXPECT_NE(r.err.find("no consistent state of the switches at t = 0"), std::string::npos) << r.err;
@@ -151,7 +136,7 @@ R1 out 0 1k
   for (const char* state : {"ON", "OFF"}) {
     std::string text = latch;
     text.replace(text.find("STATE"), 5, state);
-    const fs::path deck = write_deck(std::string("latch_") + state, text);
+    const fs::path deck = write_deck("switch_deck_", std::string("latch_") + state, text);
     const Csv csv = run_csv(deck, "euler", "--probe 'v(out)'");
     const double expected = std::string(state) == "ON" ? 5 * 1000.0 / 1001 : 5 * 1000 / (1e12 + 1000);
     for (double v : column(csv, "v(out)")) EXPECT_NEAR(v, expected, 1e-9);
@@ -171,7 +156,7 @@ TEST(Switches, NgspiceManualExampleSwitchesWhereTheControlsCross) {
   std::string text, line;
   while (std::getline(in, line))
     if (line.rfind(".probe", 0) != 0) text += line + "\n";
-  const fs::path deck = write_deck("manual_p92", text);
+  const fs::path deck = write_deck("switch_deck_", "manual_p92", text);
   for (const char* method : {"radau5", "event"}) {
     SCOPED_TRACE(method);
     const Csv csv = run_csv(deck, method, "--probe 'v(10),v(20),v(30),v(40)'");
