@@ -44,7 +44,13 @@ struct ProbeComparison {
   TubeDistance tube;  // outside the tube of the model gap (validate_tube.h)
   std::string not_judged;  // why the witness cannot judge this probe; empty: it can
   // Relative to the range; a probe that is constant in lcspice is measured against its size.
-  double scale() const { return range > 0 ? range : magnitude > 0 ? magnitude : 1.0; }
+  // Constant means within kConstant of its size: a bias node at -5.04 V that moves by 4e-10 V
+  // (rca3040, smooth) is not to be judged against 4e-10 V.
+  static constexpr double kConstant = 1e-6;
+  double scale() const {
+    if (range > kConstant * magnitude) return range;
+    return magnitude > 0 ? magnitude : 1.0;
+  }
   double relative() const { return max_error / scale(); }
   double tube_relative() const { return tube.max / scale(); }
 };
