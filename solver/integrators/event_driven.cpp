@@ -28,7 +28,7 @@ constexpr double kTol = 1e-12;
 constexpr double kZeroTol = 1e-9;
 constexpr int kSuspicionLevels = 10;
 constexpr double kNoise = 1e-4;  // kNoise * kTol = 1e-16: rounding of a row times |X|
-constexpr double kUnitFloor = 0.1;  // of the largest row of a unit: see floor_by_unit
+constexpr double kUncoupled = 1e-13;  // of the largest row of a unit: see zero_uncoupled_rows
 // |X| in that floor is |W X|: a ramp's slope u' enters as the change it makes before the next
 // reset (SourceSystem::rounding_weights), not in V/s.
 
@@ -129,7 +129,7 @@ struct EventDriven::Impl {
   void prepare(double tstep, double tstop);
   bool consistent(Mode& md, const Eigen::VectorXd& X, std::vector<int>* near_zero,
                   const Eigen::MatrixXd* error) const;
-  void floor_by_unit(const std::vector<bool>& active, Eigen::VectorXd& norms) const;
+  void zero_uncoupled_rows(const std::vector<bool>& active, Eigen::MatrixXd& G) const;
   Mode& select(double t, const Eigen::VectorXd& x, const Eigen::VectorXd& sigma,
                const std::string& signature, const Mode* previous, bool event = false);
   bool apply_impulse(Eigen::VectorXd& x, const Eigen::VectorXd& u);
@@ -150,17 +150,19 @@ struct EventDriven::Impl {
 };
 
 // A row that should be exactly zero (a pair whose z or w the mode does not couple to the state:
-// a diode in series with a blocking junction) comes out of the mode's elimination as rounding,
-// 1e-20 where its unit's other rows are 1: its own norm is no measure of its rounding, and a
-// value of -1e-20 A failed a mode that was right (ngspice's ltra4_1_line at 22.9 ns). Each
-// row's floor is at least a tenth of the largest row of the same unit (currents: a link diode's
-// z, a tree diode's w; the others voltages), so a value within about 1e-14 of that row's size
-// times |X| counts as zero.
-void EventDriven::Impl::floor_by_unit(const std::vector<bool>& active, Eigen::VectorXd& norms) const {
+// a diode in series with a blocking junction) comes out of the mode's elimination as rounding:
+// 5.5e-20 where the other rows of its unit are 1.7 (ngspice's ltra4_1_line at 22.9 ns). Judged
+// against its own size, its value -5.5e-20 A and its derivatives failed the right mode, and the
+// run stopped with "no consistent mode". A row below kUncoupled of the largest row of its unit
+// (currents: a link diode's z, a tree diode's w; the others voltages) is that rounding, and is
+// set to the zero it stands for.
+void EventDriven::Impl::zero_uncoupled_rows(const std::vector<bool>& active, Eigen::MatrixXd& G) const {
   double largest[2] = {0, 0};
   auto unit = [&](int i) { return active[i] != model.pairs()[i].voltage_type ? 0 : 1; };
+  Eigen::VectorXd norms = G.rowwise().norm();
   for (int i = 0; i < m; ++i) largest[unit(i)] = std::max(largest[unit(i)], norms(i));
-  for (int i = 0; i < m; ++i) norms(i) = std::max(norms(i), kUnitFloor * largest[unit(i)]);
+  for (int i = 0; i < m; ++i)
+    if (norms(i) <= kUncoupled * largest[unit(i)]) G.row(i).setZero();
 }
 
 Mode& EventDriven::Impl::mode(const std::vector<bool>& active, const std::string& signature) {
@@ -196,6 +198,7 @@ Mode& EventDriven::Impl::mode(const std::vector<bool>& active, const std::string
       if (n > 0) md->G.block(i, 0, 1, n) = d.Wx.row(r);
       if (p > 0) md->G.block(i, n, 1, p) = d.Wu.row(r) * P + d.Wd.row(r) * P * S;
     }
+    zero_uncoupled_rows(md->active, md->G);
     md->GM = md->G * md->M;
     md->GMM = md->GM * md->M;
     md->Gabs = md->G.cwiseAbs();
@@ -206,9 +209,6 @@ Mode& EventDriven::Impl::mode(const std::vector<bool>& active, const std::string
     md->Gnorm = md->G.rowwise().norm();
     md->GMnorm = md->GM.rowwise().norm();
     md->GMMnorm = md->GMM.rowwise().norm();
-    floor_by_unit(md->active, md->Gnorm);
-    floor_by_unit(md->active, md->GMnorm);
-    floor_by_unit(md->active, md->GMMnorm);
     md->Pcnorm = md->Pc.rowwise().norm();
     if (guard_count > 0) {
       // control = G x + H z + J u + K u' with z = Z [x; σ], u = P σ, u' = P S σ.
