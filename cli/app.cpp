@@ -87,7 +87,8 @@ int run_cli(int argc, char** argv) {
                          "run ngspice again at N/2, N/4, N/8 and report the rate the disagreement shrinks");
   add_number(validate_cmd, "--emission", validate.emission,
                            "emission coefficient N of the Shockley diodes (default 0.05)");
-  add_number(validate_cmd, "--max-step", validate.max_step, "ngspice's maximum step (default TSTEP)");
+  add_number(validate_cmd, "--max-step", validate.max_step,
+                           "ngspice's maximum step (default: the output interval, at most TSTEP)");
   validate_cmd->add_option("--method", validate.method, "lcspice method: " + method_names());
   add_number(validate_cmd, "--step", validate.step, "lcspice step (default TSTEP/10)");
   validate_cmd->add_option("--probe", validate.probes, "comma-separated probes, overrides .print/.save");

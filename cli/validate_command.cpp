@@ -407,7 +407,11 @@ int validate_with_faults(const ValidateArgs& args, const NgspiceDeckFaults& faul
   OutputMap outputs = output_map_or_exit(ours_model, all);
 
   topt.emission = args.emission;
-  if (args.max_step) topt.max_step = *args.max_step;
+  // ngspice's maximum step: lcspice's output interval unless asked otherwise, never longer than
+  // TSTEP or the deck's own TMAX. A step of ngspice's as long as TSTEP falls across the edges
+  // compared at TSTEP/10 (p92's switch jumps, the AM detector's carrier peaks): README, "Real decks".
+  const double deck_tmax = netlist.tran->tmax > 0 ? netlist.tran->tmax : netlist.tran->tstep;
+  topt.max_step = args.max_step ? *args.max_step : std::min({run.step, netlist.tran->tstep, deck_tmax});
   topt.options = args.ngspice_options;
   topt.reversed_diodes = faults.reversed_diodes;
   topt.open_diodes = faults.open_diodes;

@@ -23,9 +23,10 @@
 //    against the netlist's own names.
 //  - Every probed current other than a voltage source's gets a 0 V ammeter in series, so
 //    i(element) is read from the ammeter's branch current (same direction as SPEC §3).
-//  - `.tran TSTEP TSTOP TSTART TMAX [UIC]` with TMAX = TSTEP unless the netlist gives a smaller
-//    one (ngspice's default maximum step, (TSTOP-TSTART)/50, gives wrong answers with sharp
-//    diodes), `.ic` as it is, `.options` from TranslationOptions.
+//  - `.tran TSTEP TSTOP TSTART TMAX [UIC]` with TMAX = max_step, or TSTEP unless the netlist
+//    gives a smaller one (ngspice's default maximum step, (TSTOP-TSTART)/50, gives wrong answers
+//    with sharp diodes; `validate` passes its output interval), `.ic` as it is, `.options` from
+//    TranslationOptions.
 #pragma once
 
 #include <map>

@@ -321,8 +321,21 @@ TEST(ValidationErrors, PrintDeckShowsTheTranslation) {
   EXPECT_NE(r.out.find("v_thr_d1 in lcs_d1_mid DC 0.7"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("d1 lcs_d1_mid n1 lcs_m_d1"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find(".model lcs_m_d1 D(IS=1e-14 N=0.05 RS=0.1)"), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find(".tran 2e-05 0.06 0 2e-05"), std::string::npos) << r.out;
+  // TMAX: lcspice's output interval, TSTEP/10 (ngspice steps as finely as the rows compared).
+  EXPECT_NE(r.out.find(".tran 2e-05 0.06 0 2e-06"), std::string::npos) << r.out;
   EXPECT_EQ(r.out.substr(r.out.size() - 5), ".end\n");
+  // --step sets both lcspice's interval and ngspice's TMAX, up to TSTEP; --max-step and a
+  // smaller TMAX of the deck's own win.
+  const std::string rectifier = "'" + source_path("circuits/half_wave_rectifier.cir").string() + "'";
+  Result step = run_lcspice("validate --print-deck --step 5u " + rectifier, dir);
+  EXPECT_NE(step.out.find(".tran 2e-05 0.06 0 5e-06"), std::string::npos) << step.out;
+  Result coarse = run_lcspice("validate --print-deck --step 50u " + rectifier, dir);
+  EXPECT_NE(coarse.out.find(".tran 2e-05 0.06 0 2e-05"), std::string::npos) << coarse.out;
+  Result max = run_lcspice("validate --print-deck --max-step 7u " + rectifier, dir);
+  EXPECT_NE(max.out.find(".tran 2e-05 0.06 0 7e-06"), std::string::npos) << max.out;
+  std::ofstream(dir / "own_tmax.cir") << "own tmax\nV1 a 0 SIN(0 1 1k)\nR1 a 0 1k\n.tran 10u 1m 0 0.3u\n.end\n";
+  Result own = run_lcspice("validate --print-deck '" + (dir / "own_tmax.cir").string() + "'", dir);
+  EXPECT_NE(own.out.find(".tran 1e-05 0.001 0 3e-07"), std::string::npos) << own.out;
 }
 
 // Translation details that would otherwise make correct circuits fail; each failure they guard
