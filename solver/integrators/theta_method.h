@@ -2,13 +2,17 @@
 //   x+ = x + h(1-θ)(A x + B z + E u) + hθ(A x+ + B z+ + E u+),   w+ = C x+ + D z+ + F u+
 // gives LCP(q, D + hθ C W^-1 B) with W = I - hθ A (DESIGN.md). Circuits with many pairs and a
 // sparse LCS solve the step on the sparse system instead, never forming W^-1 (ThetaMethod::
-// SparseStep), and fall back to Lemke on the dense LCP for a step whose mode search fails.
+// SparseStep); circuits with many pairs whose LCS is dense but whose circuit is sparse (a
+// multiplier) step on the circuit's descriptor form instead (descriptor_step.h). Both fall back
+// to Lemke on the dense LCP for a step whose mode search fails.
 #pragma once
 
 #include <map>
 #include <memory>
 
+#include "solver/integrators/descriptor_step.h"
 #include "solver/integrators/time_stepper.h"
+#include "solver/model/sparse_descriptor.h"
 #include "solver/model/sparse_lcs.h"
 
 namespace lcs {
@@ -31,6 +35,8 @@ class ThetaMethod : public TimeStepper {
   struct SparseStep;
   SparseStep* sparse_step(double h);
   std::shared_ptr<const SparseLcs> sparse_lcs_;  // null: the dense path (small or dense LCS)
+  std::shared_ptr<const SparseDescriptor> descriptor_;  // null: no descriptor path
+  std::map<double, std::unique_ptr<DescriptorStep>> descriptor_cache_;
 
   double theta_;
   std::map<double, std::unique_ptr<StepFactors>> cache_;
