@@ -4,6 +4,14 @@
 
 namespace lcs {
 
+namespace {
+// Modes up to this many pairs from the factorised base are solved by a low-rank update
+// (sparse_active_set.h). Measured on the 500-stage multiplier (1000 diodes, 1000 steps of 100 us,
+// 11384 pairs flipped): a factorisation per mode 7.5 s; updates up to rank 16 / 32 / 64: 1.67 /
+// 1.50 / 1.73 s (fewer factorisations against longer updates), the same answers to 1e-12.
+constexpr int kMaxRank = 32;
+}  // namespace
+
 struct DescriptorStep::Instant {
   Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> lu;
   bool usable = false;
@@ -23,6 +31,7 @@ DescriptorStep::DescriptorStep(const SparseDescriptor& d, double h, double theta
   const Sparse Ks = scale_.asDiagonal() * K, Ls = scale_.asDiagonal() * d.Lz;
   const Sparse Q(d.P.rows(), d.P.rows());
   lcp_ = std::make_unique<SparseActiveSetLcp>(Ks, Ls, d.P, Q);
+  lcp_->set_low_rank(kMaxRank);
 }
 
 DescriptorStep::~DescriptorStep() = default;
