@@ -19,10 +19,10 @@ struct ThetaMethod::SparseStep {
   bool fresh = true;  // no step taken yet: the last mode is its first guess
 };
 
-ThetaMethod::ThetaMethod(const LcsProblem& model, double theta, bool sparse)
+ThetaMethod::ThetaMethod(const LcsProblem& model, double theta, bool sparse, int descriptor_pairs)
     : TimeStepper(model), theta_(theta) {
   if (sparse && !model.has_history()) sparse_lcs_ = model.sparse_lcs();
-  if (sparse) descriptor_ = model.sparse_descriptor();
+  if (sparse && model.lcs().pairs() >= descriptor_pairs) descriptor_ = model.sparse_descriptor();
   if (descriptor_) stats_.descriptor_unknowns = descriptor_->unknowns();
 }
 

@@ -17,10 +17,19 @@
 
 namespace lcs {
 
+// Pairs from which a circuit with a dense LCS steps on its descriptor form. Measured on the
+// Cockcroft–Walton family (`bench --scale cw`, euler, CPU per simulated second, shared machine):
+// dense 0.034 / 0.27 / 4.1 and descriptor 0.14 / 0.44 / 1.1 at 50 / 100 / 200 pairs; the two
+// power laws cross near 120 pairs.
+constexpr int kDescriptorPairs = 128;
+
 class ThetaMethod : public TimeStepper {
  public:
   // `sparse`: large circuits with a sparse LCS step on the sparse system (else always dense).
-  ThetaMethod(const LcsProblem& model, double theta, bool sparse = true);
+  // A circuit with a descriptor form (sparse_descriptor.h) steps on it from `descriptor_pairs`
+  // pairs on (tests lower it to compare the paths on smaller circuits).
+  ThetaMethod(const LcsProblem& model, double theta, bool sparse = true,
+              int descriptor_pairs = kDescriptorPairs);
   ~ThetaMethod() override;
   StepperStats stats() const override;
 

@@ -38,18 +38,19 @@ Eigen::SparseMatrix<double> sparse(int rows, int cols, const Triplets& t) {
 
 }  // namespace
 
-// The rule. Per step that keeps its mode (97-100 % of steps), the dense path costs about
-// (n + m)^2 multiply-adds (q = C Phi x, x+ = Phi x + W^-1 B z: dense n x n and n x m products)
-// and the descriptor about 2 nnz(LU) + nnz(P), where nnz(LU) grows like its unknowns
-// (nodes + branches + m) for circuits whose graph is a chain or a ladder; a mode change costs
-// the dense path Lemke pivots of O(m^2) each and the descriptor a sparse refactorisation (cached
-// per mode). So the descriptor is taken where the dense path would be:
+// The rule. Per step that keeps its mode (most steps), the dense path costs about (n + m)^2
+// multiply-adds (q = C Phi x, x+ = Phi x + W^-1 B z: dense n x n and n x m products) and the
+// descriptor about 2 nnz(LU) + nnz(P), where nnz(LU) grows like its unknowns (nodes + branches
+// + m) for circuits whose graph is a chain or a ladder; a mode change costs the dense path Lemke
+// pivots of O(m^2) each and the descriptor a low-rank update (O(k) triangular solves, k the
+// pairs changed) or a sparse refactorisation. So the descriptor is formed where the dense path
+// would be taken for a large circuit:
+//   - the circuit has at least kSparsePairs pairs, and
 //   - the LCS is dense (sparse_lcs_if_worth declined it: nonzeros of A, B, C, D above
 //     kSparseDensity (n + m)^2), and
-//   - the circuit has at least kSparsePairs pairs (below that the dense warm start costs well
-//     under a microsecond a step), and
 //   - the descriptor holds fewer nonzeros than the dense LCS.
-// Measured on the Cockcroft–Walton family (README, "Cost against circuit size").
+// The θ-method steps on it from kDescriptorPairs pairs on (theta_method.h: the measured
+// crossover; the descriptor's constant is larger).
 std::unique_ptr<SparseDescriptor> sparse_descriptor_if_worth(
     const CircuitGraph& g, const Stamps& stamps,
     const std::vector<StateInfo>& states, const std::vector<PairInfo>& pairs, const Lcs& lcs,

@@ -93,7 +93,7 @@ struct Agreement {
 
 Agreement step_both(const CircuitModel& model, double theta, double h, int steps) {
   const Lcs& s = model.lcs();
-  ThetaMethod descriptor(model, theta, true), dense(model, theta, false);
+  ThetaMethod descriptor(model, theta, true, 0), dense(model, theta, false);  // either path at any size
   Eigen::VectorXd x = Eigen::VectorXd::Zero(s.states()), z = Eigen::VectorXd::Zero(s.pairs());
   descriptor.Start(0.0, h, x, z);
   Eigen::VectorXd xd = x, zd = z;
@@ -168,27 +168,32 @@ TEST(DescriptorStep, RandomCapacitorTreesStepAsTheDenseLcp) {
   }
 }
 
-// `--stats` names the path (the dense LCP's Lemke path fails on this circuit at its first step,
-// "numerical failure"; the descriptor's active sets do not); a small multiplier (fewer pairs than
-// kSparsePairs) keeps the dense LCP.
+// `--stats` names the path on a multiplier above kDescriptorPairs; below it the θ-method keeps
+// the dense LCP, and a multiplier with fewer pairs than kSparsePairs has no descriptor.
 TEST(DescriptorStep, StatsReportThePath) {
-  const std::string text = multiplier(30, 1);
-  const Netlist netlist = parse_netlist_string(text, "cw30.cir");
+  const int stages = 75;
+  const Netlist netlist = parse_netlist_string(multiplier(stages, 1), "cw.cir");
   ModelOptions mo;
   mo.t1 = netlist.tran->tstop;
   const CircuitModel model = CircuitModel::build(netlist, mo);
+  ASSERT_NE(model.sparse_descriptor(), nullptr);
   TransientOptions o;
   o.method = "euler";
   o.step = netlist.tran->tstep;
   o.tstop = netlist.tran->tstop;
   MemorySink sink;
   const TransientSummary summary = run_transient(model, model.output_map(model.default_probes()), o, sink);
+  // nodes but ground (in, a_k, b_k), branches (V1, C and D of every stage, RL)
   const int unknowns = model.sparse_descriptor()->unknowns();
-  EXPECT_EQ(unknowns, 61 + 122);  // nodes but ground (in, a1-30, b1-30), branches (V1, 60 C, 60 D, RL)
-  EXPECT_NE(summary.BriefReport().find("step path: descriptor (node) form, 183 unknowns"), std::string::npos)
-      << summary.BriefReport();
+  EXPECT_EQ(unknowns, (1 + 2 * stages) + (2 + 4 * stages));
+  EXPECT_NE(summary.BriefReport().find("step path: descriptor (node) form, " + std::to_string(unknowns) + " unknowns"),
+            std::string::npos) << summary.BriefReport();
   EXPECT_EQ(summary.stepper.sparse.solves, 200);
+  EXPECT_EQ(summary.stepper.sparse_fallbacks, 0);
 
+  const CircuitModel below = build(multiplier(kDescriptorPairs / 2 - 1, 1));
+  ASSERT_NE(below.sparse_descriptor(), nullptr);
+  EXPECT_EQ(ThetaMethod(below, 1.0).stats().descriptor_unknowns, 0);
   EXPECT_EQ(build(multiplier(20, 1)).sparse_descriptor(), nullptr);  // 40 pairs: dense
 }
 
