@@ -19,9 +19,11 @@ struct ThetaMethod::SparseStep {
   bool fresh = true;  // no step taken yet: the last mode is its first guess
 };
 
-ThetaMethod::ThetaMethod(const LcsProblem& model, double theta, bool sparse)
+ThetaMethod::ThetaMethod(const LcsProblem& model, double theta, bool sparse, int descriptor_pairs)
     : TimeStepper(model), theta_(theta) {
   if (sparse && !model.has_history()) sparse_lcs_ = model.sparse_lcs();
+  if (sparse && model.lcs().pairs() >= descriptor_pairs) descriptor_ = model.sparse_descriptor();
+  if (descriptor_) stats_.descriptor_unknowns = descriptor_->unknowns();
 }
 
 ThetaMethod::SparseStep* ThetaMethod::sparse_step(double h) {
@@ -96,6 +98,15 @@ void ThetaMethod::DoStep(double t, double h, Eigen::VectorXd& x, Eigen::VectorXd
     }
     ++stats_.sparse_fallbacks;  // the dense LCP and Lemke decide this step
   }
+  if (descriptor_) {
+    auto found = descriptor_cache_.find(h);
+    if (found == descriptor_cache_.end()) {
+      found = descriptor_cache_.emplace(h, std::make_unique<DescriptorStep>(*descriptor_, h, theta_)).first;
+      ++stats_.factorisations;
+    }
+    if (found->second->step(model_, t, x, z)) return;
+    ++stats_.sparse_fallbacks;
+  }
   StepFactors& f = factors(h);
   u1_ = model_.input_values(t + h);
   q_ = f.CPhi * x + f.CPu1F * u1_;
@@ -119,6 +130,7 @@ StepperStats ThetaMethod::stats() const {
   StepperStats s = stats_;  // s.lcp holds the start LCP (consistent_start_z)
   for (const auto& [h, f] : cache_) s.lcp += f->lcp->stats();
   for (const auto& [h, step] : sparse_cache_) s.sparse += step->lcp->stats();
+  for (const auto& [h, step] : descriptor_cache_) s.sparse += step->stats();
   return s;
 }
 

@@ -2,21 +2,34 @@
 //   x+ = x + h(1-θ)(A x + B z + E u) + hθ(A x+ + B z+ + E u+),   w+ = C x+ + D z+ + F u+
 // gives LCP(q, D + hθ C W^-1 B) with W = I - hθ A (DESIGN.md). Circuits with many pairs and a
 // sparse LCS solve the step on the sparse system instead, never forming W^-1 (ThetaMethod::
-// SparseStep), and fall back to Lemke on the dense LCP for a step whose mode search fails.
+// SparseStep); circuits with many pairs whose LCS is dense but whose circuit is sparse (a
+// multiplier) step on the circuit's descriptor form instead (descriptor_step.h). Both fall back
+// to Lemke on the dense LCP for a step whose mode search fails.
 #pragma once
 
 #include <map>
 #include <memory>
 
+#include "solver/integrators/descriptor_step.h"
 #include "solver/integrators/time_stepper.h"
+#include "solver/model/sparse_descriptor.h"
 #include "solver/model/sparse_lcs.h"
 
 namespace lcs {
 
+// Pairs from which a circuit with a dense LCS steps on its descriptor form. Measured on the
+// Cockcroft–Walton family (`bench --scale cw`, euler, CPU per simulated second, shared machine):
+// dense 0.034 / 0.27 / 4.1 and descriptor 0.14 / 0.44 / 1.1 at 50 / 100 / 200 pairs; the two
+// power laws cross near 120 pairs.
+constexpr int kDescriptorPairs = 128;
+
 class ThetaMethod : public TimeStepper {
  public:
   // `sparse`: large circuits with a sparse LCS step on the sparse system (else always dense).
-  ThetaMethod(const LcsProblem& model, double theta, bool sparse = true);
+  // A circuit with a descriptor form (sparse_descriptor.h) steps on it from `descriptor_pairs`
+  // pairs on (tests lower it to compare the paths on smaller circuits).
+  ThetaMethod(const LcsProblem& model, double theta, bool sparse = true,
+              int descriptor_pairs = kDescriptorPairs);
   ~ThetaMethod() override;
   StepperStats stats() const override;
 
@@ -31,6 +44,8 @@ class ThetaMethod : public TimeStepper {
   struct SparseStep;
   SparseStep* sparse_step(double h);
   std::shared_ptr<const SparseLcs> sparse_lcs_;  // null: the dense path (small or dense LCS)
+  std::shared_ptr<const SparseDescriptor> descriptor_;  // null: no descriptor path
+  std::map<double, std::unique_ptr<DescriptorStep>> descriptor_cache_;
 
   double theta_;
   std::map<double, std::unique_ptr<StepFactors>> cache_;

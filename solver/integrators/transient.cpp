@@ -63,6 +63,11 @@ std::string TransientSummary::BriefReport() const {
       out += buf;
     }
   }
+  if (stepper.sparse.solves > 0 && stepper.descriptor_unknowns > 0) {  // sparse_descriptor.h
+    std::snprintf(buf, sizeof buf, "\nstep path: descriptor (node) form, %d unknowns",
+                  stepper.descriptor_unknowns);
+    out += buf;
+  }
   if (stepper.sparse.solves > 0) {
     std::snprintf(buf, sizeof buf,
                   "\nsparse active-set LCP: %ld solves (%.1f%% warm-start hits), %ld pairs flipped, "

@@ -25,6 +25,19 @@
 // Schur complement. Factorisations are cached per mode under a byte budget (least recently used
 // evicted), so a periodic circuit factorises each of its modes once.
 //
+// Low-rank updates (set_low_rank, off by default). A mode J that differs from a factorised base
+// mode J0 in k pairs differs from it in k rows: M_J = M_0 + E_S D_S (E_S the unit columns of
+// those rows, D_S their change), so by the Sherman–Morrison–Woodbury formula
+//
+//   M_J^-1 r = s - G_S (I + D_S G_S)^-1 D_S s,   s = M_0^-1 r,   G_S = M_0^-1 E_S,
+//
+// one pair of triangular solves with M_0's factors, the columns G_S (solved once per pair while
+// the base stands), and a dense k x k system; one step of iterative refinement against M_J
+// itself, on the mode the search accepts, keeps the answer at rounding. A mode more than `max_rank` pairs from the base is
+// factorised and becomes the base. Where modes wander (a multiplier charging, every step a new
+// mode and each search several), this replaces a sparse factorisation per mode tried, O(nnz(L+U))
+// with a large constant, by O(k nnz(L+U)) for the new columns and O(k (n + m) + k^3) per solve.
+//
 // Failure (a singular mode, or no answer within the pivot limit) is reported, not guessed: the
 // caller falls back to Lemke on the dense M (time_stepper's dense path).
 #pragma once
@@ -45,6 +58,7 @@ struct SparseActiveSetStats {
   long factorisations = 0;     // numeric factorisations (cache misses)
   long failures = 0;           // solves that returned false
   long evictions = 0;          // cached factorisations dropped to stay within the budget
+  long updates = 0;            // modes solved by a low-rank update of the base (set_low_rank)
   std::size_t cache_bytes = 0; // the cache's current estimate
 
   SparseActiveSetStats& operator+=(const SparseActiveSetStats& o) {
@@ -54,6 +68,7 @@ struct SparseActiveSetStats {
     factorisations += o.factorisations;
     failures += o.failures;
     evictions += o.evictions;
+    updates += o.updates;
     cache_bytes += o.cache_bytes;
     return *this;
   }
@@ -75,6 +90,9 @@ class SparseActiveSetLcp {
   // For LCPs that may have several solutions (transistor feedback, 5.4.7), where the solution
   // Lemke's path reaches is the regenerative switching and the nearest mode is not.
   void set_warm_only(bool warm_only) { warm_only_ = warm_only; }
+  // Modes within `max_rank` pairs of a factorised base are solved by a low-rank update of its
+  // factors (see above); 0 (the default): every mode is factorised and cached.
+  void set_low_rank(int max_rank) { max_rank_ = max_rank; }
   // Solves for (y, z); w = P y + Q z + b. False when the mode search fails (then y, z are
   // unspecified and the previous mode is kept).
   bool solve(const Eigen::VectorXd& a, const Eigen::VectorXd& b, Eigen::VectorXd& y,
@@ -85,11 +103,25 @@ class SparseActiveSetLcp {
 
  private:
   struct Factorisation;
-  Factorisation* factorisation(const std::vector<char>& mode);
+  Factorisation* factorisation(const std::vector<char>& mode);  // cached
+  std::unique_ptr<Factorisation> factorise(const std::vector<char>& mode);
   bool solve_mode(const std::vector<char>& mode, const Eigen::VectorXd& a, const Eigen::VectorXd& b,
                   Eigen::VectorXd& y, Eigen::VectorXd& z, Eigen::VectorXd& w);
 
+  struct Base;  // set_low_rank: the factorised base mode and its solved columns
+  bool solve_updated(const std::vector<char>& mode, const Eigen::VectorXd& r, Eigen::VectorXd& x);
+  void apply_updated(const std::vector<int>& changed, const Eigen::PartialPivLU<Eigen::MatrixXd>& small,
+                     Eigen::VectorXd& x);
+  double pair_row_dot(int i, bool on, const Eigen::VectorXd& v) const;  // row n + i of a mode, times v
+  void refine_updated(const std::vector<char>& mode, const Eigen::VectorXd& r, Eigen::VectorXd& x);
+
   int n_ = 0, m_ = 0;
+  int max_rank_ = 0;
+  std::unique_ptr<Base> base_;
+  bool updated_ = false;           // the last mode solved was an update: its pairs and small LU
+  std::vector<int> changed_;
+  Eigen::PartialPivLU<Eigen::MatrixXd> small_lu_;
+  Eigen::SparseMatrix<double, Eigen::RowMajor> top_;  // [K L], for residuals
   Sparse pattern_;                 // [K L; P Q] plus the pair diagonal, column-major
   std::vector<std::vector<std::pair<int, int>>> pair_entries_;  // per pair row: (column, slot)
   std::vector<int> diagonal_slot_; // per pair: the slot of its (n + i, n + i) entry

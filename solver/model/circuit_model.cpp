@@ -14,6 +14,7 @@
 #include "solver/model/netlist_options.h"
 #include "solver/model/inductance_check.h"
 #include "solver/model/perfect_coupling.h"
+#include "solver/model/sparse_descriptor.h"
 #include "solver/model/sparse_lcs.h"
 #include "solver/model/sparse_solve.h"
 #include "solver/model/structural_zeros.h"
@@ -585,6 +586,8 @@ CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& opt
     throw std::logic_error("circuit model: devices with history owe one DC relation per history input");
   m.sparse_lcs_ = sparse_lcs_if_worth(A_sparse, SparseMatrixD(Xdot.middleCols(n, mp)), C_sparse,
                                       SparseMatrixD(W.middleCols(n, mp)), s.E, s.F);
+  if (!m.sparse_lcs_)  // a dense LCS of a sparse circuit: its steps keep the static unknowns
+    m.sparse_descriptor_ = sparse_descriptor_if_worth(g, stamps, m.states_, m.pairs_, s, m.has_history());
   return m;
 }
 

@@ -20,6 +20,7 @@ namespace lcs {
 
 class Device;
 struct SparseLcs;
+struct SparseDescriptor;
 
 struct Lcs {
   Eigen::MatrixXd A, B, E, C, D, F;
@@ -97,6 +98,9 @@ class LcsProblem {
   // The LCS stored sparse when it pays (sparse_lcs.h), made once by formation; null for small or
   // dense systems.
   const std::shared_ptr<const SparseLcs>& sparse_lcs() const { return sparse_lcs_; }
+  // The circuit in descriptor (node) form when its LCS is dense but the circuit is large and
+  // sparse (sparse_descriptor.h): the θ-method steps on it. Null otherwise.
+  const std::shared_ptr<const SparseDescriptor>& sparse_descriptor() const { return sparse_descriptor_; }
 
  protected:
   Lcs lcs_;
@@ -107,6 +111,7 @@ class LcsProblem {
   std::vector<DelayedWave> dc_relations_;  // as many: rows that vanish at DC (g, h, j; input unused)
   double max_step_ = std::numeric_limits<double>::infinity();
   std::shared_ptr<const SparseLcs> sparse_lcs_;
+  std::shared_ptr<const SparseDescriptor> sparse_descriptor_;
 };
 
 }  // namespace lcs

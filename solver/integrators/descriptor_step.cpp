@@ -1,0 +1,76 @@
+#include "solver/integrators/descriptor_step.h"
+
+#include <Eigen/SparseLU>
+
+namespace lcs {
+
+namespace {
+// Modes up to this many pairs from the factorised base are solved by a low-rank update
+// (sparse_active_set.h). Measured on the 500-stage multiplier (1000 diodes, 1000 steps of 100 us,
+// 11384 pairs flipped): a factorisation per mode 7.5 s; updates up to rank 16 / 32 / 64: 1.67 /
+// 1.50 / 1.73 s (fewer factorisations against longer updates), the same answers to 1e-12.
+constexpr int kMaxRank = 32;
+}  // namespace
+
+struct DescriptorStep::Instant {
+  Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> lu;
+  bool usable = false;
+};
+
+DescriptorStep::DescriptorStep(const SparseDescriptor& d, double h, double theta)
+    : d_(d), h_(h), theta_(theta) {
+  using Sparse = SparseActiveSetLcp::Sparse;
+  Sparse K = d.K0 + (h * theta) * d.K1;
+  const int ny = d.unknowns();
+  scale_ = Eigen::VectorXd::Zero(ny);
+  for (int c = 0; c < K.outerSize(); ++c)
+    for (Sparse::InnerIterator it(K, c); it; ++it) scale_(it.row()) = std::max(scale_(it.row()), std::abs(it.value()));
+  for (int c = 0; c < d.Lz.outerSize(); ++c)
+    for (Sparse::InnerIterator it(d.Lz, c); it; ++it) scale_(it.row()) = std::max(scale_(it.row()), std::abs(it.value()));
+  for (int r = 0; r < ny; ++r) scale_(r) = scale_(r) > 0 ? 1.0 / scale_(r) : 1.0;
+  const Sparse Ks = scale_.asDiagonal() * K, Ls = scale_.asDiagonal() * d.Lz;
+  const Sparse Q(d.P.rows(), d.P.rows());
+  lcp_ = std::make_unique<SparseActiveSetLcp>(Ks, Ls, d.P, Q);
+  lcp_->set_low_rank(kMaxRank);
+}
+
+DescriptorStep::~DescriptorStep() = default;
+
+bool DescriptorStep::start_values(const LcsProblem& model, double t, const Eigen::VectorXd& x,
+                                  const Eigen::VectorXd& z) {
+  if (y_.size() == d_.unknowns() && x == x_last_ && z == z_last_) return true;  // the last step's
+  if (!instant_) {
+    instant_ = std::make_unique<Instant>();
+    instant_->lu.compute(d_.Kst);
+    instant_->usable = instant_->lu.info() == Eigen::Success;
+  }
+  if (!instant_->usable) return false;
+  u_ = model.input_values(t);
+  a_ = d_.Xst * x + d_.Uin * u_;
+  a_ -= d_.Lz * z;
+  y_ = instant_->lu.solve(a_);
+  return y_.allFinite();
+}
+
+bool DescriptorStep::step(const LcsProblem& model, double t, Eigen::VectorXd& x, Eigen::VectorXd& z) {
+  if (fresh_) lcp_->prefer(z);
+  fresh_ = false;
+  const bool explicit_part = theta_ != 1.0;
+  if (explicit_part && !start_values(model, t, x, z)) return false;
+  u_ = model.input_values(t + h_);
+  a_ = d_.Sx * x + d_.Uin * u_;
+  if (explicit_part) a_ += (h_ * (1 - theta_)) * (d_.Sy * y_);
+  a_ = a_.cwiseProduct(scale_);
+  b_.noalias() = d_.Fw * u_;
+  if (!lcp_->solve(a_, b_, y_next_, z_next_, w_)) return false;
+  x = d_.X * y_next_;
+  z = z_next_;
+  if (explicit_part) {
+    y_.swap(y_next_);
+    x_last_ = x;
+    z_last_ = z;
+  }
+  return true;
+}
+
+}  // namespace lcs

@@ -1,0 +1,201 @@
+// Circuits whose eliminated LCS is dense but whose circuit is sparse (a Cockcroft–Walton
+// multiplier, a random tree of capacitors bridged by diodes) step on the descriptor form
+// (solver/model/sparse_descriptor.h): every state of every step as the dense LCP's to rounding,
+// each step's answer a solution of the dense LCS's step (its θ-method equation and its
+// complementarity), and the path visibly taken.
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "netlist/netlist.h"
+#include "solver/integrators/theta_method.h"
+#include "solver/integrators/transient.h"
+#include "solver/model/circuit_model.h"
+#include "solver/model/sparse_descriptor.h"
+
+namespace lcs {
+namespace {
+
+// `bench --scale cw`'s multiplier (cli/scale_family.cpp): N stages, 2N diodes, 100 V 50 Hz from
+// rest, over `periods` source periods at 200 steps a period.
+std::string multiplier(int n, int periods) {
+  std::string s = "multiplier\nV1 in 0 SIN(0 100 50)\n";
+  for (int k = 1; k <= n; ++k) {
+    const std::string a_prev = k == 1 ? "in" : "a" + std::to_string(k - 1);
+    const std::string b_prev = k == 1 ? "0" : "b" + std::to_string(k - 1);
+    const std::string a = "a" + std::to_string(k), b = "b" + std::to_string(k);
+    s += "C" + std::to_string(2 * k - 1) + " " + a_prev + " " + a + " 10u\n";
+    s += "D" + std::to_string(2 * k - 1) + " " + b_prev + " " + a + " dcw\n";
+    s += "D" + std::to_string(2 * k) + " " + a + " " + b + " dcw\n";
+    s += "C" + std::to_string(2 * k) + " " + b_prev + " " + b + " 10u\n";
+  }
+  s += "RL b" + std::to_string(n) + " 0 1g\n.model dcw D(VON=0.7 RON=1)\n";
+  s += ".tran 100u " + std::to_string(periods * 20) + "m UIC\n.end\n";
+  return s;
+}
+
+// A random tree of capacitors hung from the source node (every diode loop runs down its paths:
+// a dense LCS), diodes of random law between random nodes and to ground or a second source,
+// resistors to ground, and some diodes behind an inductor with its own resistance.
+std::string capacitor_tree(unsigned seed, int nodes) {
+  std::mt19937 rng(seed);
+  auto pick = [&](int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng); };
+  auto node = [](int k) { return "n" + std::to_string(k); };
+  std::string s = "capacitor tree\nV1 n1 0 SIN(0 " + std::to_string(pick(5, 20)) + " " +
+                  std::to_string(pick(1, 5)) + "k)\nV2 ref 0 PULSE(0 " + std::to_string(pick(1, 5)) +
+                  " 0.2m 10u 10u 0.3m 1m)\n";
+  int diodes = 0, inductors = 0;
+  for (int k = 2; k <= nodes; ++k) {
+    const std::string id = std::to_string(k);
+    s += "C" + id + " " + node(pick(std::max(1, k - 4), k - 1)) + " " + node(k) + " " + std::to_string(pick(1, 100)) + "n\n";
+    if (pick(0, 3) == 0) s += "R" + id + " " + node(k) + " 0 " + std::to_string(pick(100, 5000)) + "\n";
+    for (int d = pick(1, 2); d > 0; --d) {
+      const int other = pick(0, 4) == 0 ? -1 : pick(0, nodes);
+      std::string a = node(k), b = other < 0 ? std::string("ref") : other == 0 ? std::string("0") : node(other);
+      if (b == a) continue;
+      if (pick(0, 1)) std::swap(a, b);
+      const std::string did = std::to_string(++diodes);
+      if (pick(0, 9) == 0) {  // behind an inductor (with its own resistance)
+        const std::string mid = "m" + did;
+        s += "L" + std::to_string(++inductors) + " " + a + " " + mid + " " + std::to_string(pick(1, 100)) + "u\n";
+        s += "RL" + did + " " + mid + " " + mid + "x 10\n";
+        a = mid + "x";
+      }
+      s += "D" + did + " " + a + " " + b + " d" + std::to_string(pick(0, 2)) + "\n";
+    }
+  }
+  s += ".model d0 D(VON=0.7 RON=0.5)\n.model d1 D(VON=0.3 RON=2)\n.model d2 D(VON=0 RON=0.1)\n";
+  s += ".tran 5u 1m UIC\n.end\n";
+  return s;
+}
+
+CircuitModel build(const std::string& text) {
+  const Netlist netlist = parse_netlist_string(text, "generated.cir");
+  ModelOptions mo;
+  mo.t1 = netlist.tran->tstop;
+  return CircuitModel::build(netlist, mo);
+}
+
+// Steps the descriptor path and the dense path side by side from rest, and checks at every step:
+// the states of the two agree; the descriptor's (x+, z+) satisfies the dense LCS's θ-method
+// equation and the complementarity of w+ = C x+ + D z+ + F u+. Returns the number of steps whose
+// active pairs changed (so that a case that never switches proves nothing and says so).
+struct Agreement {
+  double state = 0;          // max |x_descriptor - x_dense| / max |x|
+  double step_equation = 0;  // max residual of the θ-equation / max |x|
+  double complementarity = 0;  // max |min(z, w)| over the sizes that meet in w
+  long mode_changes = 0;
+  StepperStats stats;
+};
+
+Agreement step_both(const CircuitModel& model, double theta, double h, int steps) {
+  const Lcs& s = model.lcs();
+  ThetaMethod descriptor(model, theta, true, 0), dense(model, theta, false);  // either path at any size
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(s.states()), z = Eigen::VectorXd::Zero(s.pairs());
+  descriptor.Start(0.0, h, x, z);
+  Eigen::VectorXd xd = x, zd = z;
+  Agreement a;
+  double size = 1e-300;
+  for (int k = 0; k < steps; ++k) {
+    const double t = k * h;
+    const Eigen::VectorXd x0 = x, z0 = z;
+    descriptor.Step(t, h, x, z);
+    dense.Step(t, h, xd, zd);
+    size = std::max(size, x.cwiseAbs().maxCoeff());
+    a.state = std::max(a.state, (x - xd).cwiseAbs().maxCoeff());
+    const Eigen::VectorXd u0 = model.input_values(t), u1 = model.input_values(t + h);
+    const Eigen::VectorXd rate0 = s.A * x0 + s.B * z0 + s.E * u0, rate1 = s.A * x + s.B * z + s.E * u1;
+    a.step_equation = std::max(a.step_equation, (x - x0 - h * theta * rate1 - h * (1 - theta) * rate0).cwiseAbs().maxCoeff());
+    const Eigen::VectorXd w = s.C * x + s.D * z + s.F * u1;
+    const double w_size = (s.C.cwiseAbs() * x.cwiseAbs() + s.D.cwiseAbs() * z.cwiseAbs() + s.F.cwiseAbs() * u1.cwiseAbs()).maxCoeff();
+    for (int i = 0; i < s.pairs(); ++i) {
+      EXPECT_GE(z(i), 0.0);
+      a.complementarity = std::max(a.complementarity, std::abs(std::min(z(i), w(i))) / std::max(w_size, 1e-300));
+      if ((z(i) > 0) != (z0(i) > 0)) ++a.mode_changes;
+    }
+  }
+  a.state /= size;
+  a.step_equation /= size;
+  a.stats = descriptor.stats();
+  EXPECT_EQ(dense.stats().descriptor_unknowns, 0);  // the dense option keeps the dense LCP
+  EXPECT_EQ(dense.stats().sparse.solves, 0);
+  return a;
+}
+
+// Multipliers of 25, 50 and 100 stages (50-200 diodes) over two periods at 100 us, implicit
+// Euler and the trapezoidal rule. The dense path's LCP carries the elimination's conditioning
+// (entries from RON = 1 to sums down a chain of capacitors): the two agree to 1e-9 of the largest
+// state (measured 1.6e-13 to 2.0e-11). Each descriptor step solves the dense LCS's step to
+// rounding: its θ-equation residual (measured <= 3.6e-14) and complementarity (<= 3.5e-16).
+TEST(DescriptorStep, MultipliersStepAsTheDenseLcpToRounding) {
+  struct Case { int stages; double theta; };
+  for (const Case c : {Case{25, 1.0}, Case{50, 1.0}, Case{100, 1.0}, Case{25, 0.5}, Case{50, 0.5}}) {
+    const CircuitModel model = build(multiplier(c.stages, 2));
+    ASSERT_NE(model.sparse_descriptor(), nullptr) << c.stages;
+    EXPECT_EQ(model.sparse_lcs(), nullptr) << c.stages;  // the LCS is dense: the old sparse path declined
+    const Agreement a = step_both(model, c.theta, 1e-4, 400);
+    SCOPED_TRACE(std::to_string(c.stages) + " stages, theta " + std::to_string(c.theta));
+    EXPECT_GT(a.mode_changes, 4 * c.stages);  // the diodes switched: the search was exercised
+    EXPECT_EQ(a.stats.sparse_fallbacks, 0);
+    EXPECT_EQ(a.stats.sparse.solves, 400);
+    EXPECT_EQ(a.stats.descriptor_unknowns, model.sparse_descriptor()->unknowns());
+    EXPECT_LT(a.state, 1e-9);
+    EXPECT_LT(a.step_equation, 1e-12);
+    EXPECT_LT(a.complementarity, 1e-13);
+  }
+}
+
+// Random capacitor trees of 90-150 nodes (one or two diodes a node, some behind inductors: about
+// 130-230 pairs): irregular modes that change in many places at once (measured: 390-2180 pair
+// changes in 100-200 steps, warm hits 0-50 %). Measured: states 1.1e-13 to 1.1e-12 apart,
+// θ-equation residuals <= 2.2e-12, complementarity <= 3.1e-16.
+TEST(DescriptorStep, RandomCapacitorTreesStepAsTheDenseLcp) {
+  for (unsigned seed = 1; seed <= 3; ++seed) {
+    const CircuitModel model = build(capacitor_tree(seed, 60 + 30 * static_cast<int>(seed)));
+    ASSERT_NE(model.sparse_descriptor(), nullptr) << seed;
+    for (double theta : {1.0, 0.5}) {
+      const Agreement a = step_both(model, theta, 5e-6, 120);
+      SCOPED_TRACE("seed " + std::to_string(seed) + ", theta " + std::to_string(theta));
+      EXPECT_GT(a.mode_changes, 100);
+      EXPECT_EQ(a.stats.sparse_fallbacks, 0);
+      EXPECT_LT(a.state, 1e-9);
+      EXPECT_LT(a.step_equation, 1e-10);
+      EXPECT_LT(a.complementarity, 1e-13);
+    }
+  }
+}
+
+// `--stats` names the path on a multiplier above kDescriptorPairs; below it the θ-method keeps
+// the dense LCP, and a multiplier with fewer pairs than kSparsePairs has no descriptor.
+TEST(DescriptorStep, StatsReportThePath) {
+  const int stages = 75;
+  const Netlist netlist = parse_netlist_string(multiplier(stages, 1), "cw.cir");
+  ModelOptions mo;
+  mo.t1 = netlist.tran->tstop;
+  const CircuitModel model = CircuitModel::build(netlist, mo);
+  ASSERT_NE(model.sparse_descriptor(), nullptr);
+  TransientOptions o;
+  o.method = "euler";
+  o.step = netlist.tran->tstep;
+  o.tstop = netlist.tran->tstop;
+  MemorySink sink;
+  const TransientSummary summary = run_transient(model, model.output_map(model.default_probes()), o, sink);
+  // nodes but ground (in, a_k, b_k), branches (V1, C and D of every stage, RL)
+  const int unknowns = model.sparse_descriptor()->unknowns();
+  EXPECT_EQ(unknowns, (1 + 2 * stages) + (2 + 4 * stages));
+  EXPECT_NE(summary.BriefReport().find("step path: descriptor (node) form, " + std::to_string(unknowns) + " unknowns"),
+            std::string::npos) << summary.BriefReport();
+  EXPECT_EQ(summary.stepper.sparse.solves, 200);
+  EXPECT_EQ(summary.stepper.sparse_fallbacks, 0);
+
+  const CircuitModel below = build(multiplier(kDescriptorPairs / 2 - 1, 1));
+  ASSERT_NE(below.sparse_descriptor(), nullptr);
+  EXPECT_EQ(ThetaMethod(below, 1.0).stats().descriptor_unknowns, 0);
+  EXPECT_EQ(build(multiplier(20, 1)).sparse_descriptor(), nullptr);  // 40 pairs: dense
+}
+
+}  // namespace
+}  // namespace lcs
