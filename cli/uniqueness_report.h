@@ -2,7 +2,10 @@
 // solves are P-matrices -- one solution for every q (Stewart 2.2) -- and, where not, which
 // transistors make them fail (5.4.7: feedback between transistors; alone, alpha < 1 keeps each
 // one's block P). Two matrices: the operating point's D - C A^-1 B, and implicit Euler's step
-// matrix D + h C (I - h A)^-1 B at h = TSTEP.
+// matrix D + h C (I - h A)^-1 B at h = TSTEP. A large sparse circuit's are examined block by
+// block (solver/model/pair_blocks.h), never formed whole: a block of up to kDenseBlockPairs
+// pairs as a small dense matrix (exact up to kMaxCheckedPairs, else the sufficient test
+// "M + M^T positive definite"), a larger one by diagonal dominance of its symmetric part.
 #pragma once
 
 #include <string>
@@ -19,9 +22,15 @@ struct UniquenessEntry {
   PMatrixReport report;
   std::vector<std::string> failing_pairs;  // names of the pairs of the failing minor
   std::string owners;        // "transistors q1 and q2"
+  // Large sparse circuits (pair_blocks.h): M examined by the blocks of pairs it couples; an
+  // unchecked verdict names the size of its largest unchecked block (0: M was one block).
+  int blocks = 0;
+  int unchecked_block = 0;
   std::string verdict() const;  // one line of text
   std::string json_verdict() const;  // "P", "not P", "semidefinite", "unchecked", "empty"
 };
+
+constexpr int kDenseBlockPairs = 100;
 
 // tstep <= 0: the step matrix is left out (no .tran).
 std::vector<UniquenessEntry> uniqueness_report(const CircuitModel& model, double tstep);

@@ -51,6 +51,16 @@ bool sparse_index(const SparseLcs& s, int m, LcsIndex& r) {
 
 }  // namespace
 
+LcsIndex lcs_index(const LcsProblem& model) {
+  const int m = model.pair_count();
+  if (m > kPrintedMarkovPairs && model.sparse_lcs()) {
+    LcsIndex r;
+    r.pair_index.assign(m, -1);
+    if (sparse_index(*model.sparse_lcs(), m, r)) return r;
+  }
+  return lcs_index(model.lcs());
+}
+
 LcsIndex lcs_index(const Lcs& s) {
   LcsIndex r;
   const int m = s.pairs(), n = s.states();

@@ -18,5 +18,8 @@ struct LcsIndex {
 constexpr int kPrintedMarkovPairs = 24;
 
 LcsIndex lcs_index(const Lcs& lcs);
+// The same for a model: a large sparse circuit's from its sparse LCS, without its dense A, B, C, D
+// (O(nnz) per Markov parameter while D is nonsingular; else the dense test above).
+LcsIndex lcs_index(const LcsProblem& model);
 
 }  // namespace lcs
