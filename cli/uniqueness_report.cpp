@@ -77,12 +77,12 @@ std::optional<UniquenessEntry> sparse_entry(const CircuitModel& model, const std
   for (const std::vector<int>& block : blocks) {
     const int b = static_cast<int>(block.size());
     PMatrixReport r;
-    if (b <= kDenseBlockPairs) {
+    if (b > kMaxCheckedPairs && schur->symmetric_part_dominant(block)) {
+      r.verdict = PMatrixReport::Verdict::P;  // symmetric_psd: not examined (P says more)
+    } else if (b <= kDenseBlockPairs) {
       r = p_matrix_report(schur->block(block), kMaxCheckedPairs);
     } else {
-      r.verdict = schur->symmetric_part_dominant(block) ? PMatrixReport::Verdict::P
-                                                        : PMatrixReport::Verdict::Unchecked;
-      r.symmetric_psd = false;  // not examined
+      r.verdict = PMatrixReport::Verdict::Unchecked;
     }
     e.report.symmetric_psd = e.report.symmetric_psd && r.symmetric_psd;
     if (r.verdict == PMatrixReport::Verdict::NotP) {

@@ -4,7 +4,7 @@
 #include <map>
 #include <numeric>
 
-#include <Eigen/SparseLU>
+#include "solver/model/klu_factor.h"
 
 namespace lcs {
 
@@ -51,16 +51,16 @@ std::vector<std::vector<int>> coupled_pair_blocks(const Sparse& K, const Sparse&
 }
 
 struct SchurBlocks::Factor {
-  Eigen::SparseLU<Sparse, Eigen::COLAMDOrdering<int>> lu;
+  explicit Factor(const Sparse& K) : lu(K) {}
+  KluFactor lu;
 };
 
 std::optional<SchurBlocks> SchurBlocks::make(const Sparse& K, const Sparse& L, const Sparse& P,
                                              const Sparse& Q) {
   SchurBlocks s;
   if (K.rows() > 0) {
-    auto f = std::make_shared<Factor>();
-    f->lu.compute(K);
-    if (f->lu.info() != Eigen::Success) return std::nullopt;
+    auto f = std::make_shared<Factor>(K);
+    if (!f->lu.ok()) return std::nullopt;
     s.factor_ = std::move(f);
   }
   s.L_ = L;
