@@ -154,7 +154,6 @@ void print_text(const Report& r) {
   const CircuitModel& m = r.model;
   const CircuitGraph& g = m.graph();
   const SpanningTree& t = m.tree();
-  const Lcs& s = m.lcs();
   std::printf("circuit: %s\n", m.netlist().title.c_str());
   std::printf("nodes: %zu (ground 0), branches: %zu\n\n", g.nodes.size(), g.branches.size());
   std::printf("normal tree (Kruskal, V < C < R < D < L < I), %zu branches:\n", t.tree.size());
@@ -202,14 +201,14 @@ void print_text(const Report& r) {
     std::printf("  fitted over the currents each diode carries in the .tran run: %s\n", r.refit.c_str());
 
   std::printf("\nLCS: dx/dt = A x + B z + E u,  w = C x + D z + F u,  0 <= w _|_ z >= 0\n");
-  std::printf("  states n = %d:", s.states());
+  std::printf("  states n = %d:", m.state_count());
   for (const StateInfo& st : m.states()) std::printf(" %s", st.label.c_str());
-  std::printf("\n  pairs m = %d, inputs = %d (u0 = 1 carries VON)", s.pairs(), s.inputs());
+  std::printf("\n  pairs m = %d, inputs = %d (u0 = 1 carries VON)", m.pair_count(), m.input_count());
   for (int k = 1; k < m.inputs().size(); ++k) std::printf(", %s", m.inputs()[k].label.c_str());
   std::printf("\n");
-  if (s.Gamma.size() > 0 && s.Gamma.cwiseAbs().maxCoeff() > 0)
+  if (m.gamma().size() > 0 && m.gamma().cwiseAbs().maxCoeff() > 0)
     std::printf("  state shift: x = x_phys - Gamma u (capacitor/source loops or inductor/source cutsets)\n");
-  if (r.index.markov.empty() && s.pairs() > kPrintedMarkovPairs)
+  if (r.index.markov.empty() && m.pair_count() > kPrintedMarkovPairs)
     std::printf("  Markov parameters D, CB, CAB: not printed above %d pairs\n", kPrintedMarkovPairs);
   const char* names[] = {"D", "CB", "CAB"};
   for (size_t k = 0; k < r.index.markov.size(); ++k) {
@@ -234,7 +233,6 @@ void print_json(const Report& r) {
   const CircuitModel& m = r.model;
   const CircuitGraph& g = m.graph();
   const SpanningTree& t = m.tree();
-  const Lcs& s = m.lcs();
   std::ostringstream o;
   o << "{\n  \"title\": " << json_string(m.netlist().title) << ",\n  \"nodes\": [";
   for (size_t n = 0; n < g.nodes.size(); ++n) o << (n ? ", " : "") << json_string(g.nodes[n]);
@@ -262,8 +260,8 @@ void print_json(const Report& r) {
       << ", \"circuit_fit\": " << (p.circuit_fit ? "true" : "false")
       << ", \"joins_h_components\": " << (joins(r, p.branch) ? "true" : "false") << "}";
   }
-  o << "\n  ],\n  \"lcs\": {\"states\": " << s.states() << ", \"pairs\": " << s.pairs()
-    << ", \"inputs\": " << s.inputs() << ", \"index\": " << r.index.index << ", \"state_labels\": [";
+  o << "\n  ],\n  \"lcs\": {\"states\": " << m.state_count() << ", \"pairs\": " << m.pair_count()
+    << ", \"inputs\": " << m.input_count() << ", \"index\": " << r.index.index << ", \"state_labels\": [";
   for (size_t k = 0; k < m.states().size(); ++k) o << (k ? ", " : "") << json_string(m.states()[k].label);
   o << "]},\n  \"uniqueness\": [";
   for (size_t k = 0; k < r.uniqueness.size(); ++k) {
@@ -303,7 +301,7 @@ int analyze_command(const AnalyzeArgs& args) {
     refit = refit_diodes(netlist, mo, *tran);
     if (refit->passes > 0) model = build_model(netlist, 0.0, t1, refit->ranges);
   }
-  Report r{model, h_components(model.graph()), classify_diodes(model.graph()), lcs_index(model.lcs()), {}, {}, {}, {}, {}};
+  Report r{model, h_components(model.graph()), classify_diodes(model.graph()), lcs_index(model), {}, {}, {}, {}, {}};
   for (const std::string& w : floating_potential_warnings(model)) r.warnings.push_back(w);
   if (refit && refit->passes > 0) {
     r.refit = std::to_string(refit->passes) + " transient pass" + (refit->passes == 1 ? "" : "es") + ", " +

@@ -1,10 +1,14 @@
 #include "cli/uniqueness_report.h"
 
+#include <algorithm>
 #include <cstdio>
+#include <optional>
 
 #include "solver/integrators/multistability.h"
 #include "solver/model/empty_safe.h"
 #include "solver/model/operating_point.h"
+#include "solver/model/pair_blocks.h"
+#include "solver/model/sparse_lcs.h"
 
 namespace lcs {
 
@@ -14,9 +18,11 @@ std::string UniquenessEntry::verdict() const {
     case PMatrixReport::Verdict::P:
       return size == 0 ? "no pairs" : "a P-matrix: one solution for every q";
     case PMatrixReport::Verdict::Unchecked:
-      return report.symmetric_psd ? "symmetric positive semidefinite (a diode network): w is unique"
-                                  : "not checked (" + std::to_string(size) + " pairs, more than " +
-                                        std::to_string(kMaxCheckedPairs) + ")";
+      if (report.symmetric_psd) return "symmetric positive semidefinite (a diode network): w is unique";
+      if (unchecked_block > 0)
+        return "not checked (a block of " + std::to_string(unchecked_block) + " coupled pairs, more than " +
+               std::to_string(kMaxCheckedPairs) + ", and no sufficient test holds)";
+      return "not checked (" + std::to_string(size) + " pairs, more than " + std::to_string(kMaxCheckedPairs) + ")";
     case PMatrixReport::Verdict::NotP: {
       if (report.symmetric_psd)
         return "symmetric positive semidefinite, not P (a diode network): w is unique, z may not be";
@@ -52,11 +58,71 @@ UniquenessEntry entry(const CircuitModel& model, const std::string& what, const 
   return e;
 }
 
+using Sparse = Eigen::SparseMatrix<double>;
+
+// M = Q - P K^-1 L of a sparse circuit, block by block (pair_blocks.h): P when every block is,
+// not P at the first block with a failing minor (its pairs), else unchecked. Nullopt when K is
+// singular (the dense matrix decides).
+std::optional<UniquenessEntry> sparse_entry(const CircuitModel& model, const std::string& what,
+                                            const Sparse& K, const Sparse& L, const Sparse& P,
+                                            const Sparse& Q) {
+  const std::optional<SchurBlocks> schur = SchurBlocks::make(K, L, P, Q);
+  if (!schur) return std::nullopt;
+  UniquenessEntry e;
+  e.what = what;
+  e.size = static_cast<int>(Q.rows());
+  e.report.symmetric_psd = true;
+  const std::vector<std::vector<int>> blocks = coupled_pair_blocks(K, L, P, Q);
+  e.blocks = static_cast<int>(blocks.size());
+  for (const std::vector<int>& block : blocks) {
+    const int b = static_cast<int>(block.size());
+    PMatrixReport r;
+    if (b > kMaxCheckedPairs && schur->symmetric_part_dominant(block)) {
+      r.verdict = PMatrixReport::Verdict::P;  // symmetric_psd: not examined (P says more)
+    } else if (b <= kDenseBlockPairs) {
+      r = p_matrix_report(schur->block(block), kMaxCheckedPairs);
+    } else {
+      r.verdict = PMatrixReport::Verdict::Unchecked;
+    }
+    e.report.symmetric_psd = e.report.symmetric_psd && r.symmetric_psd;
+    if (r.verdict == PMatrixReport::Verdict::NotP) {
+      e.report.verdict = r.verdict;
+      e.report.minor = r.minor;
+      for (int k : r.failing) e.report.failing.push_back(block[k]);
+      e.unchecked_block = 0;
+      break;
+    }
+    if (r.verdict == PMatrixReport::Verdict::Unchecked) {
+      e.report.verdict = r.verdict;
+      e.unchecked_block = std::max(e.unchecked_block, b);
+    }
+  }
+  for (int i : e.report.failing) e.failing_pairs.push_back(model.pairs()[i].name);
+  if (!e.report.failing.empty()) e.owners = pair_owners(model, e.report.failing);
+  return e;
+}
+
 }  // namespace
 
 std::vector<UniquenessEntry> uniqueness_report(const CircuitModel& model, double tstep) {
   std::vector<UniquenessEntry> out;
-  out.push_back(entry(model, "operating point (D - C A^-1 B)", static_lcp_matrix(model)));
+  const SparseLcs* sparse = model.has_history() ? nullptr : model.sparse_lcs().get();
+  const std::string op_what = "operating point (D - C A^-1 B)";
+  std::optional<UniquenessEntry> op;
+  if (sparse) op = sparse_entry(model, op_what, sparse->A, sparse->B, sparse->C, sparse->D);
+  out.push_back(op ? *op : entry(model, op_what, static_lcp_matrix(model)));
+  if (tstep > 0 && sparse) {
+    char buf[96];
+    std::snprintf(buf, sizeof buf, "implicit Euler step, h = TSTEP = %.6g s (D + h C (I - h A)^-1 B)", tstep);
+    Sparse K(sparse->A.rows(), sparse->A.cols());
+    K.setIdentity();
+    K -= tstep * sparse->A;
+    std::optional<UniquenessEntry> step = sparse_entry(model, buf, K, Sparse(-tstep * sparse->B), sparse->C, sparse->D);
+    if (step) {
+      out.push_back(*step);
+      return out;
+    }
+  }
   if (tstep > 0) {
     const Lcs& s = model.lcs();
     const int n = s.states();

@@ -422,7 +422,7 @@ int validate_with_faults(const ValidateArgs& args, const NgspiceDeckFaults& faul
     try {
       const CircuitModel& m = ours_model;
       const InitialState init = initial_state(m, run.uic, 0.0);
-      const Eigen::VectorXd z0 = Eigen::VectorXd::Zero(m.lcs().pairs());
+      const Eigen::VectorXd z0 = Eigen::VectorXd::Zero(m.pair_count());
       const CircuitGraph& g = m.graph();
       for (size_t b = 0; b < g.branches.size(); ++b) {
         if (g.branches[b].cls == BranchClass::Capacitor)

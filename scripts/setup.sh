@@ -6,6 +6,7 @@ cd "$(dirname "$0")/.."
 
 packages=(cmake g++ make pkg-config libeigen3-dev libboost-graph-dev libsundials-dev
           libngspice0-dev libgtest-dev libcli11-dev gnuplot-nox
+          libsuitesparse-dev
           clang libclang-rt-14-dev)  # clang: the ASan+UBSan suite and libFuzzer (scripts/fuzz.sh)
 missing=()
 for p in "${packages[@]}"; do

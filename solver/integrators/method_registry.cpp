@@ -73,9 +73,9 @@ std::vector<MethodEntry> make_table() {
                "implicit Euler's time on circuits/tline_*.cir";
       return false;
     }
-    if (m.lcs().pairs() <= kEventDefaultMaxPairs) return true;
+    if (m.pair_count() <= kEventDefaultMaxPairs) return true;
     if (why)
-      *why = std::to_string(m.lcs().pairs()) + " complementarity pairs, more than the " +
+      *why = std::to_string(m.pair_count()) + " complementarity pairs, more than the " +
              std::to_string(kEventDefaultMaxPairs) + " up to which the event method's dense "
              "exponentials stay cheap";
     return false;
@@ -111,7 +111,7 @@ std::vector<MethodEntry> make_table() {
   // Switch guards are IDA root functions: a circuit without states has no IDA run.
   smooth.applies = [](const LcsProblem& problem, std::string* why) {
     const auto* circuit = dynamic_cast<const CircuitModel*>(&problem);
-    if (!circuit || problem.lcs().states() > 0) return true;
+    if (!circuit || problem.state_count() > 0) return true;
     const SwitchFamily switches(*circuit);
     if (switches.empty()) return true;
     if (why)

@@ -28,7 +28,7 @@ void MultistabilityNotes::check(const LcpWarmSolver& lcp, const LcsProblem& mode
   if (lcp.multiplicity() != M::SeveralKeptContinuous && lcp.multiplicity() != M::SeveralNoneContinuous &&
       lcp.multiplicity() != M::SeveralTookStable && lcp.multiplicity() != M::SeveralTookLemke)
     return;
-  const int m = model.lcs().pairs();
+  const int m = model.pair_count();
   std::vector<int> pairs;
   for (int i : lcp.differ())
     if (std::find(pairs.begin(), pairs.end(), i % m) == pairs.end()) pairs.push_back(i % m);

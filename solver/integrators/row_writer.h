@@ -16,7 +16,7 @@ class RowWriter {
  public:
   RowWriter(const LcsProblem& model, const OutputMap& outputs, OutputSink& sink)
       : model_(model), outputs_(outputs), sink_(sink), y_(outputs.names.size()),
-        u_(model.lcs().inputs()), has_k_(outputs.K.size() > 0 && !outputs.K.isZero()) {
+        u_(model.input_count()), has_k_(outputs.K.size() > 0 && !outputs.K.isZero()) {
     // Small output maps are multiplied dense (faster at a handful of entries); large ones sparse,
     // O(probes) per row.
     dense_ = outputs.G.rows() * (outputs.G.cols() + outputs.H.cols()) < kSparseOutputSize;

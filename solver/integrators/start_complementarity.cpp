@@ -117,14 +117,14 @@ Eigen::VectorXd consistent_start_z(const LcsProblem& model, double t0, double h_
                                    const Eigen::VectorXd& prefer, MultistabilityNotes* notes) {
   // Implicit Euler: x+ = W^-1 (x + h B z + h E u+), W = I - h A, so
   // w+ = C W^-1 x + (C W^-1 h E + F) u+  +  (D + C W^-1 h B) z.
-  const Lcs& s = model.lcs();
-  const int n = s.states();
   const SparseLcs* sparse =
       model.has_history() || model.has_transfer_pairs() ? nullptr : model.sparse_lcs().get();
   if (sparse) {
     Eigen::VectorXd z;
     if (sparse_start_z(model, *sparse, t0, h_run, x, stats, prefer, z)) return z;
   }
+  const Lcs& s = model.lcs();
+  const int n = s.states();
   const double h = start_step(s, h_run);
   Eigen::MatrixXd I = Eigen::MatrixXd::Identity(n, n);
   Eigen::PartialPivLU<Eigen::MatrixXd> W(I - h * s.A);

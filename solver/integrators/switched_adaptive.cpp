@@ -30,7 +30,7 @@ SwitchGuards guards_of(const SwitchFamily& family, const CircuitModel& model, co
   std::vector<Probe> probes;
   for (const SwitchControl& s : sw) probes.push_back(s.control);
   const OutputMap o = model.output_map(probes);
-  const Eigen::Index k = static_cast<Eigen::Index>(sw.size()), inputs = model.lcs().inputs();
+  const Eigen::Index k = static_cast<Eigen::Index>(sw.size()), inputs = model.input_count();
   SwitchGuards g;
   g.G = Eigen::MatrixXd(o.G);
   g.H = Eigen::MatrixXd(o.H);

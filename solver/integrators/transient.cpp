@@ -155,7 +155,7 @@ void run_fixed_step(const CircuitModel& model, const OutputMap& outputs, const T
                     const MethodEntry& entry, Eigen::VectorXd x, const Eigen::VectorXd& z0,
                     OutputSink& sink, TransientSummary& summary, double cpu0) {
   std::unique_ptr<TimeStepper> stepper = entry.make_stepper(model, options.method_options);
-  Eigen::VectorXd z = z0.size() == model.lcs().pairs() ? z0 : Eigen::VectorXd::Zero(model.lcs().pairs());
+  Eigen::VectorXd z = z0.size() == model.pair_count() ? z0 : Eigen::VectorXd::Zero(model.pair_count());
   auto notes = [&] {
     for (const std::string& n : stepper->notes()) summary.warnings.push_back(n);
   };
@@ -268,7 +268,7 @@ void run_switched_fixed_step(SwitchFamily& family, SwitchConfig config, const Ou
   };
   Mode* cur = &mode(config);
   const double h = options.step, tstop = options.tstop;
-  Eigen::VectorXd z = z0.size() == cur->model->lcs().pairs() ? z0 : Eigen::VectorXd::Zero(cur->model->lcs().pairs());
+  Eigen::VectorXd z = z0.size() == cur->model->pair_count() ? z0 : Eigen::VectorXd::Zero(cur->model->pair_count());
   double last_row = -1;
   auto emit = [&](double t) {
     if (t <= last_row || t < options.tstart * (1 - 1e-12)) return;

@@ -18,8 +18,8 @@
 // finite for a P-matrix M) after three flips that did not shrink the violating set.
 //
 // Cost model. Each mode's matrix has the same sparsity pattern (rows outside J are unit rows
-// stored with explicit zeros), factorised by SparseLU with a COLAMD ordering: O(nnz(L+U)) per
-// factorisation, and each warm hit costs one pair of triangular solves, O(nnz(L+U)), plus one
+// stored with explicit zeros), analysed once and factorised per mode by KLU (its block
+// triangular form and AMD ordering; sparse_active_set.cpp): O(nnz(L+U)) per factorisation, and each warm hit costs one pair of triangular solves, O(nnz(L+U)), plus one
 // product with [P Q], O(nnz). For a circuit whose graph is a ladder, a tree of rectifiers or a
 // chain, nnz(L+U) grows like n + m, so a step costs O(n + m), not the O((n + m)^2) of a dense
 // Schur complement. Factorisations are cached per mode under a byte budget (least recently used
@@ -102,9 +102,12 @@ class SparseActiveSetLcp {
   int pairs() const { return m_; }
 
  private:
+  struct Symbolic;
   struct Factorisation;
-  Factorisation* factorisation(const std::vector<char>& mode);  // cached
-  std::unique_ptr<Factorisation> factorise(const std::vector<char>& mode);
+  std::unique_ptr<Factorisation> factorise(const std::vector<char>& mode);  // not cached
+  bool lu_solve(const Factorisation& f, Eigen::VectorXd& x) const;           // in place
+  Factorisation* factorisation(const std::vector<char>& mode);               // cached
+  Factorisation* cached_factorisation(const std::vector<char>& mode);
   bool solve_mode(const std::vector<char>& mode, const Eigen::VectorXd& a, const Eigen::VectorXd& b,
                   Eigen::VectorXd& y, Eigen::VectorXd& z, Eigen::VectorXd& w);
 
@@ -117,7 +120,6 @@ class SparseActiveSetLcp {
 
   int n_ = 0, m_ = 0;
   int max_rank_ = 0;
-  std::unique_ptr<Base> base_;
   bool updated_ = false;           // the last mode solved was an update: its pairs and small LU
   std::vector<int> changed_;
   Eigen::PartialPivLU<Eigen::MatrixXd> small_lu_;
@@ -130,8 +132,12 @@ class SparseActiveSetLcp {
   bool warm_only_ = false;
   SparseActiveSetStats stats_;
   std::size_t budget_;
+  std::unique_ptr<Symbolic> symbolic_;  // declared before base_ and cache_: they free through it
+  std::unique_ptr<Base> base_;
   struct Cache;
   std::unique_ptr<Cache> cache_;
+  std::vector<char> last_mode_;    // the last mode factorisation() answered, and its entry
+  Factorisation* last_ = nullptr;
   Eigen::VectorXd rhs_, sol_;
 };
 

@@ -503,8 +503,6 @@ CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& opt
     }
   }
   Lcs& s = m.lcs_;
-  s.A = Xdot.leftCols(n);
-  s.B = Xdot.middleCols(n, mp);
   s.E = Xdot.middleCols(n + mp, nu);
   s.Gamma = Xdot.rightCols(nu);
 
@@ -554,13 +552,23 @@ CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& opt
     W.setFromTriplets(w.begin(), w.end());
     W.prune([](const Eigen::Index&, const Eigen::Index&, const double& v) { return v != 0; });
   }
-  s.C = W.leftCols(n);
-  s.D = W.middleCols(n, mp);
   s.F = W.middleCols(n + mp, nu);
   // The shift x_lcs = x_phys - Gamma u: x_lcs' = A x_lcs + B z + (E + A Gamma) u.
   const SparseMatrixD A_sparse = Xdot.leftCols(n), C_sparse = W.leftCols(n);
   s.E += A_sparse * s.Gamma;
   s.F += C_sparse * s.Gamma;
+  // A, B, C, D: kept sparse for a large sparse circuit (lcs() forms the dense ones when asked),
+  // dense for the others.
+  m.sparse_lcs_ = sparse_lcs_if_worth(A_sparse, SparseMatrixD(Xdot.middleCols(n, mp)), C_sparse,
+                                      SparseMatrixD(W.middleCols(n, mp)), s.E, s.F);
+  if (m.sparse_lcs_) {
+    m.defer_dense();
+  } else {
+    s.A = A_sparse;
+    s.B = Xdot.middleCols(n, mp);
+    s.C = C_sparse;
+    s.D = W.middleCols(n, mp);
+  }
 
   // The waves the line ports send, and the lines' DC relations, as rows like the probes'.
   auto row_of = [&](const std::vector<Term>& terms) {
@@ -584,15 +592,13 @@ CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& opt
   }
   if (m.dc_relations_.size() != m.delayed_.size())
     throw std::logic_error("circuit model: devices with history owe one DC relation per history input");
-  m.sparse_lcs_ = sparse_lcs_if_worth(A_sparse, SparseMatrixD(Xdot.middleCols(n, mp)), C_sparse,
-                                      SparseMatrixD(W.middleCols(n, mp)), s.E, s.F);
   if (!m.sparse_lcs_)  // a dense LCS of a sparse circuit: its steps keep the static unknowns
     m.sparse_descriptor_ = sparse_descriptor_if_worth(g, stamps, m.states_, m.pairs_, s, m.has_history());
   return m;
 }
 
 OutputRow CircuitModel::row_from_physical(const Eigen::RowVectorXd& r) const {
-  const int n = lcs_.states(), mp = lcs_.pairs(), nu = lcs_.inputs();
+  const int n = state_count(), mp = pair_count(), nu = input_count();
   OutputRow o;
   o.g = r.segment(0, n);
   o.h = r.segment(n, mp);
@@ -686,7 +692,7 @@ OutputRow CircuitModel::terminal_current(const Probe& p) const {
 }
 
 OutputMap CircuitModel::output_map(const std::vector<Probe>& probes) const {
-  const int n = lcs_.states(), mp = lcs_.pairs(), nu = lcs_.inputs();
+  const int n = state_count(), mp = pair_count(), nu = input_count();
   const int rows = static_cast<int>(probes.size());
   OutputMap out;
   std::vector<Eigen::Triplet<double>> g_entries, h_entries;

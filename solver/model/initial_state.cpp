@@ -86,9 +86,9 @@ std::optional<std::string> winding_ics_not_held(const CircuitModel& model, int j
 // z, or zeros) when the problem is unique, no values are given, or two are as near.
 void choose_start_mode(const CircuitModel& model, double t0, const Eigen::VectorXd& x, Eigen::VectorXd& z,
                        std::vector<std::string>& warnings) {
-  const Lcs& s = model.lcs();
-  const int m = s.pairs();
+  const int m = model.pair_count();
   if (m == 0 || m > kMaxCheckedPairs || !model.has_transfer_pairs()) return;
+  const Lcs& s = model.lcs();
   const double rate = s.A.size() > 0 ? s.A.cwiseAbs().rowwise().sum().maxCoeff() : 0.0;
   const double eta = 1e-9 / (rate > 0 ? rate : 1.0);
   const Eigen::MatrixXd M = s.D + eta * s.C * s.B;
@@ -122,11 +122,11 @@ void choose_start_mode(const CircuitModel& model, double t0, const Eigen::Vector
 InitialState initial_state(const CircuitModel& model, bool uic, double t0) {
   const Netlist& netlist = model.netlist();
   const CircuitGraph& g = model.graph();
-  const int n = model.lcs().states();
+  const int n = model.state_count();
   InitialState init;
   std::vector<std::string> chosen_by;  // .ic nodes that chose the operating point
   Eigen::VectorXd physical = Eigen::VectorXd::Zero(n);
-  Eigen::VectorXd z = Eigen::VectorXd::Zero(model.lcs().pairs());
+  Eigen::VectorXd z = Eigen::VectorXd::Zero(model.pair_count());
   if (!uic) {
     OperatingPoint op = solve_operating_point(model, t0);
     physical = model.physical_state(op.x, t0);

@@ -1,8 +1,8 @@
 #include "solver/model/lcs_index.h"
 
 #include <Eigen/SVD>
-#include <Eigen/SparseLU>
 
+#include "solver/model/klu_factor.h"
 #include "solver/model/sparse_lcs.h"
 
 namespace lcs {
@@ -16,25 +16,37 @@ double max_abs(const Eigen::SparseMatrix<double>& S) {
   return out;
 }
 
-// A large sparse LCS whose D is nonsingular has index 0; the pairs' indices come from the
-// diagonals of sparse products C A^(k-1) B, each O(nnz) for a circuit's few-entry rows, where the
-// dense Markov parameters cost O(n^2 m) each and the rank test O(m^3). False: D is singular (the
-// dense test decides).
-bool sparse_index(const SparseLcs& s, int m, LcsIndex& r) {
-  Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> lu;
-  lu.compute(s.D);
-  if (lu.info() != Eigen::Success) return false;
+// Whether a sparse m x m matrix is nonsingular: KLU factorises it and a probe solve is accurate
+// and not huge (the dense test's relative margin 1e-10 on the singular values, from below).
+bool sparse_nonsingular(const Eigen::SparseMatrix<double>& S, int m) {
+  const KluFactor lu(S);
+  if (!lu.ok()) return false;
   const Eigen::VectorXd probe = Eigen::VectorXd::LinSpaced(m, 1.0, 2.0);
   const Eigen::VectorXd x = lu.solve(probe);
-  const double d = max_abs(s.D);
-  // The same relative singularity margin as the dense SVD test (1e-10), from below.
-  if (!x.allFinite() || (s.D * x - probe).cwiseAbs().maxCoeff() > 1e-9 * 2 ||
-      x.cwiseAbs().maxCoeff() * d > 1e10 * 2)
-    return false;
-  r.index = 0;
-  Eigen::SparseMatrix<double> AkB = s.B, G = s.D;
+  const double d = max_abs(S);
+  return x.allFinite() && (S * x - probe).cwiseAbs().maxCoeff() <= 1e-9 * 2 &&
+         x.cwiseAbs().maxCoeff() * d <= 1e10 * 2;
+}
+
+// The index of a large sparse LCS as the dense test below finds it, on sparse matrices: the
+// Markov parameters G_0 = D, G_k = C A^(k-1) B as sparse products (O(nnz) each for a circuit's
+// few-entry rows, where the dense ones cost O(n^2 m)), their sum D + G_1/s + ... + G_k/s^k at a
+// large s tested for singularity by a sparse LU instead of an SVD, and the pairs' indices from
+// the diagonals. Only as far as needed: up to the first nonsingular sum and the last pair's
+// index, at most G_8. False when that is not enough (the dense test decides).
+bool sparse_index(const SparseLcs& s, int m, LcsIndex& r) {
+  double a_norm = 0;
+  {
+    Eigen::VectorXd row_sum = Eigen::VectorXd::Zero(s.A.rows());
+    for (int k = 0; k < s.A.outerSize(); ++k)
+      for (Eigen::SparseMatrix<double>::InnerIterator it(s.A, k); it; ++it) row_sum(it.row()) += std::abs(it.value());
+    if (row_sum.size() > 0) a_norm = row_sum.maxCoeff();
+  }
+  const double big_s = 1e4 * std::max(1.0, a_norm);
+  Eigen::SparseMatrix<double> AkB = s.B, G = s.D, sum(m, m);
+  double power = 1.0;
   int unresolved = m;
-  for (int k = 0; k <= 8 && unresolved > 0; ++k) {
+  for (int k = 0; k <= 8 && (r.index < 0 || unresolved > 0); ++k) {
     if (k > 0) {
       G = s.C * AkB;
       AkB = s.A * AkB;
@@ -45,11 +57,26 @@ bool sparse_index(const SparseLcs& s, int m, LcsIndex& r) {
         r.pair_index[i] = k;
         --unresolved;
       }
+    if (r.index < 0) {
+      sum += power * G;
+      power /= big_s;
+      if (sparse_nonsingular(sum, m)) r.index = k;
+    }
   }
-  return true;
+  return r.index >= 0;
 }
 
 }  // namespace
+
+LcsIndex lcs_index(const LcsProblem& model) {
+  const int m = model.pair_count();
+  if (m > kPrintedMarkovPairs && model.sparse_lcs()) {
+    LcsIndex r;
+    r.pair_index.assign(m, -1);
+    if (sparse_index(*model.sparse_lcs(), m, r)) return r;
+  }
+  return lcs_index(model.lcs());
+}
 
 LcsIndex lcs_index(const Lcs& s) {
   LcsIndex r;

@@ -18,5 +18,9 @@ struct LcsIndex {
 constexpr int kPrintedMarkovPairs = 24;
 
 LcsIndex lcs_index(const Lcs& lcs);
+// The same for a model: a large sparse circuit's from its sparse LCS, without its dense A, B, C, D
+// (sparse Markov parameters up to G_8 and a sparse LU for the singularity test; the dense test
+// above only when that does not decide).
+LcsIndex lcs_index(const LcsProblem& model);
 
 }  // namespace lcs

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <limits>
 
+#include "solver/model/sparse_lcs.h"
+
 
 namespace lcs {
 
@@ -37,5 +39,22 @@ void LcsProblem::begin_history(const std::vector<double>& before) const {
 }
 
 double LcsProblem::max_step() const { return max_step_; }
+
+int LcsProblem::state_count() const {
+  return dense_formed_ ? lcs_.states() : static_cast<int>(sparse_lcs_->A.rows());
+}
+
+int LcsProblem::pair_count() const {
+  return dense_formed_ ? lcs_.pairs() : static_cast<int>(sparse_lcs_->D.rows());
+}
+
+void LcsProblem::form_dense() const {
+  Lcs& s = lcs_;
+  s.A = Eigen::MatrixXd(sparse_lcs_->A);
+  s.B = Eigen::MatrixXd(sparse_lcs_->B);
+  s.C = Eigen::MatrixXd(sparse_lcs_->C);
+  s.D = Eigen::MatrixXd(sparse_lcs_->D);
+  dense_formed_ = true;
+}
 
 }  // namespace lcs

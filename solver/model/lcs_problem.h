@@ -65,7 +65,21 @@ class LcsProblem {
   LcsProblem& operator=(LcsProblem&&) = default;
   virtual ~LcsProblem() = default;
 
-  const Lcs& lcs() const { return lcs_; }
+  // The dense LCS. A large sparse circuit's A, B, C and D are formed from its sparse LCS at the
+  // first call (O(n^2) bytes: 32 MB at 1000 diodes), so runs that read only the sparse form (the
+  // sparse step, start and operating point) never pay for them. E, F and Gamma are always there.
+  // Not thread-safe.
+  const Lcs& lcs() const {
+    if (!dense_formed_) form_dense();
+    return lcs_;
+  }
+  // The LCS's sizes, without forming the dense matrices.
+  int state_count() const;
+  int pair_count() const;
+  int input_count() const { return lcs_.inputs(); }
+  const Eigen::MatrixXd& gamma() const { return lcs_.Gamma; }
+  // Whether lcs() has formed the dense A, B, C, D of a circuit kept sparse (--stats, tests).
+  bool dense_formed_from_sparse() const { return dense_formed_ && sparse_lcs_ && !dense_at_formation_; }
   const std::vector<StateInfo>& states() const { return states_; }
   const std::vector<PairInfo>& pairs() const { return pairs_; }
   const InputProvider& inputs() const { return inputs_; }
@@ -103,7 +117,7 @@ class LcsProblem {
   const std::shared_ptr<const SparseDescriptor>& sparse_descriptor() const { return sparse_descriptor_; }
 
  protected:
-  Lcs lcs_;
+  mutable Lcs lcs_;  // mutable: lcs() forms A, B, C, D of a sparse circuit on first use
   std::vector<StateInfo> states_;
   std::vector<PairInfo> pairs_;
   InputProvider inputs_;
@@ -112,6 +126,13 @@ class LcsProblem {
   double max_step_ = std::numeric_limits<double>::infinity();
   std::shared_ptr<const SparseLcs> sparse_lcs_;
   std::shared_ptr<const SparseDescriptor> sparse_descriptor_;
+  // Formation sets sparse_lcs_ and leaves lcs_.A, B, C, D empty (defer_dense); lcs() fills them.
+  void defer_dense() { dense_formed_ = dense_at_formation_ = false; }
+
+ private:
+  void form_dense() const;
+  mutable bool dense_formed_ = true;
+  bool dense_at_formation_ = true;
 };
 
 }  // namespace lcs

@@ -75,7 +75,7 @@ DcForm dc_form(const CircuitModel& model, double t) {
 }
 
 std::string unknown_label(const CircuitModel& model, int j) {
-  const int n = model.lcs().states();
+  const int n = model.state_count();
   if (j < n) return model.states()[j].label;
   return "the DC wave " + model.inputs()[model.delayed()[j - n].input].label;
 }
@@ -109,7 +109,7 @@ StaticProblem static_problem(const CircuitModel& model, double t, double regular
 // Splits the unknowns [x; u_h] of a polished point into the LCS state and the lines' DC waves,
 // and makes those the lines' past (history inputs read at t are then this point's).
 void finish(const CircuitModel& model, OperatingPoint& op) {
-  const int n = model.lcs().states();
+  const int n = model.state_count();
   if (op.x.size() == n) return;
   op.history.assign(op.x.data() + n, op.x.data() + op.x.size());
   op.x = Eigen::VectorXd(op.x.head(n));
