@@ -22,7 +22,7 @@ struct ThetaMethod::SparseStep {
 ThetaMethod::ThetaMethod(const LcsProblem& model, double theta, bool sparse, int descriptor_pairs)
     : TimeStepper(model), theta_(theta) {
   if (sparse && !model.has_history()) sparse_lcs_ = model.sparse_lcs();
-  if (sparse && model.lcs().pairs() >= descriptor_pairs) descriptor_ = model.sparse_descriptor();
+  if (sparse && model.pair_count() >= descriptor_pairs) descriptor_ = model.sparse_descriptor();
   if (descriptor_) stats_.descriptor_unknowns = descriptor_->unknowns();
 }
 

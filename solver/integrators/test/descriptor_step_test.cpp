@@ -8,6 +8,8 @@
 #include <random>
 #include <string>
 
+#include <set>
+
 #include <gtest/gtest.h>
 
 #include "netlist/netlist.h"
@@ -88,6 +90,7 @@ struct Agreement {
   double step_equation = 0;  // max residual of the θ-equation / max |x|
   double complementarity = 0;  // max |min(z, w)| over the sizes that meet in w
   long mode_changes = 0;
+  std::set<int> switched;    // the pairs that changed mode at least once
   StepperStats stats;
 };
 
@@ -111,10 +114,16 @@ Agreement step_both(const CircuitModel& model, double theta, double h, int steps
     a.step_equation = std::max(a.step_equation, (x - x0 - h * theta * rate1 - h * (1 - theta) * rate0).cwiseAbs().maxCoeff());
     const Eigen::VectorXd w = s.C * x + s.D * z + s.F * u1;
     const double w_size = (s.C.cwiseAbs() * x.cwiseAbs() + s.D.cwiseAbs() * z.cwiseAbs() + s.F.cwiseAbs() * u1.cwiseAbs()).maxCoeff();
+    // A pair changes mode when its current crosses 1e-9 of the largest (a z at rounding level
+    // is not a conducting diode: KLU and SparseLU leave different ones at degenerate steps).
+    const double z_floor = 1e-9 * std::max({z.cwiseAbs().maxCoeff(), z0.cwiseAbs().maxCoeff(), 1e-300});
     for (int i = 0; i < s.pairs(); ++i) {
       EXPECT_GE(z(i), 0.0);
       a.complementarity = std::max(a.complementarity, std::abs(std::min(z(i), w(i))) / std::max(w_size, 1e-300));
-      if ((z(i) > 0) != (z0(i) > 0)) ++a.mode_changes;
+      if ((z(i) > z_floor) != (z0(i) > z_floor)) {
+        ++a.mode_changes;
+        a.switched.insert(i);
+      }
     }
   }
   a.state /= size;
@@ -138,7 +147,12 @@ TEST(DescriptorStep, MultipliersStepAsTheDenseLcpToRounding) {
     EXPECT_EQ(model.sparse_lcs(), nullptr) << c.stages;  // the LCS is dense: the old sparse path declined
     const Agreement a = step_both(model, c.theta, 1e-4, 400);
     SCOPED_TRACE(std::to_string(c.stages) + " stages, theta " + std::to_string(c.theta));
-    EXPECT_GT(a.mode_changes, 4 * c.stages);  // the diodes switched: the search was exercised
+    // The diodes switched, so the search was exercised. Two periods carry the charge through
+    // the first 11 stages whatever the length: measured 93 changes of 22 pairs (θ = 1) and 121
+    // of 26 (θ = 0.5) at every length. Counted at z = 0 exactly, rounding-level currents at
+    // degenerate steps added hundreds more, which differ between sparse LUs.
+    EXPECT_GE(a.mode_changes, 90);
+    EXPECT_GE(a.switched.size(), 22u);
     EXPECT_EQ(a.stats.sparse_fallbacks, 0);
     EXPECT_EQ(a.stats.sparse.solves, 400);
     EXPECT_EQ(a.stats.descriptor_unknowns, model.sparse_descriptor()->unknowns());
