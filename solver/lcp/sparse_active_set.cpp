@@ -265,13 +265,19 @@ bool SparseActiveSetLcp::solve_mode(const std::vector<char>& mode, const Eigen::
     sol_ = rhs_;
     if (!lu_solve(*f, sol_)) return false;
   }
+  read_solution(mode, b, y, z, w);
+  return true;
+}
+
+// y, z and w = [P Q] sol + b from sol_, with the z of pairs off in `mode` exactly zero.
+void SparseActiveSetLcp::read_solution(const std::vector<char>& mode, const Eigen::VectorXd& b, Eigen::VectorXd& y,
+                                       Eigen::VectorXd& z, Eigen::VectorXd& w) {
   for (int i = 0; i < m_; ++i)
     if (!mode[i]) sol_(n_ + i) = 0.0;
   y = sol_.head(n_);
   z = sol_.tail(m_);
   w.noalias() = PQ_ * sol_;
   w += b;
-  return true;
 }
 
 bool SparseActiveSetLcp::solve(const Eigen::VectorXd& a, const Eigen::VectorXd& b,
@@ -299,12 +305,7 @@ bool SparseActiveSetLcp::solve(const Eigen::VectorXd& a, const Eigen::VectorXd& 
     if (violating.empty()) {
       if (updated_) {
         refine_updated(mode, rhs_, sol_);
-        for (int i = 0; i < m_; ++i)
-          if (!mode[i]) sol_(n_ + i) = 0.0;
-        y = sol_.head(n_);
-        z = sol_.tail(m_);
-        w.noalias() = PQ_ * sol_;
-        w += b;
+        read_solution(mode, b, y, z, w);
       }
       if (round == 0) ++stats_.warm_hits;
       bool clamped = false;

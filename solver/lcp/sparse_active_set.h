@@ -110,6 +110,8 @@ class SparseActiveSetLcp {
   Factorisation* cached_factorisation(const std::vector<char>& mode);
   bool solve_mode(const std::vector<char>& mode, const Eigen::VectorXd& a, const Eigen::VectorXd& b,
                   Eigen::VectorXd& y, Eigen::VectorXd& z, Eigen::VectorXd& w);
+  void read_solution(const std::vector<char>& mode, const Eigen::VectorXd& b, Eigen::VectorXd& y,
+                     Eigen::VectorXd& z, Eigen::VectorXd& w);
 
   struct Base;  // set_low_rank: the factorised base mode and its solved columns
   bool solve_updated(const std::vector<char>& mode, const Eigen::VectorXd& r, Eigen::VectorXd& x);
