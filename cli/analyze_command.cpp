@@ -13,6 +13,7 @@
 #include "graph/diode_classes.h"
 #include "solver/devices/device.h"
 #include "solver/integrators/diode_refit.h"
+#include "solver/integrators/fit_sensitivity.h"
 #include "solver/model/netlist_options.h"
 #include "solver/model/lcs_index.h"
 #include "cli/ccp_report.h"
@@ -87,6 +88,7 @@ struct Report {
   std::optional<CcpReport> ccp;  // circuits with lines
   std::vector<std::string> controlled;  // controlled sources and switches, one line each
   std::string refit;             // how the diodes were fitted to the circuit's currents, if they were
+  std::optional<FitSensitivity> sensitivity;  // whether the answer depends on the curves below them
 };
 
 // E, F, G, H and S, W: what they are listed as (not warnings).
@@ -199,6 +201,9 @@ void print_text(const Report& r) {
 
   if (!r.refit.empty())
     std::printf("  fitted over the currents each diode carries in the .tran run: %s\n", r.refit.c_str());
+  if (r.sensitivity)
+    std::printf("  the lines %s this circuit: %s\n", r.sensitivity->exceeds({}) ? "do not serve" : "serve",
+                r.sensitivity->Describe({}).c_str());
 
   std::printf("\nLCS: dx/dt = A x + B z + E u,  w = C x + D z + F u,  0 <= w _|_ z >= 0\n");
   std::printf("  states n = %d:", m.state_count());
@@ -279,6 +284,13 @@ void print_json(const Report& r) {
       << ", \"m1_p_matrix\": " << (r.ccp->m1_report.verdict == PMatrixReport::Verdict::P ? "true" : "false")
       << ", \"index\": " << r.ccp->index << "},\n";
   }
+  if (r.sensitivity) {
+    const FitSensitivity& s = *r.sensitivity;
+    o << "  \"fit_sensitivity\": {\"probe\": " << json_string(s.probe) << ", \"moved\": " << number(s.moved)
+      << ", \"bound\": " << number(FitSensitivityOptions{}.bound) << ", \"decades\": "
+      << number(FitSensitivityOptions{}.decades) << ", \"failure\": " << json_string(s.failure)
+      << ", \"lines_serve\": " << (s.exceeds({}) ? "false" : "true") << "},\n";
+  }
   o << "  \"controlled\": [";
   for (size_t k = 0; k < r.controlled.size(); ++k) o << (k ? ", " : "") << json_string(r.controlled[k]);
   o << "],\n";
@@ -309,6 +321,17 @@ int analyze_command(const AnalyzeArgs& args) {
               (refit->failure.empty() ? "" : " (" + refit->failure + ")");
     const std::string poor = poor_fit_message(model);
     if (!poor.empty()) r.warnings.push_back(poor);
+    ModelOptions mo;
+    mo.t1 = t1;
+    mo.diode_ranges = refit->ranges;
+    const FitSensitivity s = fit_sensitivity(netlist, mo, *deck_transient(netlist), probes_for(netlist, model, ""));
+    if (s.measured) {
+      r.sensitivity = s;
+      if (s.exceeds({}))
+        r.warnings.push_back("the ideal answer depends on the junctions' curves below the currents they carry (" +
+                             s.Describe({}) + "): use --diode auto (the Shockley junctions), --diode shockley, "
+                             "or give VON/RON on the cards");
+    }
   }
   for (const std::shared_ptr<Device>& d : model.devices())
     if (!d->has_history())  // a line's notes are its part of the CCP section

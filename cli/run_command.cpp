@@ -1,6 +1,7 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <memory>
 
 #include "cli/commands.h"
 #include "cli/csv_writer.h"
@@ -9,6 +10,7 @@
 #include "cli/progress.h"
 #include "cli/source_sampling.h"
 #include "solver/integrators/diode_refit.h"
+#include "solver/integrators/fit_sensitivity.h"
 #include "solver/integrators/transient.h"
 #include "solver/model/netlist_options.h"
 #include "solver/model/smooth_netlist.h"
@@ -193,6 +195,11 @@ int run_command(const RunArgs& args) {
   if (method_of(options).applies && !method_of(options).applies(model, &not_applicable))
     throw CliError(kExitUsage, "error: method " + options.method + ": " + not_applicable);
   if (method_of(options).fixed_step()) guard_source_sampling(netlist, args, options);
+  // The ideal run with its fitted lines refitted lower, kept to judge the final run against
+  // (fit_sensitivity.h): made where lines were fitted and nothing else has judged them.
+  std::unique_ptr<RecordedRows> lowered;
+  std::string lowered_failure;
+  const FitSensitivityOptions sensitivity_options;
   if (!method_of(options).smooth_model) {
     // Cards without VON/RON: their lines refitted to the currents this circuit carries.
     const DiodeRefitResult refit = refit_diodes(netlist, refit_model_options(options.tstop), options);
@@ -202,13 +209,34 @@ int run_command(const RunArgs& args) {
     }
     const std::string poor = poor_fit_message(model);
     // --diode auto: the smooth method with Shockley diodes where a fit does not serve the circuit
-    // (the whole circuit: the ideal and smooth models are not mixed in one run); an explicit
-    // --method of the ideal law is kept, with the warning.
-    if (!poor.empty() && args.diode == "auto" && args.method.empty() && smooth_reference_method() &&
-        !first_switch(netlist)) {
-      std::cerr << "lcspice: --diode auto: " << join_names(poorly_fitted_pairs(model))
-                << ": the ideal fit is poor over the currents carried; running --method "
-                << smooth_method_name() << " with Shockley diodes\n";
+    // (the whole circuit: the ideal and smooth models are not mixed in one run): a line poor over
+    // the currents carried, or an answer that depends on the curve below them (fit_sensitivity.h).
+    // An explicit --method of the ideal law is kept, with the warning.
+    const bool auto_may_switch = args.diode == "auto" && args.method.empty() && smooth_reference_method() &&
+                                 !first_switch(netlist);
+    std::string smooth_because;
+    if (auto_may_switch && !poor.empty()) {
+      smooth_because = join_names(poorly_fitted_pairs(model)) + ": the ideal fit is poor over the currents carried";
+    } else if (auto_may_switch && refit.passes > 0) {
+      const FitSensitivityOptions& so = sensitivity_options;
+      ModelOptions mo = refit_model_options(options.tstop);
+      mo.diode_ranges = refit.ranges;
+      const FitSensitivity s = fit_sensitivity(netlist, mo, options, probes_for(netlist, model, args.probes), so);
+      if (args.stats && (s.measured || !s.failure.empty()))
+        std::cerr << "fit sensitivity: " << s.Describe(so) << ", " << s.cpu_seconds << " s CPU\n";
+      if (s.exceeds(so)) smooth_because = "the ideal answer depends on the junctions' curves: " + s.Describe(so);
+    } else if (poor.empty() && refit.passes > 0) {
+      ModelOptions mo = refit_model_options(options.tstop);
+      mo.diode_ranges = refit.ranges;
+      if (has_fitted_ranges(mo)) {
+        lowered = std::make_unique<RecordedRows>();
+        lowered_failure = run_with_lowered_lines(netlist, mo, options, probes_for(netlist, model, args.probes),
+                                                 sensitivity_options, *lowered);
+      }
+    }
+    if (!smooth_because.empty()) {
+      std::cerr << "lcspice: --diode auto: " << smooth_because << "; running --method " << smooth_method_name()
+                << " with Shockley diodes\n";
       options.method = smooth_method_name();
       netlist = smoothed(netlist);
       model = build_model(netlist, 0.0, options.tstop);
@@ -220,15 +248,28 @@ int run_command(const RunArgs& args) {
   OutputMap outputs = output_map_or_exit(model, probes);
   for (const std::string& w : floating_probe_warnings(model, probes)) warn(w);
   CsvSink sink(args.output);
+  RecordedRows nominal;
+  RowTee sink_and_nominal(sink, nominal);
   TransientSummary failed;  // the summary up to a numerical failure
   try {
     TransientSummary summary;
     {
       ProgressLine progress("run " + options.method);
       if (progress.enabled()) options.progress = [&progress](double f) { progress.update(f); };
-      summary = run_transient(model, outputs, options, sink, &failed);
+      summary = run_transient(model, outputs, options, lowered ? static_cast<OutputSink&>(sink_and_nominal) : sink,
+                              &failed);
     }
     for (const std::string& w : summary.warnings) warn(w);
+    if (lowered) {
+      FitSensitivity s;
+      s.failure = lowered_failure;
+      if (lowered_failure.empty()) s = compare_with_lowered(nominal, *lowered, options.step);
+      if (args.stats) std::cerr << "fit sensitivity: " << s.Describe(sensitivity_options) << "\n";
+      if (s.exceeds(sensitivity_options))
+        warn("the ideal answer depends on the junctions' curves below the currents they carry (" +
+             s.Describe(sensitivity_options) + "): use --diode auto (the Shockley junctions where it does), "
+             "--diode shockley, or give VON/RON on the cards");
+    }
     if (args.stats) std::cerr << summary.BriefReport() << "\n";
     if (!sink.path().empty() && sink.path() != "-")
       std::cerr << "lcspice: wrote " << summary.rows << " rows to " << sink.path() << "\n";

@@ -131,11 +131,17 @@ TEST(DiodeFit, RunWarnsOnceWhenAFitIsPoor) {
                        "the card\n"),
             std::string::npos)
       << r.err;
-  // A good fit says nothing.
+  // A good fit says nothing about the fit; the detector's answer, though, depends on the curve
+  // below the currents it carries (tests/diode_auto_test.cpp), and the run says that instead.
   const fs::path good = write_deck(dir, "detector.cir", kDetector);
   const Result g = run_lcspice("run '" + good.string() + "' -o '" + (dir / "good.csv").string() + "'", dir);
   EXPECT_EQ(g.code, 0) << g.err;
-  EXPECT_EQ(g.err.find("warning"), std::string::npos) << g.err;
+  EXPECT_EQ(g.err.find("is poor over the range"), std::string::npos) << g.err;
+  EXPECT_EQ(count(g.err, "lcspice: warning:"), 1u) << g.err;
+  EXPECT_NE(g.err.find("lcspice: warning: the ideal answer depends on the junctions' curves below the currents they "
+                       "carry (v(out) moves 8.89 % of its range"),
+            std::string::npos)
+      << g.err;
 }
 
 TEST(DiodeFit, AutoRunsShockleyDiodesWhereTheFitIsPoor) {
@@ -152,11 +158,20 @@ TEST(DiodeFit, AutoRunsShockleyDiodesWhereTheFitIsPoor) {
   const Csv shockley = run_csv(deck, "smooth", "--diode shockley");
   ASSERT_EQ(autocsv.rows.size(), shockley.rows.size());
   EXPECT_EQ(max_difference(autocsv, shockley, "v(out)"), 0.0);
-  // Where the fit serves (the detector), auto is the ideal run.
-  const fs::path good = write_deck(dir, "detector.cir", kDetector);
-  const Csv good_auto = run_csv(good, "", "--diode auto");
-  const Csv good_ideal = run_csv(good, "");
-  EXPECT_EQ(good_auto.raw, good_ideal.raw);
+  // The detector's fit is good over the currents it carries (1.04 %), but its answer is not the
+  // line's to give: fitted two decades lower, v(out) moves 8.89 % of its range at a turn-on (the
+  // ideal run is 3.8 % of v(out)'s range away from the Shockley diode's there, outside a tube of
+  // one output interval), so auto runs the Shockley diode (tests/diode_auto_test.cpp: where auto
+  // keeps the ideal run).
+  const fs::path detector = write_deck(dir, "detector.cir", kDetector);
+  const Result d = run_lcspice("run '" + detector.string() + "' --diode auto -o '" + (dir / "det.csv").string() + "'", dir);
+  EXPECT_EQ(d.code, 0) << d.err;
+  EXPECT_NE(d.err.find("lcspice: --diode auto: the ideal answer depends on the junctions' curves: v(out) moves 8.89 % "
+                       "of its range (at t = 0.002076 s; bound 2 %) when the junctions' lines are fitted 2 decades "
+                       "below the currents they carry; running --method smooth with Shockley diodes\n"),
+            std::string::npos)
+      << d.err;
+  EXPECT_EQ(parse_csv(read_file(dir / "det.csv")).raw, run_csv(detector, "smooth", "--diode shockley").raw);
 }
 
 // A Zener clamp with an ideal card: VON = 0.6 V, RON = 1 ohm, BV = 5.1 V (its breakdown
