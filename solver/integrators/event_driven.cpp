@@ -27,6 +27,9 @@ constexpr int kMaxLevel = 64;
 constexpr double kTol = 1e-12;
 constexpr double kZeroTol = 1e-9;
 constexpr int kSuspicionLevels = 10;
+constexpr double kReducedEta = 1e-3;  // eta_r times the fastest rate (Impl::eta_r)
+constexpr int kGrowRounds = 4;        // Impl::select: the reduced set grows at most this often
+constexpr int kDerivativeLevels = 4;  // w and its first three derivatives in the reduced q
 constexpr double kNoise = 1e-4;  // kNoise * kTol = 1e-16: rounding of a row times |X|
 constexpr double kUncoupled = 1e-13;  // of the largest row of a unit: see zero_uncoupled_rows
 // |X| in that floor is |W X|: a ramp's slope u' enters as the change it makes before the next
@@ -106,6 +109,12 @@ struct EventDriven::Impl {
   // Mode selection: implicit Euler with the tiny step eta, LCP(Csel x + Fsel u(t + eta), Msel).
   double eta = 0;
   Eigen::MatrixXd Csel, Fsel;
+  // The reduced problem of the pairs at zero (pairs_at_zero_lcp.h): the same LCP at a step
+  // eta_r = kReducedEta / rate, large enough that its levels w, eta_r w', eta_r^2 w'', ... stand
+  // apart from Lemke's tolerances (1e-12 of |q|), which at eta (1e-8 / rate) took eta w' for zero
+  // next to a w of O(1).
+  double eta_r = 0;
+  Eigen::MatrixXd Mred, Cred, Fred;
   std::unique_ptr<LcpWarmSolver> selector;
   // Impulses (4.5): pairs with a zero row of D can take a jump x+ = x + B_J nu.
   std::vector<int> impulsive;
@@ -128,10 +137,13 @@ struct EventDriven::Impl {
   const Eigen::MatrixXd& exponential(Mode& md, int j);
   void prepare(double tstep, double tstop);
   bool consistent(Mode& md, const Eigen::VectorXd& X, std::vector<int>* near_zero,
-                  const Eigen::MatrixXd* error) const;
+                  const Eigen::MatrixXd* error, std::vector<int>* failing = nullptr) const;
   void zero_uncoupled_rows(const std::vector<bool>& active, Eigen::MatrixXd& G) const;
   Mode& select(double t, const Eigen::VectorXd& x, const Eigen::VectorXd& sigma,
                const std::string& signature, const Mode* previous, bool event = false);
+  Eigen::VectorXd rcp_levels(const std::vector<bool>& active, const std::vector<int>& set,
+                             const std::string& signature, const Eigen::VectorXd& Xs,
+                             const Eigen::MatrixXd* error);
   bool apply_impulse(Eigen::VectorXd& x, const Eigen::VectorXd& u);
   void refresh_constraints();
   void project();
@@ -268,6 +280,15 @@ void EventDriven::Impl::prepare(double tstep, double tstop) {
   Csel = n > 0 ? Eigen::MatrixXd(s.C * lu.inverse()) : Eigen::MatrixXd(m, 0);
   Fsel = eta * s.C * WE + s.F;
   selector = std::make_unique<LcpWarmSolver>(s.D + eta * s.C * WB);
+  eta_r = kReducedEta * (rate > 0 ? std::min(tstep, 1.0 / rate) : tstep);
+  {
+    Eigen::PartialPivLU<Eigen::MatrixXd> lr(Eigen::MatrixXd::Identity(n, n) - eta_r * s.A);
+    const Eigen::MatrixXd RB = n > 0 ? solve_or_empty(lr, s.B) : Eigen::MatrixXd(0, m);
+    const Eigen::MatrixXd RE = n > 0 ? solve_or_empty(lr, s.E) : Eigen::MatrixXd(0, s.inputs());
+    Cred = n > 0 ? Eigen::MatrixXd(s.C * lr.inverse()) : Eigen::MatrixXd(m, 0);
+    Fred = eta_r * s.C * RE + s.F;
+    Mred = s.D + eta_r * s.C * RB;
+  }
 
   impulsive.clear();
   const Eigen::MatrixXd CB = s.C * s.B;
@@ -293,7 +314,7 @@ void EventDriven::Impl::prepare(double tstep, double tstop) {
 // estimate can be from its value at the crossing) widens every tolerance for "at zero".
 bool EventDriven::Impl::consistent(Mode& md, const Eigen::VectorXd& Xs,
                                    std::vector<int>* near_zero,
-                                   const Eigen::MatrixXd* error) const {
+                                   const Eigen::MatrixXd* error, std::vector<int>* failing) const {
   if (!md.dyn.well_posed) return false;
   const Eigen::VectorXd g = md.G * Xs, d = md.GM * Xs, dd = md.GMM * Xs;
   const double xn = W.cwiseProduct(Xs).norm();
@@ -321,8 +342,10 @@ bool EventDriven::Impl::consistent(Mode& md, const Eigen::VectorXd& Xs,
     if (near_zero && g(i) >= -t0) near_zero->push_back(i);
     if (g(i) < -t0) {
       ok = false;
+      if (failing) failing->push_back(i);
     } else if (d(i) < -t1 || (d(i) <= t1 && dd(i) < -t2)) {
       ok = false;
+      if (failing) failing->push_back(i);
     }
   }
   if (md.Pc.rows() > 0) {
@@ -435,40 +458,35 @@ Mode& EventDriven::Impl::select(double t, const Eigen::VectorXd& x, const Eigen:
   if (near_zero.empty())
     for (int i = 0; i < m; ++i) near_zero.push_back(i);
   // The pairs at zero decide among themselves (pairs_at_zero_lcp.h), on the values of their w
-  // in the mode with all of them off, at the crossing: w, w', w'' (8.3.3), each zero within the
-  // mode check's tolerance set to zero, as q = w + eta w' + eta^2 w''. (w stays: a pair whose z
-  // just reached zero can open onto a w far from zero, the voltage of an RON diode in an
-  // inductor's path.)
-  Eigen::VectorXd derivatives;
-  {
-    std::vector<bool> off = active;
-    for (int i : near_zero) off[i] = false;
-    Mode& base = mode(off, signature);
-    if (base.dyn.well_posed) {
-      const Eigen::VectorXd g = base.G * *Xt, d = base.GM * *Xt, dd = base.GMM * *Xt;
-      const double xn = W.cwiseProduct(*Xt).norm();
-      Eigen::VectorXd sg, sd, sdd;
-      row_scales(base.Gabs, base.Gnorm, *Xt, xn, sg);
-      row_scales(base.GMabs, base.GMnorm, *Xt, xn, sd);
-      row_scales(base.GMMabs, base.GMMnorm, *Xt, xn, sdd);
-      derivatives.resize(near_zero.size());
-      for (size_t r = 0; r < near_zero.size(); ++r) {
-        const int i = near_zero[r];
-        double t0 = kZeroTol * sg(i);
-        if (error)
-          for (Eigen::Index c = 0; c < error->cols(); ++c) t0 += std::abs(base.G.row(i).dot(error->col(c)));
-        const double d0 = std::abs(g(i)) <= t0 ? 0.0 : g(i);
-        const double d1 = std::abs(d(i)) <= kZeroTol * sd(i) ? 0.0 : d(i);
-        const double d2 = std::abs(dd(i)) <= kZeroTol * sdd(i) ? 0.0 : dd(i);
-        derivatives(r) = d0 + eta * d1 + eta * eta * d2;
-      }
-    }
-  }
-  if (const auto reduced = pairs_at_zero_lcp(selector->matrix(), q, active, near_zero,
-                                             derivatives.size() > 0 ? &derivatives : nullptr)) {
+  // in the mode with all of them off, at the crossing: w, w', w'', w(3) (rcp_levels). (w stays: a
+  // pair whose z just reached zero can open onto a w far from zero, the voltage of an RON diode
+  // in an inductor's path.) The held pairs whose z the others leave undetermined join them (a
+  // reverse-biased junction at a node reached otherwise only through a diode at zero: ngspice's
+  // ltra4_1_line, where M_αα was singular at every event and the reduced problem never
+  // answered). The pairs a picked mode violates that were outside the set join it too, and the
+  // reduced problem is solved again, at most kGrowRounds times.
+  const Eigen::VectorXd qr =
+      m > 0 ? Eigen::VectorXd(Cred * x + Fred * model.input_values(t + eta_r)) : Eigen::VectorXd();
+  std::vector<int> reduced_set = near_zero;
+  for (int round = 0; round <= kGrowRounds; ++round) {
+    for (int i : undetermined_held_pairs(Mred, active, reduced_set)) reduced_set.push_back(i);
+    const Eigen::VectorXd derivatives = rcp_levels(active, reduced_set, signature, *Xt, error);
+    const auto reduced = pairs_at_zero_lcp(Mred, qr, active, reduced_set,
+                                           derivatives.size() > 0 ? &derivatives : nullptr);
+    if (!reduced) break;
     Mode& md = mode(*reduced, signature);
-    if (consistent(md, *Xt, nullptr, error)) return md;
+    std::vector<int> failing;
+    if (consistent(md, *Xt, nullptr, error, &failing)) return md;
+    bool grew = false;
+    for (int i : failing)
+      if (std::find(reduced_set.begin(), reduced_set.end(), i) == reduced_set.end()) {
+        reduced_set.push_back(i);
+        grew = true;
+      }
+    if (!grew) break;
   }
+  for (int i : reduced_set)
+    if (std::find(near_zero.begin(), near_zero.end(), i) == near_zero.end()) near_zero.push_back(i);
   // Left to a search, for what the reduced LCP does not settle: a mode with a node left floating
   // (not well posed: a bridge rectifier at its source's zero crossing), transistor feedback
   // (several solutions, Lemke's pick not the one that continues the state), a pair not at zero
@@ -505,6 +523,40 @@ Mode& EventDriven::Impl::select(double t, const Eigen::VectorXd& x, const Eigen:
     pairs += (pairs.empty() ? "" : ", ") + model.pairs()[i].name;
   throw NumericalFailure(t, "no consistent mode after a switching event" +
                                 (pairs.empty() ? std::string() : " (pairs at zero: " + pairs + ")"));
+}
+
+// The reduced problem's q for the pairs in `set` (pairs_at_zero_lcp.h): their w in the mode with
+// them off and the others as in `active`, at the crossing, as the truncated Taylor series of
+// Stewart 4.5 (the Laplace transform's expansion at s = 1/eta_r):
+//   q = w + eta_r w' + eta_r^2 w'' + eta_r^3 w(3),
+// each level zero within kZeroTol of its terms (|G M^k| |X| and the rounding floor; the value
+// itself also within the crossing's error), so that the first nonzero level decides the sign
+// (the lexicographic order of Lemma 4.14). Empty where that mode is not well posed.
+Eigen::VectorXd EventDriven::Impl::rcp_levels(const std::vector<bool>& active, const std::vector<int>& set,
+                                              const std::string& signature, const Eigen::VectorXd& Xs,
+                                              const Eigen::MatrixXd* error) {
+  std::vector<bool> off = active;
+  for (int i : set) off[i] = false;
+  Mode& base = mode(off, signature);
+  if (!base.dyn.well_posed) return Eigen::VectorXd();
+  const double xn = W.cwiseProduct(Xs).norm();
+  Eigen::MatrixXd Gk(set.size(), base.q);
+  for (size_t r = 0; r < set.size(); ++r) Gk.row(r) = base.G.row(set[r]);
+  Eigen::VectorXd out = Eigen::VectorXd::Zero(set.size()), gk, sk;
+  double weight = 1;
+  for (int level = 0; level < kDerivativeLevels; ++level) {
+    gk.noalias() = Gk * Xs;
+    row_scales(Gk.cwiseAbs(), Gk.rowwise().norm(), Xs, xn, sk);
+    for (size_t r = 0; r < set.size(); ++r) {
+      double tol = kZeroTol * sk(r);
+      if (level == 0 && error)
+        for (Eigen::Index c = 0; c < error->cols(); ++c) tol += std::abs(Gk.row(r).dot(error->col(c)));
+      if (std::abs(gk(r)) > tol) out(r) += weight * gk(r);
+    }
+    weight *= eta_r;
+    Gk = Gk * base.M;
+  }
+  return out;
 }
 
 bool EventDriven::Impl::apply_impulse(Eigen::VectorXd& x, const Eigen::VectorXd& u) {

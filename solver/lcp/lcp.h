@@ -40,6 +40,11 @@ struct LcpSolution {
   // RayTermination: the pairs whose z grows along the unbounded ray (the certificate's support:
   // what the data drives against its constraints). Empty otherwise.
   std::vector<int> ray;
+  // solve_lemke, Solved or NumericalFailure: the pairs whose z is basic in the final complementary
+  // basis (ascending), a superset of {z > 0} with M_JJ nonsingular. A degenerate pair (z = w = 0)
+  // is in it when the basis needs its w = 0 row to fix the others' z (a node that floats unless
+  // that diode conducts). Empty for q >= 0 (no pivot) and from the warm solver.
+  std::vector<int> basic_z;
 };
 
 // Lemke's complementary pivoting with covering vector d = (1,...,1) and lexicographic

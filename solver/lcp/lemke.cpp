@@ -236,6 +236,10 @@ void LemkeEngine::finish(const Eigen::MatrixXd& M, const Eigen::VectorXd& q, dou
     }
     out.status = res <= accept ? LcpStatus::Solved : LcpStatus::NumericalFailure;
   }
+  out.basic_z.clear();
+  for (int i = 0; i < n_; ++i)
+    if (basis_[i] >= n_ && basis_[i] < 2 * n_) out.basic_z.push_back(basis_[i] - n_);
+  std::sort(out.basic_z.begin(), out.basic_z.end());
   out.z = eq_.col.cwiseProduct(y_) * qn;
   out.w = q;
   out.w.noalias() += M * out.z;

@@ -448,3 +448,31 @@ TEST(Lemke, IllConditionedNeverClaimsFalseSuccess) {
 
 }  // namespace
 }  // namespace lcs
+
+namespace lcs {
+namespace {
+
+// The pattern of a node reached only through two junctions (event_next_mode_test.cpp): a link
+// diode (row 0: its voltage margin, 502 its resistance path, +1 the other's reverse voltage) and
+// a reverse-biased tree junction (row 1: its current, minus the link's). The solution
+// z = (0, 3.61), w = (0, 0) leaves pair 0 degenerate; the basis must hold z_0 (at zero), or
+// M_JJ over J = {z > 0} = {1} is the singular [0]. basic_z names it.
+TEST(Lemke, BasicSetHoldsTheDegeneratePairThatFixesTheOthers) {
+  Eigen::MatrixXd M(2, 2);
+  M << 502, 1, -1, 0;
+  Eigen::VectorXd q(2);
+  q << -3.61, 0;
+  const LcpSolution s = solve_lemke(M, q);
+  ASSERT_EQ(s.status, LcpStatus::Solved);
+  EXPECT_EQ(s.z(0), 0.0);
+  EXPECT_NEAR(s.z(1), 3.61, 1e-12);
+  EXPECT_EQ(s.basic_z, (std::vector<int>{0, 1}));
+}
+
+TEST(Lemke, BasicSetIsEmptyWithoutPivots) {
+  const LcpSolution s = solve_lemke(Eigen::MatrixXd::Identity(2, 2), Eigen::VectorXd::Ones(2));
+  EXPECT_TRUE(s.basic_z.empty());
+}
+
+}  // namespace
+}  // namespace lcs
