@@ -65,7 +65,6 @@ TEST(DescriptorStart, GivesTheDenseStartsZOnAChargingMultiplier) {
   EXPECT_GE(accepted, 20);
   EXPECT_GE(conducting, 5);  // not only instants with every diode off
   EXPECT_LT(worst, 1e-7);
-  std::cout << "accepted " << accepted << " conducting " << conducting << " worst " << worst << "\n";
 }
 
 // A run's start takes the descriptor path: no dense LCP (the stepper's lcp counts stay zero).
