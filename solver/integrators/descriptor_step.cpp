@@ -9,6 +9,9 @@ namespace {
 // (sparse_active_set.h). Measured on the 500-stage multiplier (1000 diodes, 1000 steps of 100 us,
 // 11384 pairs flipped): a factorisation per mode 7.5 s; updates up to rank 16 / 32 / 64: 1.67 /
 // 1.50 / 1.73 s (fewer factorisations against longer updates), the same answers to 1e-12.
+// After the search's trim (sparse_active_set.h; one run each on the shared machine, before the
+// warm-start rebase): a factorisation per mode 0.155 s but 93 MB of cached factors; rank 8 / 16
+// / 32 / 64: 0.21 / 0.22 / 0.28 / 0.28 s. Kept at 32 (no cache) with the rebase: 0.20-0.29 s.
 constexpr int kMaxRank = 32;
 }  // namespace
 

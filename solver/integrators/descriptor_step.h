@@ -9,10 +9,14 @@
 // size first (capacitor rows hold C ~ 1e-5 next to KCL's ±1); that changes no solution.
 //
 // Cost per step (N = nodes + branches + pairs unknowns, O(1) nonzeros a row): the right-hand
-// side O(nnz), a warm hit one pair of triangular solves O(nnz(LU)), a mode change one sparse
-// factorisation per mode tried (once per mode while the cache holds it). For a multiplier's
-// chain nnz(LU) grows like N, so a step costs O(N) where the dense LCP's costs O(N^2) and its
-// Lemke pivots O(N^2) each.
+// side O(nnz); a warm hit in the base mode one pair of KLU triangular solves, O(nnz(LU)); a mode
+// k <= 32 pairs from the base those solves plus k columns (each a pair of solves, once per base)
+// and O(k N) for the update, and one refinement on the accepted mode; a mode further away, or
+// one the warm start found again after an update, one KLU numeric factorisation (the symbolic
+// analysis is made once). For a multiplier's chain nnz(LU) grows like N (500 stages: N = 4003,
+// nnz(L + U) = 23-24k), so a step costs O(N) times the rounds of its mode search, where the
+// dense LCP's costs O(N^2) and its Lemke pivots O(N^2) each. Measured at 500 stages (1000 steps
+// of 100 us, `lcspice run --method euler --stats`): 91 % warm hits, 0.20-0.29 ms a step.
 //
 // θ < 1 needs y at the start of the step: the last step's y+ when (x, z) are what it returned,
 // else the circuit solved at that instant with x and z given (Kst, factorised once).

@@ -1,6 +1,7 @@
 #include "solver/integrators/theta_method.h"
 #include "solver/model/empty_safe.h"
 
+#include "solver/integrators/descriptor_start.h"
 #include "solver/integrators/start_complementarity.h"
 #include "solver/model/sparse_lcs.h"
 #include "solver/model/numerical_failure.h"
@@ -71,6 +72,7 @@ ThetaMethod::StepFactors& ThetaMethod::factors(double h) {
 
 void ThetaMethod::DoStart(double t0, double h_run, const Eigen::VectorXd& x, Eigen::VectorXd& z) {
   // Only theta < 1 reuses z_n; for theta = 1 it is just the t0 output.
+  if (descriptor_ && descriptor_start_z(model_, *descriptor_, t0, x, stats_, z)) return;
   z = consistent_start_z(model_, t0, h_run, x, stats_, z, &multistability_);
 }
 

@@ -15,7 +15,13 @@
 // previous call's (a time step's mode rarely changes: the warm start). Otherwise the pairs that
 // violate their sign conditions are flipped together (block principal pivoting, Judice and
 // Pires 1994), falling back to flipping one pair at a time, the largest index (Murty's rule,
-// finite for a P-matrix M) after three flips that did not shrink the violating set.
+// finite for a P-matrix M) after three flips that did not shrink the violating set. Before
+// Murty, a stalled search is trimmed (at most three times a solve): the violators flipped and
+// every pair whose z is below 1e-6 of the largest taken off; a trimmed pair goes on again at any
+// negative w, so no z below the feasibility tolerance is lost. On a 500-stage multiplier's
+// charging front the block flip turns on a whole chain of diodes whose currents are then tiny
+// and negative at its far end, and Murty's flips walked that end back one diode per solve: 5073
+// rounds that found violators in 1000 steps (479 in one step), 213 with the trim.
 //
 // Cost model. Each mode's matrix has the same sparsity pattern (rows outside J are unit rows
 // stored with explicit zeros), analysed once and factorised per mode by KLU (its block
@@ -34,7 +40,8 @@
 // one pair of triangular solves with M_0's factors, the columns G_S (solved once per pair while
 // the base stands), and a dense k x k system; one step of iterative refinement against M_J
 // itself, on the mode the search accepts, keeps the answer at rounding. A mode more than `max_rank` pairs from the base is
-// factorised and becomes the base. Where modes wander (a multiplier charging, every step a new
+// factorised and becomes the base, and so does a mode the update answered at the warm start
+// (found twice running: likely to stay). Where modes wander (a multiplier charging, every step a new
 // mode and each search several), this replaces a sparse factorisation per mode tried, O(nnz(L+U))
 // with a large constant, by O(k nnz(L+U)) for the new columns and O(k (n + m) + k^3) per solve.
 //

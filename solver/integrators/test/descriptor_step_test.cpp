@@ -154,7 +154,7 @@ TEST(DescriptorStep, MultipliersStepAsTheDenseLcpToRounding) {
     EXPECT_GE(a.mode_changes, 90);
     EXPECT_GE(a.switched.size(), 22u);
     EXPECT_EQ(a.stats.sparse_fallbacks, 0);
-    EXPECT_EQ(a.stats.sparse.solves, 400);
+    EXPECT_EQ(a.stats.sparse.solves, 401);  // the start (descriptor_start.h) and 400 steps
     EXPECT_EQ(a.stats.descriptor_unknowns, model.sparse_descriptor()->unknowns());
     EXPECT_LT(a.state, 1e-9);
     EXPECT_LT(a.step_equation, 1e-12);
@@ -202,7 +202,7 @@ TEST(DescriptorStep, StatsReportThePath) {
   EXPECT_EQ(unknowns, (1 + 2 * stages) + (2 + 4 * stages));
   EXPECT_NE(summary.BriefReport().find("step path: descriptor (node) form, " + std::to_string(unknowns) + " unknowns"),
             std::string::npos) << summary.BriefReport();
-  EXPECT_EQ(summary.stepper.sparse.solves, 200);
+  EXPECT_EQ(summary.stepper.sparse.solves, 201);  // the start (descriptor_start.h) and 200 steps
   EXPECT_EQ(summary.stepper.sparse_fallbacks, 0);
 
   const CircuitModel below = build(multiplier(kDescriptorPairs / 2 - 1, 1));

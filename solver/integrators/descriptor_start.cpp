@@ -1,0 +1,44 @@
+#include "solver/integrators/descriptor_start.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "solver/lcp/sparse_active_set.h"
+
+namespace lcs {
+
+bool descriptor_start_z(const LcsProblem& model, const SparseDescriptor& d, double t0,
+                        const Eigen::VectorXd& x, StepperStats& stats, Eigen::VectorXd& z) {
+  using Sparse = SparseActiveSetLcp::Sparse;
+  const int ny = d.unknowns(), m = static_cast<int>(d.P.rows());
+  // Rows scaled to unit size, as the step's (descriptor_step.cpp): no solution changes.
+  Eigen::VectorXd scale = Eigen::VectorXd::Zero(ny);
+  for (const Sparse* S : {&d.Kst, &d.Lz})
+    for (int c = 0; c < S->outerSize(); ++c)
+      for (Sparse::InnerIterator it(*S, c); it; ++it)
+        scale(it.row()) = std::max(scale(it.row()), std::abs(it.value()));
+  for (int r = 0; r < ny; ++r) scale(r) = scale(r) > 0 ? 1.0 / scale(r) : 1.0;
+  const Sparse K = scale.asDiagonal() * d.Kst, L = scale.asDiagonal() * d.Lz;
+  SparseActiveSetLcp lcp(K, L, d.P, Sparse(m, m));
+  if (z.size() == m) lcp.prefer(z);
+  const Eigen::VectorXd u = model.input_values(t0);
+  Eigen::VectorXd a = d.Xst * x + d.Uin * u;
+  a = a.cwiseProduct(scale);
+  const Eigen::VectorXd b = d.Fw * u;
+  Eigen::VectorXd y, zs, w;
+  const bool solved = lcp.solve(a, b, y, zs, w);
+  SparseActiveSetStats own = lcp.stats();
+  own.cache_bytes = 0;  // freed on return: only the steppers' caches stay
+  stats.sparse += own;
+  ++stats.factorisations;
+  if (!solved) return false;
+  // Strict complementarity, relative to the sizes that meet in z and in each w_i.
+  const double z_size = m > 0 ? zs.cwiseAbs().maxCoeff() : 0.0;
+  const Eigen::VectorXd w_terms = (d.P.cwiseAbs() * y.cwiseAbs()) + (d.Fw.cwiseAbs() * u.cwiseAbs());
+  for (int i = 0; i < m; ++i)
+    if (!(zs(i) > 1e-9 * z_size) && !(w(i) > 1e-9 * w_terms(i))) return false;
+  z = zs;
+  return true;
+}
+
+}  // namespace lcs
