@@ -313,7 +313,7 @@ int analyze_command(const AnalyzeArgs& args) {
     refit = refit_diodes(netlist, mo, *tran);
     if (refit->passes > 0) model = build_model(netlist, 0.0, t1, refit->ranges);
   }
-  Report r{model, h_components(model.graph()), classify_diodes(model.graph()), lcs_index(model), {}, {}, {}, {}, {}};
+  Report r{model, h_components(model.graph()), classify_diodes(model.graph()), lcs_index(model), {}, {}, {}, {}, {}, {}};
   for (const std::string& w : floating_potential_warnings(model)) r.warnings.push_back(w);
   if (refit && refit->passes > 0) {
     r.refit = std::to_string(refit->passes) + " transient pass" + (refit->passes == 1 ? "" : "es") + ", " +
