@@ -33,7 +33,8 @@ DotCard classify_dot_card(const std::string& k) {
   if (k == ".print" || k == ".plot") return DotCard::Print;
   if (k == ".save" || k == ".probe") return DotCard::Save;
   if (k == ".options" || k == ".option" || k == ".opt") return DotCard::Options;
-  if (k == ".op") return DotCard::Op;
+  if (k == ".op" || k == ".backanno") return DotCard::Op;
+  if (k == ".global") return DotCard::Global;
   if (k == ".title") return DotCard::Title;
   if (k == ".endc") return DotCard::Endc;
   for (const char* c : kIgnoredCards)

@@ -22,7 +22,8 @@ enum class DotCard {
   Print,     // .print, .plot
   Save,      // .save, .probe
   Options,   // .options, .option, .opt
-  Op,        // accepted silently
+  Op,        // accepted silently (and LTspice's `.backanno`, an annotation marker)
+  Global,    // .global NODE...: nodes shared by every subcircuit instance
   Title,     // .title text
   Ignored,   // analyses and cards lcspice does not run (.ac .dc .noise .tf .meas .four ...): warning
   Endc,      // a stray .endc (the lexer takes .control blocks out)

@@ -58,10 +58,17 @@ std::optional<LibReference> lib_reference(const Card& card) {
 bool is_lib(const Card& card) { return card[0].is_word(".lib"); }
 bool is_endl(const Card& card) { return card[0].is_word(".endl"); }
 
-// The `.endl` closing the section that starts at cards[begin] (a `.lib SECTION` card).
-std::size_t section_end(const std::vector<Card>& cards, std::size_t begin) {
+// The `.endl` closing the section that starts at cards[begin] (a `.lib SECTION` card), or
+// cards.size() when none follows.
+std::size_t find_section_end(const std::vector<Card>& cards, std::size_t begin) {
   for (std::size_t k = begin + 1; k < cards.size(); ++k)
     if (is_endl(cards[k])) return k;
+  return cards.size();
+}
+
+std::size_t section_end(const std::vector<Card>& cards, std::size_t begin) {
+  const std::size_t end = find_section_end(cards, begin);
+  if (end < cards.size()) return end;
   throw NetlistError(cards[begin].at(0), "missing '.endl' for '.lib " + cards[begin][1].lower + "'");
 }
 
@@ -86,8 +93,19 @@ class Reader {
       Card& card = cards[k];
       if (is_endl(card)) throw NetlistError(card.at(0), "'.endl' without '.lib'");
       if (is_lib(card)) {
-        if (card.size() == 2 && card[1].is_word()) {  // a section definition not asked for here
+        // `.lib NAME` ... `.endl`: a section definition not asked for here. `.lib FILE` with no
+        // `.endl` after it is LTspice's library include (the whole file; ngspice has no such form).
+        if (card.size() == 2 && card[1].is_word() && find_section_end(cards, k) < cards.size()) {
           k = section_end(cards, k);
+          continue;
+        }
+        if (card.size() == 2 && (card[1].is_word() || card[1].is(Token::Kind::Quoted))) {
+          std::string text;
+          const std::string path =
+              open_nested(file, card[1].text, card.at(1), "library", text,
+                          " ('.lib FILE' reads FILE, as LTspice does; a section '.lib " + card[1].lower +
+                              "' ends at '.endl')");
+          expand(make_source_file(path, text), false, out);
           continue;
         }
         std::optional<LibReference> ref = lib_reference(card);
@@ -109,7 +127,7 @@ class Reader {
 
   // Checks the bounds and reads the file `name` names relative to `file`; returns its path.
   std::string open_nested(const SourceFilePtr& file, const std::string& name, const SourceLocation& loc,
-                          const char* what, std::string& text) {
+                          const char* what, std::string& text, const std::string& unopened_hint = "") {
     std::string path = resolve_relative(file->path, name);
     std::string id = identity(path);
     for (const std::string& open : stack_)
@@ -118,7 +136,8 @@ class Reader {
     if (++opens_ > kMaxIncludeOpens)
       throw NetlistError(loc, "more than " + std::to_string(kMaxIncludeOpens) +
                                   " .include files read for one netlist (includes that repeat each other?)");
-    if (!read_file(path, text, true)) throw NetlistError(loc, "cannot open " + std::string(what) + " file " + quote(name));
+    if (!read_file(path, text, true))
+      throw NetlistError(loc, "cannot open " + std::string(what) + " file " + quote(name) + unopened_hint);
     bytes_ += text.size();
     if (bytes_ > kMaxIncludedBytes)
       throw NetlistError(loc, "included text exceeds " + std::to_string(kMaxIncludedBytes >> 20) +

@@ -64,6 +64,7 @@ class Elaborator {
     Instance root;
     root.def = &top;
     root.scope = std::make_unique<ParamScope>();
+    collect_global_nodes(top);
     expand(root);
     if (control_tran && !net_.tran) net_.tran = parse_tran(*control_tran, *root.scope);
     note_unused_models();
@@ -81,7 +82,23 @@ class Elaborator {
     if (is_ground(n)) return "0";
     auto it = in.ports.find(n);
     if (it != in.ports.end()) return it->second;
+    if (global_nodes_.count(n)) return n;
     return in.prefix + n;
+  }
+
+  // `.global NODE...` (top level, anywhere in the deck): inside every subcircuit instance NODE is
+  // the top-level node of that name (ngspice), unless it is one of the subcircuit's ports.
+  void collect_global_nodes(const SubcktDef& top) {
+    for (const Card* card : top.body) {
+      if (!(*card)[0].is_word(".global")) continue;
+      if (card->size() == 1) throw NetlistError(card->after_last(), "missing node names after '.global'");
+      for (std::size_t k = 1; k < card->size(); ++k) {
+        const Token& t = (*card)[k];
+        if (t.is(Token::Kind::Comma)) continue;
+        if (!t.is_word()) throw NetlistError(card->at(t), "expected a node name, got " + quote(t.text));
+        global_nodes_.insert(t.lower);
+      }
+    }
   }
 
   void register_name(const std::string& flat, const SourceLocation& loc, const char* what) {
@@ -134,6 +151,7 @@ class Elaborator {
       case DotCard::Subckt:  // taken out by build_definitions
       case DotCard::Ends:
       case DotCard::Op:
+      case DotCard::Global:  // read before the expansion (collect_global_nodes)
         return;
       case DotCard::Tran:
         if (net_.tran)
@@ -167,6 +185,12 @@ class Elaborator {
       case DotCard::Endc:
         throw NetlistError(card.at(0), "'.endc' without '.control'");
       case DotCard::Unknown:
+        if (k == ".step")  // LTspice/PSpice: reruns the deck per value; the CSV holds one run
+          throw NetlistError(card.at(0), "'.step' (parameter sweeps, LTspice/PSpice) is not supported: lcspice "
+                                         "runs one transient per deck; give each value its own deck or .param");
+        if (k == ".func")
+          throw NetlistError(card.at(0), "'.func' (user-defined functions in expressions) is not supported; "
+                                         "write the expression out, or give its value with .param");
         throw NetlistError(card.at(0), "unknown control card " + quote(card[0].text));
     }
   }
@@ -485,6 +509,7 @@ class Elaborator {
   Netlist& net_;
   std::vector<ControlRef> control_refs_;
   std::map<std::string, SourceLocation> names_;
+  std::set<std::string> global_nodes_;  // `.global` names (lower case)
   std::map<std::string, SourceLocation> model_locs_;
   std::map<std::string, std::string> model_types_;
   std::vector<CouplingRef> coupling_refs_;

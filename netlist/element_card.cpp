@@ -35,7 +35,8 @@ struct Reader {
   [[noreturn]] void extra(std::size_t i) const {
     const Token& t = card[i];
     if (t.is_word() && i + 1 < card.size() && card[i + 1].is(Token::Kind::Equals))
-      throw NetlistError(card.at(t), "unknown parameter " + quote(t.text) + " for " + quote(name));
+      throw NetlistError(card.at(t), "unknown parameter " + quote(t.text) + " for " + quote(name) +
+                                         ltspice_parasitic_hint(t.lower));
     throw NetlistError(card.at(t), "unexpected extra token " + quote(t.text));
   }
 

@@ -22,6 +22,11 @@ const char* const kIgnoredDiodeParams[] = {
 // lcspice does not model: current limits and the softening of the knees.
 const char* const kIgnoredLtspiceDiodeParams[] = {"ilimit", "revilimit", "epsilon", "revepsilon"};
 
+// The datasheet fields of vendor diode cards (LTspice's libraries carry them on every diode:
+// `Iave=200m Vpk=75 mfg=OnSemi type=silicon`): documentation, no model equation reads them, and
+// their values may be words.
+const char* const kVendorDiodeFields[] = {"iave", "ipk", "vpk", "mfg", "type", "pd", "ppk"};
+
 const char* const kIgnoredBjtParams[] = {
     "vaf", "va", "ikf", "ik", "ise", "ne", "var", "vb", "ikr", "isc", "nc", "rb", "irb", "rbm",
     "re", "rc", "vje", "pe", "mje", "me", "tf", "xtf", "vtf", "itf", "ptf", "cjc", "vjc", "pc",
@@ -238,6 +243,10 @@ ModelCard parse_model_card(const Card& card, const ParamScope& scope, const std:
   SourceLocation first_ignored;
   for (const Assignment& a : params) {
     const Token& key = card[a.name];
+    if (listed(kVendorDiodeFields, key.lower)) {
+      add_ignored(d.ignored, first_ignored, card.at(key), key.lower);
+      continue;
+    }
     double v = value_of(card, a.value_first, a.value_last, scope);
     SourceLocation at_value = card.at(a.value_first);
     auto check = [&](bool ok, const char* rule) {

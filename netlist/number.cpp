@@ -72,8 +72,16 @@ bool scan_number(std::string_view s, std::size_t& i, double& value) {
     }
   }
   std::size_t letters = k;
-  while (k < s.size() && is_letter(s[k])) ++k;
-  Scale scale = scale_of(s.substr(letters, k - letters));
+  // LTspice writes micro as the micro sign µ (UTF-8 C2 B5) or the Greek mu μ (CE BC): 'u'.
+  Scale scale;
+  if (k + 1 < s.size() && ((s[k] == '\xC2' && s[k + 1] == '\xB5') || (s[k] == '\xCE' && s[k + 1] == '\xBC'))) {
+    scale.exponent = -6;
+    k += 2;
+    while (k < s.size() && is_letter(s[k])) ++k;
+  } else {
+    while (k < s.size() && is_letter(s[k])) ++k;
+    scale = scale_of(s.substr(letters, k - letters));
+  }
   // One decimal conversion of mantissa * 10^(exponent + suffix), so 10u is exactly 1e-05.
   std::string decimal = mantissa + "e" + std::to_string(exponent + scale.exponent);
   value = std::strtod(decimal.c_str(), nullptr);

@@ -162,11 +162,22 @@ Waveform parse_source_waveform(const Card& card, std::size_t first, const ParamS
       ++i;
       continue;
     }
+    if (t.is_word() && i + 1 < card.size() && card[i + 1].is(Token::Kind::Equals))
+      throw NetlistError(card.at(t), "unknown parameter " + quote(t.text) + " for " + quote(name) +
+                                         ltspice_parasitic_hint(t.lower));
     throw NetlistError(card.at(t), "unexpected extra token " + quote(t.text));
   }
   if (!have_dc && !have_function)
     warnings.push_back(warning_line(card.at(0), quote(name) + " has no value, DC 0 assumed"));
   return w;
+}
+
+std::string ltspice_parasitic_hint(const std::string& k) {
+  if (k == "rser" || k == "lser")
+    return " (LTspice's series parasitic: lcspice reads none; write it as its own element in series)";
+  if (k == "rpar" || k == "cpar")
+    return " (LTspice's parallel parasitic: lcspice reads none; write it as its own element in parallel)";
+  return "";
 }
 
 }  // namespace lcs::parse

@@ -21,4 +21,8 @@ Waveform parse_source_waveform(const Card& card, std::size_t first, const ParamS
                                const std::string& name, std::vector<std::string>& warnings,
                                double* multiplier = nullptr);
 
+// LTspice's instance parasitics (`Rser=`, `Rpar=`, `Cpar=`, `Lser=` on V, C, L cards): the
+// remedy to append to the unknown-parameter error, or "" for another name.
+std::string ltspice_parasitic_hint(const std::string& lower_key);
+
 }  // namespace lcs::parse

@@ -55,8 +55,10 @@ TEST(ParseLib, MissingFileIsAnErrorAtTheLibLineBeforeLaterCards) {
 }
 
 TEST(ParseLib, SectionWithoutEndlAndStrayEndl) {
+  // With no `.endl` after it, `.lib foo` is LTspice's include of file foo (ltspice_dialect_test).
   EXPECT_EQ(test::diag("t\n.lib foo\nR1 a 0 1\n"),
-            "t.cir:2:1: error: missing '.endl' for '.lib foo'\n.lib foo\n^~~~");
+            "t.cir:2:6: error: cannot open library file 'foo' ('.lib FILE' reads FILE, as LTspice does; a section "
+            "'.lib foo' ends at '.endl')\n.lib foo\n     ^~~");
   EXPECT_EQ(test::diag("t\nR1 a 0 1\n.endl\n"), "t.cir:3:1: error: '.endl' without '.lib'\n.endl\n^~~~~");
 }
 

@@ -48,6 +48,13 @@ TEST(ParseNumber, SuffixesAreExactDecimals) {
   EXPECT_EQ(num("0.1u"), 1e-7);
 }
 
+TEST(ParseNumber, MicroSignIsMicro) {  // LTspice writes 470µ (micro sign) or 470μ (Greek mu)
+  EXPECT_EQ(num("470\xC2\xB5"), 470e-6);
+  EXPECT_EQ(num("470\xCE\xBC"), 470e-6);
+  EXPECT_EQ(num("2.2\xC2\xB5" "F"), 2.2e-6);
+  EXPECT_FALSE(parse_number("470\xC2").has_value());  // half a micro sign is no number
+}
+
 TEST(ParseNumber, UnitLettersAreIgnored) {
   EXPECT_EQ(num("10uF"), 1e-5);
   EXPECT_EQ(num("1kohm"), 1000.0);

@@ -1,0 +1,96 @@
+// Cards of LTspice-written decks (and ngspice's .global): `.lib FILE` as an include, the datasheet
+// fields of vendor diode cards, `.backanno`, `.global`, and the clear refusals of `.step`/`.func`.
+#include <gtest/gtest.h>
+
+#include "netlist/netlist.h"
+#include "netlist/test/parse_helpers.h"
+
+namespace lcs {
+namespace {
+
+const std::string kData = LCSPICE_TEST_DATA;
+
+TEST(LtspiceDialect, LibWithoutSectionIncludesTheWholeFile) {
+  Netlist n = parse_netlist_file(kData + "/lt_lib_top.cir");
+  ASSERT_EQ(n.diode_models.count("1n4148"), 1u);
+  ASSERT_EQ(n.diode_models.count("1n5819"), 1u);
+  const DiodeModel& d = n.diode_models.at("1n4148");
+  EXPECT_EQ(d.is, 2.52e-9);
+  EXPECT_EQ(d.n, 1.752);
+  EXPECT_EQ(d.loc.file, kData + "/lib/standard_like.dio");
+  EXPECT_EQ(d.loc.line, 2);
+}
+
+TEST(LtspiceDialect, LibOfAMissingFileNamesTheFile) {
+  try {
+    parse_netlist_file(kData + "/lt_lib_missing.cir");
+    FAIL() << "no error";
+  } catch (const NetlistError& e) {
+    EXPECT_EQ(e.formatted(), kData + "/lt_lib_missing.cir:4:6: error: cannot open library file 'standard.dio' ('.lib FILE' "
+                                     "reads FILE, as LTspice does; a section '.lib standard.dio' ends at '.endl')\n"
+                                     ".lib standard.dio\n     ^~~~~~~~~~~~");
+  }
+}
+
+TEST(LtspiceDialect, SectionDefinitionsAreStillSkipped) {  // `.lib NAME` ... `.endl` (ngspice)
+  Netlist n = test::parse("t\nR1 a 0 1\nV1 a 0 1\n.lib fast\nR9 a 0 5\n.endl\n");
+  EXPECT_EQ(n.find_element("r9"), nullptr);
+  EXPECT_EQ(n.elements.size(), 2u);
+}
+
+TEST(LtspiceDialect, VendorDiodeFieldsAreDocumentationAndListed) {
+  Netlist n = test::parse(
+      "t\nV1 a 0 1\nD1 a 0 1N4148\n"
+      ".model 1N4148 D(Is=2.52n Rs=.568 N=1.752 Cjo=4p M=.4 tt=20n Iave=200m Vpk=75 mfg=OnSemi type=silicon)\n");
+  const DiodeModel& d = n.diode_models.at("1n4148");
+  EXPECT_EQ(d.is, 2.52e-9);
+  EXPECT_EQ(d.rs, 0.568);
+  ASSERT_EQ(n.warnings.size(), 1u);
+  EXPECT_EQ(n.warnings[0], "t.cir:4:42: warning: diode model '1n4148': parameters cjo, m, tt, iave, vpk, mfg, type "
+                           "ignored by lcspice");
+  // A word where a number belongs is still an error for the parameters the model reads.
+  EXPECT_EQ(test::diag("t\nD1 a 0 dx\n.model dx D(Is=big)\n"),
+            "t.cir:3:16: error: invalid number 'big'\n.model dx D(Is=big)\n               ^~~");
+}
+
+TEST(LtspiceDialect, BackannoIsAcceptedSilently) {
+  Netlist n = test::parse("t\nR1 a 0 1\nV1 a 0 1\n.backanno\n");
+  EXPECT_TRUE(n.warnings.empty());
+  EXPECT_EQ(n.elements.size(), 2u);
+}
+
+TEST(NgspiceGlobal, GlobalNodesAreSharedByEverySubcircuitInstance) {
+  Netlist n = test::parse(
+      "t\n.subckt load a\nR1 a vdd 1k\nR2 a gnd2 2k\n.ends\n"
+      "X1 n1 load\nX2 n2 load\nVdd vdd 0 5\nR9 gnd2 0 1\n.global vdd\n");
+  EXPECT_EQ(test::element(n, "x1.r1").nodes[1], "vdd");
+  EXPECT_EQ(test::element(n, "x2.r1").nodes[1], "vdd");
+  EXPECT_EQ(test::element(n, "x1.r2").nodes[1], "x1.gnd2");  // not global: local to the instance
+  // A port of the same name is the port.
+  n = test::parse("t\n.subckt load vdd\nR1 vdd 0 1k\n.ends\nX1 n1 load\nV1 vdd 0 1\n.global vdd\n");
+  EXPECT_EQ(test::element(n, "x1.r1").nodes[0], "n1");
+  EXPECT_EQ(test::diag("t\nR1 a 0 1\n.global\n"), "t.cir:3:8: error: missing node names after '.global'\n.global\n       ^");
+}
+
+TEST(LtspiceDialect, InstanceParasiticsAreRefusedWithTheRemedy) {
+  EXPECT_EQ(test::diag("t\nV1 in 0 SINE(0 5 1k) Rser=1\nR1 in 0 1k\n"),
+            "t.cir:2:22: error: unknown parameter 'Rser' for 'v1' (LTspice's series parasitic: lcspice reads none; "
+            "write it as its own element in series)\nV1 in 0 SINE(0 5 1k) Rser=1\n                     ^~~~");
+  EXPECT_EQ(test::diag("t\nC1 a 0 10u Cpar=1p\n"),
+            "t.cir:2:12: error: unknown parameter 'Cpar' for 'c1' (LTspice's parallel parasitic: lcspice reads none; "
+            "write it as its own element in parallel)\nC1 a 0 10u Cpar=1p\n           ^~~~");
+  EXPECT_EQ(test::diag("t\nV1 in 0 5 foo=1\n"),
+            "t.cir:2:11: error: unknown parameter 'foo' for 'v1'\nV1 in 0 5 foo=1\n          ^~~");
+}
+
+TEST(LtspiceDialect, SweepsAndUserFunctionsAreRefusedByName) {
+  EXPECT_EQ(test::diag("t\nR1 a 0 {r}\n.param r=1k\n.step param r 1k 10k 1k\n"),
+            "t.cir:4:1: error: '.step' (parameter sweeps, LTspice/PSpice) is not supported: lcspice runs one "
+            "transient per deck; give each value its own deck or .param\n.step param r 1k 10k 1k\n^~~~~");
+  EXPECT_EQ(test::diag("t\nR1 a 0 1\n.func f(x) {2*x}\n"),
+            "t.cir:3:1: error: '.func' (user-defined functions in expressions) is not supported; write the "
+            "expression out, or give its value with .param\n.func f(x) {2*x}\n^~~~~");
+}
+
+}  // namespace
+}  // namespace lcs
