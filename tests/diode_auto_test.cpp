@@ -68,7 +68,7 @@ TEST(DiodeAuto, ASchmittTriggerRunsItsShockleyJunctions) {
   const Result r = run_lcspice("run '" + deck.string() + "' --diode auto -o '" + (dir / "auto.csv").string() + "'", dir);
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_NE(r.err.find("lcspice: --diode auto: the ideal answer depends on the junctions' curves: v(c2) moves 100 % "
-                       "of its range (at t = 2.94e-07 s; bound 2 %) when the junctions' lines are fitted 2 decades "
+                       "of its range (at t = 2.7e-07 s; bound 2 %) when the junctions' lines are fitted 2 decades "
                        "below the currents they carry; running --method smooth with Shockley diodes\n"),
             std::string::npos)
       << r.err;
@@ -141,7 +141,7 @@ TEST(DiodeAuto, ThePlainRunWarnsWhereTheLinesDoNotServe) {
                                ecl.parent_path());
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_NE(r.err.find("lcspice: warning: the ideal answer depends on the junctions' curves below the currents they "
-                       "carry (v(c2) moves 100 % of its range (at t = 2.94e-07 s; bound 2 %) when the junctions' "
+                       "carry (v(c2) moves 100 % of its range (at t = 2.7e-07 s; bound 2 %) when the junctions' "
                        "lines are fitted 2 decades below the currents they carry): use --diode auto (the Shockley "
                        "junctions where it does), --diode shockley, or give VON/RON on the cards\n"),
             std::string::npos)
@@ -161,7 +161,7 @@ TEST(DiodeAuto, AnalyzeReportsWhetherTheLinesServeTheCircuit) {
   const fs::path ecl = write_deck("diode_auto_analyze_", "ecl", kEclSchmitt);
   const Result a = run_lcspice("analyze '" + ecl.string() + "'", ecl.parent_path());
   ASSERT_EQ(a.code, 0) << a.err;
-  EXPECT_NE(a.out.find("  the lines do not serve this circuit: v(c2) moves 100 % of its range (at t = 3.16e-07 s; "
+  EXPECT_NE(a.out.find("  the lines do not serve this circuit: v(c2) moves 100 % of its range (at t = 2.84e-07 s; "
                        "bound 2 %) when the junctions' lines are fitted 2 decades below the currents they carry\n"),
             std::string::npos)
       << a.out;

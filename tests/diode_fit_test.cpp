@@ -167,7 +167,7 @@ TEST(DiodeFit, AutoRunsShockleyDiodesWhereTheFitIsPoor) {
   const Result d = run_lcspice("run '" + detector.string() + "' --diode auto -o '" + (dir / "det.csv").string() + "'", dir);
   EXPECT_EQ(d.code, 0) << d.err;
   EXPECT_NE(d.err.find("lcspice: --diode auto: the ideal answer depends on the junctions' curves: v(out) moves 8.89 % "
-                       "of its range (at t = 0.002076 s; bound 2 %) when the junctions' lines are fitted 2 decades "
+                       "of its range (at t = 7.6e-05 s; bound 2 %) when the junctions' lines are fitted 2 decades "
                        "below the currents they carry; running --method smooth with Shockley diodes\n"),
             std::string::npos)
       << d.err;

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <complex>
 #include <map>
 #include <string>
 
@@ -27,6 +28,7 @@ constexpr int kMaxLevel = 64;
 constexpr double kTol = 1e-12;
 constexpr double kZeroTol = 1e-9;
 constexpr int kSuspicionLevels = 10;
+constexpr double kSettleDecay = 40;  // e^-40 = 4e-18: a decayed component is below rounding
 constexpr double kReducedEta = 1e-3;  // eta_r times the fastest rate (Impl::eta_r)
 constexpr int kGrowRounds = 4;        // Impl::select: the reduced set grows at most this often
 constexpr int kDerivativeLevels = 4;  // w and its first three derivatives in the reduced q
@@ -79,7 +81,13 @@ struct Mode {
   Eigen::VectorXd Gnorm, GMnorm, GMMnorm, Pcnorm;  // row norms: the rounding floor of each row
   Eigen::MatrixXd Z;                // z = Z [x; σ]
   Eigen::MatrixXd Pc;               // index-one constraints as rows over [x; σ]
-  int level = 0;                    // coarsest step level: h <= 0.5 / (largest oscillation)
+  // Coarsest step level: h <= 0.5 / rate, rate the largest oscillation |Im λ| or growth Re λ of M,
+  // so no sign change of a constraint hides inside a step. `settled_level` leaves out the
+  // eigenvalues that decay by e^-kSettleDecay within `settle_time` <= h0 of the mode's (re)start:
+  // a transistor junction's CJE through its RON rings at 1e9/s and is gone in 0.1 µs, and
+  // holding the whole mode to 1e-10 s steps for it cost 25 million steps on a 2 ms astable.
+  int level = 0, settled_level = 0;
+  double settle_time = 0;
   // Switch guards (SwitchGuards) as rows over [x; σ]: guard = Guard [x; σ] - guard_offset.
   Eigen::MatrixXd Guard, GuardM, Guardabs;
   Eigen::VectorXd guard_offset, Guardnorm;
@@ -122,6 +130,7 @@ struct EventDriven::Impl {
 
   // Run state.
   Mode* cur = nullptr;
+  double entered_at = 0;  // when cur was (re)started: its fast decays settle from here
   DyadicTime pos;
   Eigen::VectorXd X;       // [x; σ]
   Eigen::VectorXd W;       // rounding weights of [x; σ] for the current source form
@@ -233,12 +242,27 @@ Mode& EventDriven::Impl::mode(const std::vector<bool>& active, const std::string
       md->Guardabs = md->Guard.cwiseAbs();
       md->Guardnorm = md->Guard.rowwise().norm();
     }
-    double omega = 0;
+    double omega = 0, omega_settled = 0;
     if (md->q > 0 && step_levels) {
       Eigen::EigenSolver<Eigen::MatrixXd> es(md->M, false);
-      if (es.info() == Eigen::Success) omega = es.eigenvalues().imag().cwiseAbs().maxCoeff();
+      // A growth bounds the step as an oscillation does: an unstable mode (a cross-coupled pair
+      // at its symmetric equilibrium, Re λ = 2e10/s) would overflow exp(M h0) to inf, and inf
+      // times a zero deviation is NaN. At h <= 0.5/growth each step grows at most e^0.5 and the
+      // deviation that rounding seeds is seen leaving, as in every simulator.
+      if (es.info() == Eigen::Success)
+        for (const std::complex<double>& lambda : es.eigenvalues()) {
+          const double rate = std::max(std::abs(lambda.imag()), lambda.real());
+          omega = std::max(omega, rate);
+          const double decay_time = lambda.real() < 0 ? kSettleDecay / -lambda.real() : INFINITY;
+          if (decay_time <= h0)
+            md->settle_time = std::max(md->settle_time, decay_time);
+          else
+            omega_settled = std::max(omega_settled, rate);
+        }
     }
     while (md->level < 40 && h0 / std::ldexp(1.0, md->level) * omega > 0.5) ++md->level;
+    while (md->settled_level < 40 && h0 / std::ldexp(1.0, md->settled_level) * omega_settled > 0.5)
+      ++md->settled_level;
   }
   ++stats.modes;
   return *modes.emplace(key, std::move(md)).first->second;
@@ -718,7 +742,7 @@ void EventDriven::Impl::bisect(int j) {
 
 bool EventDriven::Impl::advance_to(const DyadicTime& target, const Progress& progress) {
   while (pos < target) {
-    int j = cur->level;
+    int j = pos.seconds(h0) - entered_at >= cur->settle_time ? cur->settled_level : cur->level;
     while (j < kMaxLevel && (!pos.aligned(j) || target < pos.plus(j))) ++j;
     if (!step(j)) return false;
     if (progress && (stats.steps & 4095) == 0) progress(pos.seconds(h0));
@@ -836,6 +860,7 @@ std::optional<GuardCrossing> EventDriven::RunSegment(const SegmentStart& start, 
     }
     r.apply_impulse(x, u);
     r.cur = &r.select(t, x, sigma, sig, before, propagated != nullptr);
+    r.entered_at = t;
     r.X.resize(n + sigma.size());
     r.X << x, sigma;
     r.project();

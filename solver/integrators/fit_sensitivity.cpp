@@ -90,7 +90,9 @@ FitSensitivity compare_with_lowered(const RecordedRows& nominal, const RecordedR
       if (!(lo <= hi)) continue;
       const double v = low.at(k, c);
       const double moved = std::max({0.0, v - hi, lo - v}) / scale;
-      if (moved > result.moved) {
+      // Ties to rounding keep the earlier time: a probe held off by the same amount for a while
+      // (a trigger that has tripped in one run only) is reported where that begins.
+      if (moved > result.moved * (1 + 1e-9)) {
         result.moved = moved;
         result.probe = nominal.names[c];
         result.worst_time = t;

@@ -5,6 +5,7 @@
 #include "solver/integrators/distinct_rows.h"
 #include "solver/integrators/row_writer.h"
 #include "solver/integrators/switched_adaptive.h"
+#include "solver/integrators/unstable_start.h"
 
 #include <algorithm>
 #include <cmath>
@@ -371,6 +372,8 @@ TransientSummary run_transient(const CircuitModel& model, const OutputMap& outpu
     InitialState init = initial_state(model, options.uic, 0.0);  // also the lines' past
     if (model.has_history()) model.history().set_degree(entry.history_degree);
     summary.warnings = init.warnings;
+    if (std::optional<std::string> w = unstable_start_warning(model, init, options.uic, 0.0, options.tstop))
+      summary.warnings.push_back(*w);
     if (entry.adaptive())
       run_adaptive(model, outputs, options, entry, init, sink, summary, cpu0);
     else
