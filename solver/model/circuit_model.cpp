@@ -506,8 +506,9 @@ CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& opt
   s.E = Xdot.middleCols(n + mp, nu);
   s.Gamma = Xdot.rightCols(nu);
 
-  // Forced unknowns: link capacitor currents C v', tree inductor voltages Lf i'.
-  {
+  // Forced unknowns: link capacitor currents C v', tree inductor voltages Lf i'. Only a circuit
+  // with some pays for Xdot by rows (O(n^2) entries for a multiplier).
+  if (std::find(role.begin(), role.end(), Role::Forced) != role.end()) {
     const RowSparse TcRows = Tc, LfRows = Lf, XdotRows = Xdot;
     RowSparse TlRows = Tl;
     Eigen::RowVectorXd row(ncol);
@@ -532,8 +533,11 @@ CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& opt
     }
     P.setFromTriplets(p_entries.begin(), p_entries.end());
   }
-  m.branch_v_ = Vmap * P;
-  m.branch_i_ = Imap * P;
+  {  // by rows throughout: a multiplier's link voltages hold O(n^2) entries, converted never
+    const RowSparse Prows = P;
+    m.branch_v_ = Vmap * Prows;
+    m.branch_i_ = Imap * Prows;
+  }
 
   // Complementarity outputs w, sparse like the branch rows.
   SparseMatrixD W(mp, ncol);
@@ -554,20 +558,28 @@ CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& opt
   }
   s.F = W.middleCols(n + mp, nu);
   // The shift x_lcs = x_phys - Gamma u: x_lcs' = A x_lcs + B z + (E + A Gamma) u.
-  const SparseMatrixD A_sparse = Xdot.leftCols(n), C_sparse = W.leftCols(n);
+  SparseMatrixD A_sparse = Xdot.leftCols(n), C_sparse = W.leftCols(n);
   s.E += A_sparse * s.Gamma;
   s.F += C_sparse * s.Gamma;
-  // A, B, C, D: kept sparse for a large sparse circuit (lcs() forms the dense ones when asked),
-  // dense for the others.
-  m.sparse_lcs_ = sparse_lcs_if_worth(A_sparse, SparseMatrixD(Xdot.middleCols(n, mp)), C_sparse,
-                                      SparseMatrixD(W.middleCols(n, mp)), s.E, s.F);
-  if (m.sparse_lcs_) {
-    m.defer_dense();
-  } else {
-    s.A = A_sparse;
-    s.B = Xdot.middleCols(n, mp);
-    s.C = C_sparse;
-    s.D = W.middleCols(n, mp);
+  // A, B, C, D: kept sparse for a large sparse circuit and for a circuit that steps on its
+  // descriptor form (lcs() forms the dense ones when asked), dense for the others. Moved, not
+  // copied: a multiplier's A and C hold O(n^2) entries.
+  SparseLcs formed{std::move(A_sparse), SparseMatrixD(Xdot.middleCols(n, mp)), std::move(C_sparse),
+                   SparseMatrixD(W.middleCols(n, mp)), s.E, s.F};
+  if (sparse_lcs_worth(formed)) {
+    m.sparse_lcs_ = std::make_shared<const SparseLcs>(std::move(formed));
+    m.defer_dense(m.sparse_lcs_);
+  } else {  // a dense LCS of a sparse circuit: its steps keep the static unknowns
+    m.sparse_descriptor_ = sparse_descriptor_if_worth(g, stamps, m.states_, m.pairs_, formed, s.Gamma,
+                                                      !stamps.delayed.empty());
+    if (m.sparse_descriptor_) {
+      m.defer_dense(std::make_shared<const SparseLcs>(std::move(formed)));
+    } else {
+      s.A = formed.A;
+      s.B = formed.B;
+      s.C = formed.C;
+      s.D = formed.D;
+    }
   }
 
   // The waves the line ports send, and the lines' DC relations, as rows like the probes'.
@@ -592,8 +604,6 @@ CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& opt
   }
   if (m.dc_relations_.size() != m.delayed_.size())
     throw std::logic_error("circuit model: devices with history owe one DC relation per history input");
-  if (!m.sparse_lcs_)  // a dense LCS of a sparse circuit: its steps keep the static unknowns
-    m.sparse_descriptor_ = sparse_descriptor_if_worth(g, stamps, m.states_, m.pairs_, s, m.has_history());
   return m;
 }
 
