@@ -480,14 +480,23 @@ CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& opt
   // reads du).
   SparseMatrixD Xdot(n, ncol);
   if (n > 0) {
-    Triplets r;
-    for (int c = 0; c < ncol - nu; ++c)
-      for (SparseMatrixD::InnerIterator it(Rfull, c); it; ++it) r.emplace_back(it.row(), c, it.value());
-    for (int c = 0; c < nu; ++c)
-      for (int j = 0; j < n; ++j)
-        if (Kdu(j, c) != 0) r.emplace_back(j, ncol - nu + c, Kdu(j, c));
+    // Without source derivatives (no dependent storage: Kdu = 0, Rfull's du columns empty) R is
+    // Rfull itself, taken without triplets (a multiplier's holds O(n^2) entries).
+    bool du_free = Kdu.isZero(0) && Rfull.rows() == n && Rfull.cols() == ncol;
+    for (int c = ncol - nu; c < ncol && du_free; ++c)
+      du_free = !SparseMatrixD::InnerIterator(Rfull, c);
     SparseMatrixD R(n, ncol);
-    R.setFromTriplets(r.begin(), r.end());
+    if (du_free) {
+      R = Rfull;
+    } else {
+      Triplets r;
+      for (int c = 0; c < ncol - nu; ++c)
+        for (SparseMatrixD::InnerIterator it(Rfull, c); it; ++it) r.emplace_back(it.row(), c, it.value());
+      for (int c = 0; c < nu; ++c)
+        for (int j = 0; j < n; ++j)
+          if (Kdu(j, c) != 0) r.emplace_back(j, ncol - nu + c, Kdu(j, c));
+      R.setFromTriplets(r.begin(), r.end());
+    }
     bool invertible;
     if (n < kSparseSolveSize) {  // small circuits keep the unscaled dense solve they always had
       Eigen::FullPivLU<Eigen::MatrixXd> m_lu{Eigen::MatrixXd(MdynS)};
@@ -559,8 +568,10 @@ CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& opt
   s.F = W.middleCols(n + mp, nu);
   // The shift x_lcs = x_phys - Gamma u: x_lcs' = A x_lcs + B z + (E + A Gamma) u.
   SparseMatrixD A_sparse = Xdot.leftCols(n), C_sparse = W.leftCols(n);
-  s.E += A_sparse * s.Gamma;
-  s.F += C_sparse * s.Gamma;
+  if (!s.Gamma.isZero(0)) {  // O(nnz(A) + nnz(C)) per input; nothing to add without dependent storage
+    s.E += A_sparse * s.Gamma;
+    s.F += C_sparse * s.Gamma;
+  }
   // A, B, C, D: kept sparse for a large sparse circuit and for a circuit that steps on its
   // descriptor form (lcs() forms the dense ones when asked), dense for the others. Moved, not
   // copied: a multiplier's A and C hold O(n^2) entries.
