@@ -62,6 +62,13 @@ void check_finite_inputs(const Netlist& netlist, const InputProvider& inputs, do
   }
 }
 
+// Frees a matrix formation no longer needs: a multiplier's loop and cutset products hold O(n^2)
+// entries each, and keeping them all to the end set formation's peak memory.
+template <class Matrix>
+void release(Matrix& m) {
+  m = Matrix();
+}
+
 // Mdyn's diagonal without cancellation, |Tc|^T C |Tc| + |Tl|^T |Lf| |Tl| (diagonal only): what
 // tells two windings in series opposition (L1 + L2 - 2M = 0) from a small inductance.
 Eigen::VectorXd uncancelled_diagonal(const SparseMatrixD& Tc, const Eigen::VectorXd& Cd,
@@ -443,6 +450,7 @@ CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& opt
     Rp.setFromTriplets(rp.begin(), rp.end());
   }
   SparseMatrixD Rfull = Rp * P;  // forced rows of P are still zero and Rp never uses them
+  release(Rp);
 
   // Perfectly coupled inductors (k = 1): Mdyn is singular and the flux-free currents are
   // algebraic (perfect_coupling.h). Change to the kept states xi, x = T xi + N eta(xi, z, u):
@@ -511,6 +519,7 @@ CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& opt
       throw TopologyError("the inductance matrix is singular", elements);
     }
   }
+  release(Rfull);
   Lcs& s = m.lcs_;
   s.E = Xdot.middleCols(n + mp, nu);
   s.Gamma = Xdot.rightCols(nu);
@@ -547,6 +556,8 @@ CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& opt
     m.branch_v_ = Vmap * Prows;
     m.branch_i_ = Imap * Prows;
   }
+  release(Vmap);
+  release(Imap);
 
   // Complementarity outputs w, sparse like the branch rows.
   SparseMatrixD W(mp, ncol);
@@ -577,6 +588,8 @@ CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& opt
   // copied: a multiplier's A and C hold O(n^2) entries.
   SparseLcs formed{std::move(A_sparse), SparseMatrixD(Xdot.middleCols(n, mp)), std::move(C_sparse),
                    SparseMatrixD(W.middleCols(n, mp)), s.E, s.F};
+  release(Xdot);
+  release(W);
   if (sparse_lcs_worth(formed)) {
     m.sparse_lcs_ = std::make_shared<const SparseLcs>(std::move(formed));
     m.defer_dense(m.sparse_lcs_);
