@@ -165,7 +165,8 @@ TEST(DescriptorStep, MultipliersStepAsTheDenseLcpToRounding) {
 // A run on the descriptor form never forms the dense A, B, C, D (issue 12: formation deferred
 // them; at 2000 diodes they were 128 MB) and writes the dense path's waveforms: every default
 // probe (node voltages, source and diode currents) of a 100-stage multiplier (200 diodes) over one
-// period, implicit Euler and the trapezoidal rule, within 1e-9 of the largest probe's range.
+// period, implicit Euler and the trapezoidal rule, within 1e-9 of the largest probe's range
+// (200 V; measured 1.3e-11 for Euler, 5.1e-13 for the trapezoidal rule).
 TEST(DescriptorStep, ARunOnItNeverFormsTheDenseLcsAndWritesTheDensePathsWaveforms) {
   const int stages = 100;
   for (const std::string method : {"euler", "theta"}) {  // theta: 0.5 by default
