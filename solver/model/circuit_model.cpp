@@ -62,6 +62,13 @@ void check_finite_inputs(const Netlist& netlist, const InputProvider& inputs, do
   }
 }
 
+// Frees a matrix formation no longer needs: a multiplier's loop and cutset products hold O(n^2)
+// entries each, and keeping them all to the end set formation's peak memory.
+template <class Matrix>
+void release(Matrix& m) {
+  m = Matrix();
+}
+
 // Mdyn's diagonal without cancellation, |Tc|^T C |Tc| + |Tl|^T |Lf| |Tl| (diagonal only): what
 // tells two windings in series opposition (L1 + L2 - 2M = 0) from a small inductance.
 Eigen::VectorXd uncancelled_diagonal(const SparseMatrixD& Tc, const Eigen::VectorXd& Cd,
@@ -443,6 +450,7 @@ CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& opt
     Rp.setFromTriplets(rp.begin(), rp.end());
   }
   SparseMatrixD Rfull = Rp * P;  // forced rows of P are still zero and Rp never uses them
+  release(Rp);
 
   // Perfectly coupled inductors (k = 1): Mdyn is singular and the flux-free currents are
   // algebraic (perfect_coupling.h). Change to the kept states xi, x = T xi + N eta(xi, z, u):
@@ -480,14 +488,23 @@ CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& opt
   // reads du).
   SparseMatrixD Xdot(n, ncol);
   if (n > 0) {
-    Triplets r;
-    for (int c = 0; c < ncol - nu; ++c)
-      for (SparseMatrixD::InnerIterator it(Rfull, c); it; ++it) r.emplace_back(it.row(), c, it.value());
-    for (int c = 0; c < nu; ++c)
-      for (int j = 0; j < n; ++j)
-        if (Kdu(j, c) != 0) r.emplace_back(j, ncol - nu + c, Kdu(j, c));
+    // Without source derivatives (no dependent storage: Kdu = 0, Rfull's du columns empty) R is
+    // Rfull itself, taken without triplets (a multiplier's holds O(n^2) entries).
+    bool du_free = Kdu.isZero(0) && Rfull.rows() == n && Rfull.cols() == ncol;
+    for (int c = ncol - nu; c < ncol && du_free; ++c)
+      du_free = !SparseMatrixD::InnerIterator(Rfull, c);
     SparseMatrixD R(n, ncol);
-    R.setFromTriplets(r.begin(), r.end());
+    if (du_free) {
+      R = Rfull;
+    } else {
+      Triplets r;
+      for (int c = 0; c < ncol - nu; ++c)
+        for (SparseMatrixD::InnerIterator it(Rfull, c); it; ++it) r.emplace_back(it.row(), c, it.value());
+      for (int c = 0; c < nu; ++c)
+        for (int j = 0; j < n; ++j)
+          if (Kdu(j, c) != 0) r.emplace_back(j, ncol - nu + c, Kdu(j, c));
+      R.setFromTriplets(r.begin(), r.end());
+    }
     bool invertible;
     if (n < kSparseSolveSize) {  // small circuits keep the unscaled dense solve they always had
       Eigen::FullPivLU<Eigen::MatrixXd> m_lu{Eigen::MatrixXd(MdynS)};
@@ -502,12 +519,14 @@ CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& opt
       throw TopologyError("the inductance matrix is singular", elements);
     }
   }
+  release(Rfull);
   Lcs& s = m.lcs_;
   s.E = Xdot.middleCols(n + mp, nu);
   s.Gamma = Xdot.rightCols(nu);
 
-  // Forced unknowns: link capacitor currents C v', tree inductor voltages Lf i'.
-  {
+  // Forced unknowns: link capacitor currents C v', tree inductor voltages Lf i'. Only a circuit
+  // with some pays for Xdot by rows (O(n^2) entries for a multiplier).
+  if (std::find(role.begin(), role.end(), Role::Forced) != role.end()) {
     const RowSparse TcRows = Tc, LfRows = Lf, XdotRows = Xdot;
     RowSparse TlRows = Tl;
     Eigen::RowVectorXd row(ncol);
@@ -532,8 +551,13 @@ CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& opt
     }
     P.setFromTriplets(p_entries.begin(), p_entries.end());
   }
-  m.branch_v_ = Vmap * P;
-  m.branch_i_ = Imap * P;
+  {  // by rows throughout: a multiplier's link voltages hold O(n^2) entries, converted never
+    const RowSparse Prows = P;
+    m.branch_v_ = Vmap * Prows;
+    m.branch_i_ = Imap * Prows;
+  }
+  release(Vmap);
+  release(Imap);
 
   // Complementarity outputs w, sparse like the branch rows.
   SparseMatrixD W(mp, ncol);
@@ -554,20 +578,32 @@ CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& opt
   }
   s.F = W.middleCols(n + mp, nu);
   // The shift x_lcs = x_phys - Gamma u: x_lcs' = A x_lcs + B z + (E + A Gamma) u.
-  const SparseMatrixD A_sparse = Xdot.leftCols(n), C_sparse = W.leftCols(n);
-  s.E += A_sparse * s.Gamma;
-  s.F += C_sparse * s.Gamma;
-  // A, B, C, D: kept sparse for a large sparse circuit (lcs() forms the dense ones when asked),
-  // dense for the others.
-  m.sparse_lcs_ = sparse_lcs_if_worth(A_sparse, SparseMatrixD(Xdot.middleCols(n, mp)), C_sparse,
-                                      SparseMatrixD(W.middleCols(n, mp)), s.E, s.F);
-  if (m.sparse_lcs_) {
-    m.defer_dense();
-  } else {
-    s.A = A_sparse;
-    s.B = Xdot.middleCols(n, mp);
-    s.C = C_sparse;
-    s.D = W.middleCols(n, mp);
+  SparseMatrixD A_sparse = Xdot.leftCols(n), C_sparse = W.leftCols(n);
+  if (!s.Gamma.isZero(0)) {  // O(nnz(A) + nnz(C)) per input; nothing to add without dependent storage
+    s.E += A_sparse * s.Gamma;
+    s.F += C_sparse * s.Gamma;
+  }
+  // A, B, C, D: kept sparse for a large sparse circuit and for a circuit that steps on its
+  // descriptor form (lcs() forms the dense ones when asked), dense for the others. Moved, not
+  // copied: a multiplier's A and C hold O(n^2) entries.
+  SparseLcs formed{std::move(A_sparse), SparseMatrixD(Xdot.middleCols(n, mp)), std::move(C_sparse),
+                   SparseMatrixD(W.middleCols(n, mp)), s.E, s.F};
+  release(Xdot);
+  release(W);
+  if (sparse_lcs_worth(formed)) {
+    m.sparse_lcs_ = std::make_shared<const SparseLcs>(std::move(formed));
+    m.defer_dense(m.sparse_lcs_);
+  } else {  // a dense LCS of a sparse circuit: its steps keep the static unknowns
+    m.sparse_descriptor_ = sparse_descriptor_if_worth(g, stamps, m.states_, m.pairs_, formed, s.Gamma,
+                                                      !stamps.delayed.empty());
+    if (m.sparse_descriptor_) {
+      m.defer_dense(std::make_shared<const SparseLcs>(std::move(formed)));
+    } else {
+      s.A = formed.A;
+      s.B = formed.B;
+      s.C = formed.C;
+      s.D = formed.D;
+    }
   }
 
   // The waves the line ports send, and the lines' DC relations, as rows like the probes'.
@@ -592,8 +628,6 @@ CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& opt
   }
   if (m.dc_relations_.size() != m.delayed_.size())
     throw std::logic_error("circuit model: devices with history owe one DC relation per history input");
-  if (!m.sparse_lcs_)  // a dense LCS of a sparse circuit: its steps keep the static unknowns
-    m.sparse_descriptor_ = sparse_descriptor_if_worth(g, stamps, m.states_, m.pairs_, s, m.has_history());
   return m;
 }
 

@@ -41,19 +41,19 @@ void LcsProblem::begin_history(const std::vector<double>& before) const {
 double LcsProblem::max_step() const { return max_step_; }
 
 int LcsProblem::state_count() const {
-  return dense_formed_ ? lcs_.states() : static_cast<int>(sparse_lcs_->A.rows());
+  return dense_formed_ ? lcs_.states() : static_cast<int>(deferred_->A.rows());
 }
 
 int LcsProblem::pair_count() const {
-  return dense_formed_ ? lcs_.pairs() : static_cast<int>(sparse_lcs_->D.rows());
+  return dense_formed_ ? lcs_.pairs() : static_cast<int>(deferred_->D.rows());
 }
 
 void LcsProblem::form_dense() const {
   Lcs& s = lcs_;
-  s.A = Eigen::MatrixXd(sparse_lcs_->A);
-  s.B = Eigen::MatrixXd(sparse_lcs_->B);
-  s.C = Eigen::MatrixXd(sparse_lcs_->C);
-  s.D = Eigen::MatrixXd(sparse_lcs_->D);
+  s.A = Eigen::MatrixXd(deferred_->A);
+  s.B = Eigen::MatrixXd(deferred_->B);
+  s.C = Eigen::MatrixXd(deferred_->C);
+  s.D = Eigen::MatrixXd(deferred_->D);
   dense_formed_ = true;
 }
 

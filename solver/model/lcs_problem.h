@@ -65,10 +65,10 @@ class LcsProblem {
   LcsProblem& operator=(LcsProblem&&) = default;
   virtual ~LcsProblem() = default;
 
-  // The dense LCS. A large sparse circuit's A, B, C and D are formed from its sparse LCS at the
-  // first call (O(n^2) bytes: 32 MB at 1000 diodes), so runs that read only the sparse form (the
-  // sparse step, start and operating point) never pay for them. E, F and Gamma are always there.
-  // Not thread-safe.
+  // The dense LCS. A large circuit's A, B, C and D are formed from formation's sparse ones at the
+  // first call (O(n^2) bytes: 32 MB at 1000 diodes), so runs that read only the sparse LCS (the
+  // sparse step, start and operating point) or the descriptor form (its step and start) never pay
+  // for them. E, F and Gamma are always there. Not thread-safe.
   const Lcs& lcs() const {
     if (!dense_formed_) form_dense();
     return lcs_;
@@ -78,8 +78,11 @@ class LcsProblem {
   int pair_count() const;
   int input_count() const { return lcs_.inputs(); }
   const Eigen::MatrixXd& gamma() const { return lcs_.Gamma; }
-  // Whether lcs() has formed the dense A, B, C, D of a circuit kept sparse (--stats, tests).
-  bool dense_formed_from_sparse() const { return dense_formed_ && sparse_lcs_ && !dense_at_formation_; }
+  // Whether lcs() has formed the dense A, B, C, D of a circuit whose formation deferred them (a
+  // sparse LCS or a descriptor form; tests).
+  bool dense_formed_from_sparse() const { return dense_formed_ && deferred_ && !dense_at_formation_; }
+  // Whether formation deferred them: false for small circuits, formed dense at once.
+  bool dense_deferred() const { return deferred_ != nullptr; }
   const std::vector<StateInfo>& states() const { return states_; }
   const std::vector<PairInfo>& pairs() const { return pairs_; }
   const InputProvider& inputs() const { return inputs_; }
@@ -126,11 +129,16 @@ class LcsProblem {
   double max_step_ = std::numeric_limits<double>::infinity();
   std::shared_ptr<const SparseLcs> sparse_lcs_;
   std::shared_ptr<const SparseDescriptor> sparse_descriptor_;
-  // Formation sets sparse_lcs_ and leaves lcs_.A, B, C, D empty (defer_dense); lcs() fills them.
-  void defer_dense() { dense_formed_ = dense_at_formation_ = false; }
+  // Formation leaves lcs_.A, B, C, D empty and hands their sparse form (sparse_lcs_, or the LCS
+  // of a circuit that steps on its descriptor) to defer_dense; lcs() forms them from it.
+  void defer_dense(std::shared_ptr<const SparseLcs> source) {
+    deferred_ = std::move(source);
+    dense_formed_ = dense_at_formation_ = false;
+  }
 
  private:
   void form_dense() const;
+  std::shared_ptr<const SparseLcs> deferred_;  // what lcs() forms A, B, C, D from; null: formed
   mutable bool dense_formed_ = true;
   bool dense_at_formation_ = true;
 };

@@ -38,12 +38,20 @@ bool solve_by_singleton_rows(const Eigen::SparseMatrix<double>& E, const Eigen::
       if (it.value() != 0 && it.row() != r && --left[it.row()] == 1) queue.push_back(static_cast<int>(it.row()));
   }
   if (solved < n) return false;
-  std::vector<Eigen::Triplet<double>> t;
-  for (int j = 0; j < n; ++j)
+  // X by rows, each row freed as it is copied, then once to columns: no triplets (16 bytes an
+  // entry, and a multiplier's X holds O(n^2) entries: they were most of its formation's memory).
+  Eigen::Index entries = 0;
+  for (const Eigen::SparseVector<double>& row : rows) entries += row.nonZeros();
+  RowMajor Xrows(n, R.cols());
+  Xrows.reserve(entries);
+  for (int j = 0; j < n; ++j) {
+    Xrows.startVec(j);
     for (Eigen::SparseVector<double>::InnerIterator it(rows[j]); it; ++it)
-      if (it.value() != 0) t.emplace_back(j, it.index(), it.value());
-  X.resize(n, R.cols());
-  X.setFromTriplets(t.begin(), t.end());
+      if (it.value() != 0) Xrows.insertBack(j, it.index()) = it.value();
+    rows[j] = Eigen::SparseVector<double>();
+  }
+  Xrows.finalize();
+  X = Xrows;
   return true;
 }
 

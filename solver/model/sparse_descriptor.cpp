@@ -10,8 +10,12 @@ namespace {
 
 using Triplets = std::vector<Eigen::Triplet<double>>;
 
-long dense_nonzeros(const Eigen::MatrixXd& M) {
-  return static_cast<long>((M.array() != 0.0).count());
+// The entries that are not exactly zero: what the dense matrix would hold.
+long exact_nonzeros(const Eigen::SparseMatrix<double>& M) {
+  long count = 0;
+  for (int c = 0; c < M.outerSize(); ++c)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(M, c); it; ++it) count += it.value() != 0;
+  return count;
 }
 
 // Rows over y = [e | i]: a branch voltage is e(n+) - e(n-), ground (node 0) has no unknown.
@@ -53,13 +57,13 @@ Eigen::SparseMatrix<double> sparse(int rows, int cols, const Triplets& t) {
 // crossover; the descriptor's constant is larger).
 std::unique_ptr<SparseDescriptor> sparse_descriptor_if_worth(
     const CircuitGraph& g, const Stamps& stamps,
-    const std::vector<StateInfo>& states, const std::vector<PairInfo>& pairs, const Lcs& lcs,
-    bool has_history) {
-  const int n = lcs.states(), m = lcs.pairs(), nu = lcs.inputs();
+    const std::vector<StateInfo>& states, const std::vector<PairInfo>& pairs, const SparseLcs& lcs,
+    const Eigen::MatrixXd& gamma, bool has_history) {
+  const int n = static_cast<int>(lcs.A.rows()), m = static_cast<int>(lcs.D.rows()), nu = static_cast<int>(lcs.E.cols());
   if (m < kSparsePairs || has_history) return nullptr;
   for (const PairInfo& p : pairs)
     if (p.transfer) return nullptr;
-  if (lcs.Gamma.size() > 0 && lcs.Gamma.cwiseAbs().maxCoeff() != 0) return nullptr;
+  if (gamma.size() > 0 && gamma.cwiseAbs().maxCoeff() != 0) return nullptr;
   const int nb = static_cast<int>(g.branches.size());
   std::vector<int> state_of(nb, -1);
   for (int j = 0; j < n; ++j) {
@@ -71,8 +75,8 @@ std::unique_ptr<SparseDescriptor> sparse_descriptor_if_worth(
     storage[s.branch] = &s;
     if (state_of[s.branch] < 0) return nullptr;  // a dependent capacitor or inductor
   }
-  const long lcs_nonzeros = dense_nonzeros(lcs.A) + dense_nonzeros(lcs.B) + dense_nonzeros(lcs.C) +
-                            dense_nonzeros(lcs.D);
+  const long lcs_nonzeros = exact_nonzeros(lcs.A) + exact_nonzeros(lcs.B) + exact_nonzeros(lcs.C) +
+                            exact_nonzeros(lcs.D);
   if (lcs_nonzeros <= kSparseDensity * static_cast<double>(n + m) * static_cast<double>(n + m))
     return nullptr;  // sparse enough for the sparse LCS step (sparse_lcs.h)
 

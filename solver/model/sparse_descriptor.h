@@ -60,11 +60,13 @@ struct SparseDescriptor {
 };
 
 // The descriptor when the step should be solved on it (sparse_descriptor.cpp states the rule and
-// its cost model), else null. `lcs` is the dense LCS formation made from the same stamps; its
-// states and pairs are `states`, `pairs`. Formation calls this once, after the LCS.
+// its cost model), else null. `lcs` is the LCS formation made from the same stamps, A, B, C, D
+// still sparse (formation decides here, before forming them dense: a circuit that steps on its
+// descriptor defers them, lcs_problem.h), `gamma` its state shift; its states and pairs are
+// `states`, `pairs`. Formation calls this once, after the LCS.
 std::unique_ptr<SparseDescriptor> sparse_descriptor_if_worth(
     const CircuitGraph& g, const Stamps& stamps,
-    const std::vector<StateInfo>& states, const std::vector<PairInfo>& pairs, const Lcs& lcs,
-    bool has_history);
+    const std::vector<StateInfo>& states, const std::vector<PairInfo>& pairs, const SparseLcs& lcs,
+    const Eigen::MatrixXd& gamma, bool has_history);
 
 }  // namespace lcs

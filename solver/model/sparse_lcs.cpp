@@ -20,21 +20,11 @@ std::unique_ptr<SparseLcs> sparse_lcs_if_worth(const Eigen::MatrixXd& A, const E
   return s;
 }
 
-std::unique_ptr<SparseLcs> sparse_lcs_if_worth(Eigen::SparseMatrix<double> A, Eigen::SparseMatrix<double> B,
-                                               Eigen::SparseMatrix<double> C, Eigen::SparseMatrix<double> D,
-                                               const Eigen::MatrixXd& E, const Eigen::MatrixXd& F) {
-  const Eigen::Index n = A.rows(), m = D.rows();
-  if (m < kSparsePairs) return nullptr;
-  const double nnz = static_cast<double>(A.nonZeros() + B.nonZeros() + C.nonZeros() + D.nonZeros());
-  if (nnz > kSparseDensity * static_cast<double>(n + m) * static_cast<double>(n + m)) return nullptr;
-  auto s = std::make_unique<SparseLcs>();
-  s->A = std::move(A);
-  s->B = std::move(B);
-  s->C = std::move(C);
-  s->D = std::move(D);
-  s->E = E;
-  s->F = F;
-  return s;
+bool sparse_lcs_worth(const SparseLcs& s) {
+  const Eigen::Index n = s.A.rows(), m = s.D.rows();
+  if (m < kSparsePairs) return false;
+  const double nnz = static_cast<double>(s.A.nonZeros() + s.B.nonZeros() + s.C.nonZeros() + s.D.nonZeros());
+  return nnz <= kSparseDensity * static_cast<double>(n + m) * static_cast<double>(n + m);
 }
 
 }  // namespace lcs

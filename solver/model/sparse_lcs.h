@@ -30,10 +30,9 @@ constexpr double kSparseDensity = 0.05;
 std::unique_ptr<SparseLcs> sparse_lcs_if_worth(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B,
                                                const Eigen::MatrixXd& C, const Eigen::MatrixXd& D,
                                                const Eigen::MatrixXd& E, const Eigen::MatrixXd& F);
-// The same from sparse matrices (formation's own; exact zeros already dropped).
-std::unique_ptr<SparseLcs> sparse_lcs_if_worth(Eigen::SparseMatrix<double> A, Eigen::SparseMatrix<double> B,
-                                               Eigen::SparseMatrix<double> C, Eigen::SparseMatrix<double> D,
-                                               const Eigen::MatrixXd& E, const Eigen::MatrixXd& F);
+// The same rule on formation's own sparse A, B, C, D (exact zeros already dropped): whether they
+// are worth keeping sparse.
+bool sparse_lcs_worth(const SparseLcs& s);
 inline std::unique_ptr<SparseLcs> sparse_lcs_if_worth(const Lcs& s) {
   return sparse_lcs_if_worth(s.A, s.B, s.C, s.D, s.E, s.F);
 }
