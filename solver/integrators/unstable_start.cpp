@@ -14,7 +14,7 @@ std::optional<std::string> unstable_start_warning(const CircuitModel& model, con
                                                   const UnstableStartOptions& options) {
   const int n = model.state_count(), m = model.pair_count();
   if (uic || n == 0 || n > options.max_states || init.z.size() != m || init.x.size() != n) return std::nullopt;
-  if (model.sparse_lcs()) return std::nullopt;  // its dense LCS is never formed for a run (issue 12)
+  if (model.dense_deferred()) return std::nullopt;  // its dense LCS is never formed for a run (issue 12)
   if (std::any_of(init.held.begin(), init.held.end(), [](bool h) { return h; })) return std::nullopt;
   // The mode: the pairs that carry z > 0 (a pair at z = 0 with w = 0 is degenerate; it is taken
   // off, as the event method's basis would leave it when its w is not pushed negative).
