@@ -96,6 +96,7 @@ class SmoothMethod::IdaRun {
         y_(sundials::checked(N_VNew_Serial(dae.size(), ctx_.get()))),
         yp_(sundials::checked(N_VNew_Serial(dae.size(), ctx_.get()))),
         id_(sundials::checked(N_VNew_Serial(dae.size(), ctx_.get()))),
+        sample_(sundials::checked(N_VNew_Serial(dae.size(), ctx_.get()))),
         matrix_(sundials::checked(SUNDenseMatrix(dae.size(), dae.size(), ctx_.get()))),
         solver_(sundials::checked(SUNLinSol_Dense(y_.get(), matrix_.get(), ctx_.get()))),
         newton_(sundials::make_full_newton(y_.get(), ctx_.get(), weights_fn, &dae)),
@@ -147,9 +148,14 @@ class SmoothMethod::IdaRun {
       check(IDAReInit(mem, t, y_.get(), yp_.get()), t, "IDAReInit");
     }
     t0_ = t;
+    reported_ = t;
+    sampled_ = std::max(sampled_, t);
     check(IDACalcIC(mem, IDA_YA_YDP_INIT, t_next), t, "IDACalcIC");
     check(IDAGetConsistentIC(mem, y_.get(), yp_.get()), t, "IDAGetConsistentIC");
   }
+
+  // The grid on which advance() also records the history between IDA's steps (0: steps only).
+  void set_sample_step(double h) { sample_step_ = h; }
 
   void set_stop(double t) { check(IDASetStopTime(mem_.get(), t), t, "IDASetStopTime"); }
 
@@ -185,16 +191,39 @@ class SmoothMethod::IdaRun {
       return flag == IDA_ROOT_RETURN;
     }
     for (;;) {
+      realtype now = 0;
+      IDAGetCurrentTime(mem_.get(), &now);
+      if (now >= tout && reported_ >= now) break;  // an earlier step passed tout: interpolate
       const int flag = IDASolve(mem_.get(), tout, &tret, y_.get(), yp_.get(), IDA_ONE_STEP);
       check(flag, tret, "IDASolve");
-      on_step(tret, y());
+      // A root's y is IDA's interpolant between two steps, not a step: recorded, it would sit
+      // within rounding of a step's own sample and the history's interpolants through both
+      // (DelayHistory::wave, degree 4) would divide by their tiny distance.
+      if (flag != IDA_ROOT_RETURN) {
+        // The waves a line port sends change where its far end's waves arrive, whether or not the
+        // states move then (a plateau at one end while an edge leaves the other): IDA's steps,
+        // sized by the states, would undersample them. So the history also gets IDA's
+        // interpolant on the sample grid inside the step, in time order, then the step itself.
+        if (sample_step_ > 0) {
+          for (double k = std::floor(sampled_ / sample_step_) + 1;; k += 1) {
+            const double ts = k * sample_step_;
+            if (ts >= tret) break;
+            if (ts <= sampled_) continue;
+            check(IDAGetDky(mem_.get(), ts, 0, sample_.get()), ts, "IDAGetDky");
+            on_step(ts, Eigen::Map<Eigen::VectorXd>(N_VGetArrayPointer(sample_.get()), dae_.size()));
+          }
+        }
+        on_step(tret, y());
+        sampled_ = tret;
+      }
+      reported_ = tret;
       if (flag == IDA_ROOT_RETURN) {
         t = tret;
         return true;
       }
       if (tret >= tout) break;
     }
-    if (tret > tout) {
+    if (reported_ != tout) {
       check(IDAGetDky(mem_.get(), tout, 0, y_.get()), tout, "IDAGetDky");
       check(IDAGetDky(mem_.get(), tout, 1, yp_.get()), tout, "IDAGetDky");
     }
@@ -236,13 +265,16 @@ class SmoothMethod::IdaRun {
   IdaUserData user_;
   // Declared in order of creation, so destroyed in reverse: IDA first, the context last.
   sundials::Context ctx_;
-  sundials::Vector y_, yp_, id_;
+  sundials::Vector y_, yp_, id_, sample_;
   sundials::Matrix matrix_;
   sundials::LinearSolver solver_;
   sundials::NonlinearSolver newton_;
   sundials::Ida mem_;
   bool initialised_ = false;
   double t0_ = 0;
+  double reported_ = -INFINITY;  // the last time IDA_ONE_STEP returned
+  double sampled_ = -INFINITY;   // the last time on_step saw
+  double sample_step_ = 0;       // history samples between steps: every multiple of it
   std::string last_error_;
 };
 
@@ -463,6 +495,7 @@ std::optional<GuardCrossing> SmoothMethod::RunSegment(const SegmentStart& start,
     std::copy(v.data(), v.data() + v.size(), g);
   });
   ida.y() = y;
+  if (model_.has_history()) ida.set_sample_step(schedule.tstep);
   ida.start(t0, stops[first]);
   size_t out = 0;
   while (out < outs.size() && outs[out] <= t0) ++out;
