@@ -47,10 +47,14 @@ void DelayHistory::record_segment(double t0, double t1, Segment exact) {
   segments_.push_back({t0, t1, std::move(exact)});
 }
 
-// Samples older than every delay (plus the stencil an interpolant needs) are never read again.
+// Samples older than every delay (plus the stencil an interpolant needs) are never read again,
+// where "now" may trail the newest record by one step: the smooth method records IDA's step and
+// then reads rows (and restarts) inside it, and its steps are at most the shortest delay. Kept
+// from one longest delay behind the newest record, the rows inside a long step on a plateau read
+// trimmed samples and got the waves held before the run (tline_clamp_receiver, --step 1e-12).
 void DelayHistory::trim() {
   if (times_.size() < 4096) return;
-  const double keep_from = times_.back() - 1.01 * longest_;
+  const double keep_from = times_.back() - 1.01 * (longest_ + shortest_);
   size_t drop = 0;
   while (drop + 8 < times_.size() && times_[drop + 8] < keep_from) ++drop;
   if (drop < times_.size() / 2) return;  // trims in bulk, amortised O(1) per record
