@@ -26,6 +26,7 @@ namespace {
 
 // Steps IDA may take between two output times before it reports IDA_TOO_MUCH_WORK.
 constexpr long kMaxStepsPerOutput = 100000;
+constexpr long kMaxStalledSteps = 100;  // consecutive IDA steps that leave t where it was
 
 // What IDA's callbacks see: the DAE, and the switch guards (GuardedMethod) as root functions
 // after the pairs'.
@@ -190,12 +191,24 @@ class SmoothMethod::IdaRun {
       t = tret;
       return flag == IDA_ROOT_RETURN;
     }
+    // IDA_ONE_STEP counts its step limit per call: the limits of IDA_NORMAL, kept here. A step
+    // below the rounding of t is "accepted" without moving t; IDA then never gets past a
+    // discontinuity of its inputs (it warns, it does not fail), so that is a failure too.
+    long taken = 0, stalled = 0;
     for (;;) {
       realtype now = 0;
       IDAGetCurrentTime(mem_.get(), &now);
       if (now >= tout && reported_ >= now) break;  // an earlier step passed tout: interpolate
       const int flag = IDASolve(mem_.get(), tout, &tret, y_.get(), yp_.get(), IDA_ONE_STEP);
       check(flag, tret, "IDASolve");
+      if (++taken > kMaxStepsPerOutput)
+        throw NumericalFailure(tret, "the smooth method failed: more than " + std::to_string(kMaxStepsPerOutput) +
+                                         " steps before the next output time (IDA_TOO_MUCH_WORK)");
+      stalled = tret > now ? 0 : stalled + 1;
+      if (stalled > kMaxStalledSteps)
+        throw NumericalFailure(tret, "the smooth method failed: IDA's step fell below the rounding of t (" +
+                                         std::to_string(kMaxStalledSteps) +
+                                         " steps did not move t; a discontinuity of the equations there)");
       // A root's y is IDA's interpolant between two steps, not a step: recorded, it would sit
       // within rounding of a step's own sample and the history's interpolants through both
       // (DelayHistory::wave, degree 4) would divide by their tiny distance.

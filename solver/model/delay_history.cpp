@@ -97,12 +97,20 @@ double DelayHistory::wave(int k, double s, double side) const {
   long lo = i, hi = i;
   while (lo > 0 && i - lo <= degree_ && times_[lo - 1] < times_[lo] && times_[lo - 1] >= bend_lo) --lo;
   while (hi + 1 < n && hi - i <= degree_ && times_[hi + 1] > times_[hi] && times_[hi + 1] <= bend_hi) ++hi;
-  // The degree+1 samples of the piece nearest to s (i and i+1 first, when both are in it).
+  // The degree+1 samples of the piece nearest to the interval [t_i, t_i+1] holding s: i and i+1
+  // first, when both are in it, then outwards by distance from the interval's midpoint. The
+  // stencil depends on the interval, not on s, so the interpolant is continuous in s (each
+  // interval's polynomial passes through both its ends). Chosen by distance from s, the linear
+  // stencil flipped to (i-1, i) past the midpoint of t_i-1 and t_i+1 and extrapolated: a jump
+  // in the input, at which IDA's steps shrank below rounding of t and never passed
+  // (tline_lossy_rectifier, --method smooth, t = 0.921 us).
   const long want = std::min<long>(degree_ + 1, hi - lo + 1);
   long a = i, b = i;
+  if (want >= 2 && i < hi) b = i + 1;
+  const double mid = 0.5 * (times_[a] + times_[b]);
   while (b - a + 1 < want) {
     const bool right_ok = b < hi, left_ok = a > lo;
-    if (right_ok && (!left_ok || times_[b + 1] - s <= s - times_[a - 1])) ++b;
+    if (right_ok && (!left_ok || times_[b + 1] - mid <= mid - times_[a - 1])) ++b;
     else --a;
   }
   // Lagrange form (a handful of points).
