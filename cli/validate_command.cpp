@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <map>
 #include <memory>
 #include <optional>
 #include <iostream>
@@ -238,6 +239,71 @@ std::string reason_to_share_the_start(const CircuitModel& model, bool uic) {
   return "";
 }
 
+// Every capacitor's voltage and inductor's current, as rows over the model's states and pairs.
+struct StorageRows {
+  std::vector<std::string> names;
+  std::vector<OutputRow> rows;
+};
+
+StorageRows storage_rows(const CircuitModel& m) {
+  StorageRows out;
+  const CircuitGraph& g = m.graph();
+  for (size_t b = 0; b < g.branches.size(); ++b) {
+    if (g.branches[b].cls == BranchClass::Capacitor) out.rows.push_back(m.branch_voltage(b));
+    else if (g.branches[b].cls == BranchClass::Inductor) out.rows.push_back(m.branch_current(b));
+    else continue;
+    out.names.push_back(g.branches[b].name);
+  }
+  return out;
+}
+
+// The state the ideal methods start from (initial_state.h).
+std::map<std::string, double> ideal_start(const CircuitModel& m, bool uic) {
+  const InitialState init = initial_state(m, uic, 0.0);
+  const Eigen::VectorXd z0 = Eigen::VectorXd::Zero(m.pair_count());
+  const StorageRows s = storage_rows(m);
+  std::map<std::string, double> out;
+  for (size_t k = 0; k < s.names.size(); ++k) out[s.names[k]] = m.evaluate_dc(s.rows[k], init.x, z0, 0.0);
+  return out;
+}
+
+// The state the smooth method starts from: the Shockley circuit's own operating point, which
+// Newton's method finds from the ideal one (smooth_method.cpp, rest_point); read off the first
+// row of a run one output interval long. Given the ideal start instead, ngspice began elsewhere
+// (ltra4_1_line.sp: a diode-connected transistor at 0 V where both Shockley circuits hold 0.53 V).
+std::map<std::string, double> smooth_start(const CircuitModel& m, const TransientOptions& run) {
+  const StorageRows s = storage_rows(m);
+  std::map<std::string, double> out;
+  if (s.names.empty()) return out;
+  const int rows = static_cast<int>(s.rows.size());
+  OutputMap storage;
+  storage.names = s.names;
+  std::vector<Eigen::Triplet<double>> g, h;
+  storage.J = Eigen::MatrixXd::Zero(rows, m.input_count());
+  storage.K = Eigen::MatrixXd::Zero(rows, m.input_count());
+  for (int r = 0; r < rows; ++r) {
+    const OutputRow& row = s.rows[r];
+    for (Eigen::Index c = 0; c < row.g.size(); ++c)
+      if (row.g(c) != 0) g.emplace_back(r, static_cast<int>(c), row.g(c));
+    for (Eigen::Index c = 0; c < row.h.size(); ++c)
+      if (row.h(c) != 0) h.emplace_back(r, static_cast<int>(c), row.h(c));
+    if (row.j.size() > 0) storage.J.row(r) = row.j;
+    if (row.k.size() > 0) storage.K.row(r) = row.k;
+  }
+  storage.G.resize(rows, m.state_count());
+  storage.H.resize(rows, m.pair_count());
+  storage.G.setFromTriplets(g.begin(), g.end());
+  storage.H.setFromTriplets(h.begin(), h.end());
+  TransientOptions first = run;
+  first.tstart = 0;
+  first.tstop = run.step;
+  first.extra_output_times.clear();
+  first.progress = nullptr;
+  const MemorySink start = run_ours(m, storage, first);
+  for (int r = 0; r < rows; ++r) out[s.names[r]] = start.rows.front()(r);
+  return out;
+}
+
 // `validate --converge`: ngspice again at N, N/2, N/4, N/8 with tight tolerances (until it
 // gives up). The ideal answer is
 // the limit of the Shockley answers as N -> 0 and the gap is proportional to N, so a right
@@ -420,16 +486,7 @@ int validate_with_faults(const ValidateArgs& args, const NgspiceDeckFaults& faul
   if (!shared_start.empty()) {
     // ngspice starts (UIC) from lcspice's initial state: every capacitor voltage and inductor current.
     try {
-      const CircuitModel& m = ours_model;
-      const InitialState init = initial_state(m, run.uic, 0.0);
-      const Eigen::VectorXd z0 = Eigen::VectorXd::Zero(m.pair_count());
-      const CircuitGraph& g = m.graph();
-      for (size_t b = 0; b < g.branches.size(); ++b) {
-        if (g.branches[b].cls == BranchClass::Capacitor)
-          topt.initial_conditions[g.branches[b].name] = m.evaluate_dc(m.branch_voltage(b), init.x, z0, 0.0);
-        if (g.branches[b].cls == BranchClass::Inductor)
-          topt.initial_conditions[g.branches[b].name] = m.evaluate_dc(m.branch_current(b), init.x, z0, 0.0);
-      }
+      topt.initial_conditions = smooth ? smooth_start(ours_model, run) : ideal_start(ours_model, run.uic);
     } catch (const NumericalFailure& e) {
       throw CliError(kExitNumerical, std::string("lcspice: error: numerical failure ") + e.what());
     }
