@@ -19,8 +19,8 @@ namespace {
 
 const std::string kRealWorld = std::string(LCSPICE_REALWORLD_DIR) + "/ngspice";
 
-// The node voltages `lcspice op` prints ("  v(x) = value").
-std::map<std::string, double> op_voltages(const std::string& out) {
+// Every value `lcspice op` prints ("  v(x) = value", "  i(d1) = value   (on)").
+std::map<std::string, double> op_values(const std::string& out) {
   std::map<std::string, double> v;
   std::istringstream in(out);
   std::string line;
@@ -30,8 +30,16 @@ std::map<std::string, double> op_voltages(const std::string& out) {
     std::string name = line.substr(0, eq);
     name.erase(0, name.find_first_not_of(' '));
     name.erase(name.find_last_not_of(' ') + 1);
-    if (name.rfind("v(", 0) == 0) v[name] = std::strtod(line.c_str() + eq + 1, nullptr);
+    v[name] = std::strtod(line.c_str() + eq + 1, nullptr);
   }
+  return v;
+}
+
+// The node voltages among them.
+std::map<std::string, double> op_voltages(const std::string& out) {
+  std::map<std::string, double> v;
+  for (const auto& [name, value] : op_values(out))
+    if (name.rfind("v(", 0) == 0) v[name] = value;
   return v;
 }
 
@@ -134,17 +142,7 @@ TEST(BjtOperatingPoint, EmitterFollowersIntoAnOpenLossyLineCarryNoDcCurrent) {
                       ".model lline ltra r=0.2 g=0 l=9.13e-9 c=3.65e-12 len=24\n.tran 0.1n 20n\n.end\n";
   const Result r = run_lcspice("op '" + f.string() + "'", dir);
   ASSERT_EQ(r.code, 0) << r.err;
-  std::map<std::string, double> values;  // every "  name = value" line
-  std::istringstream in(r.out);
-  std::string line;
-  while (std::getline(in, line)) {
-    const size_t eq = line.find('=');
-    if (eq == std::string::npos) continue;
-    std::string name = line.substr(0, eq);
-    name.erase(0, name.find_first_not_of(' '));
-    name.erase(name.find_last_not_of(' ') + 1);
-    values[name] = std::strtod(line.c_str() + eq + 1, nullptr);
-  }
+  std::map<std::string, double> values = op_values(r.out);
   for (const char* current : {"i(vcc)", "i(o2)", "i2(o2)", "i(r6)", "i(q8:be)", "i(q9:be)"}) {
     ASSERT_TRUE(values.count(current)) << current << "\n" << r.out;
     EXPECT_LT(std::abs(values[current]), 1e-12) << current;
