@@ -4,6 +4,7 @@
 // (smooth_netlist with validate's emission and saturation current): the same model on both
 // sides, so what remains is the two integrators' error.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -239,28 +240,56 @@ std::string reason_to_share_the_start(const CircuitModel& model, bool uic) {
   return "";
 }
 
-// Every capacitor's voltage and inductor's current, as rows over the model's states and pairs.
+// Every capacitor's voltage and inductor's current, and every line's port voltages and currents
+// (named "<line>#v1", "#i1", "#v2", "#i2"), as rows over the model's states and pairs.
 struct StorageRows {
   std::vector<std::string> names;
   std::vector<OutputRow> rows;
 };
 
+bool is_line(const Element& e) { return e.kind == ElementKind::Line || e.kind == ElementKind::LossyLine; }
+
 StorageRows storage_rows(const CircuitModel& m) {
   StorageRows out;
   const CircuitGraph& g = m.graph();
   for (size_t b = 0; b < g.branches.size(); ++b) {
-    if (g.branches[b].cls == BranchClass::Capacitor) out.rows.push_back(m.branch_voltage(b));
-    else if (g.branches[b].cls == BranchClass::Inductor) out.rows.push_back(m.branch_current(b));
+    const Branch& branch = g.branches[b];
+    const Element& e = m.netlist().elements.at(branch.element);
+    if (is_line(e) && (branch.name == e.name || branch.name == e.name + "#2")) {
+      const std::string port = branch.name == e.name ? "1" : "2";
+      out.rows.push_back(m.branch_voltage(b));
+      out.names.push_back(e.name + "#v" + port);
+      out.rows.push_back(m.branch_current(b));
+      out.names.push_back(e.name + "#i" + port);
+      continue;
+    }
+    if (branch.cls == BranchClass::Capacitor) out.rows.push_back(m.branch_voltage(b));
+    else if (branch.cls == BranchClass::Inductor) out.rows.push_back(m.branch_current(b));
     else continue;
-    out.names.push_back(g.branches[b].name);
+    out.names.push_back(branch.name);
   }
   return out;
+}
+
+// Moves the lines' port values out of a start read by storage_rows, as ngspice's IC=v1,i1,v2,i2.
+std::map<std::string, std::array<double, 4>> take_line_starts(const Netlist& netlist, std::map<std::string, double>& start) {
+  std::map<std::string, std::array<double, 4>> lines;
+  for (const Element& e : netlist.elements) {
+    if (!is_line(e) || start.count(e.name + "#v1") == 0) continue;
+    std::array<double, 4>& ic = lines[e.name];
+    const char* keys[4] = {"#v1", "#i1", "#v2", "#i2"};
+    for (int k = 0; k < 4; ++k) {
+      ic[k] = start.at(e.name + keys[k]);
+      start.erase(e.name + keys[k]);
+    }
+  }
+  return lines;
 }
 
 // The state the ideal methods start from (initial_state.h).
 std::map<std::string, double> ideal_start(const CircuitModel& m, bool uic) {
   const InitialState init = initial_state(m, uic, 0.0);
-  const Eigen::VectorXd z0 = Eigen::VectorXd::Zero(m.pair_count());
+  const Eigen::VectorXd z0 = init.z.size() == m.pair_count() ? init.z : Eigen::VectorXd::Zero(m.pair_count());
   const StorageRows s = storage_rows(m);
   std::map<std::string, double> out;
   for (size_t k = 0; k < s.names.size(); ++k) out[s.names[k]] = m.evaluate_dc(s.rows[k], init.x, z0, 0.0);
@@ -487,6 +516,7 @@ int validate_with_faults(const ValidateArgs& args, const NgspiceDeckFaults& faul
     // ngspice starts (UIC) from lcspice's initial state: every capacitor voltage and inductor current.
     try {
       topt.initial_conditions = smooth ? smooth_start(ours_model, run) : ideal_start(ours_model, run.uic);
+      topt.line_initial_conditions = take_line_starts(netlist, topt.initial_conditions);
     } catch (const NumericalFailure& e) {
       throw CliError(kExitNumerical, std::string("lcspice: error: numerical failure ") + e.what());
     }

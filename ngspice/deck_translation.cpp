@@ -61,7 +61,7 @@ TranslatedDeck translate_to_ngspice(const Netlist& netlist, const std::vector<st
   }
 
   NameBook names(netlist);
-  const bool uic = tran.uic || !options.initial_conditions.empty();
+  const bool uic = tran.uic || !options.initial_conditions.empty() || !options.line_initial_conditions.empty();
   NgspiceDeckContext context;
   context.tstop = tran.tstop;
   context.emission = options.emission;
@@ -76,6 +76,9 @@ TranslatedDeck translate_to_ngspice(const Netlist& netlist, const std::vector<st
     context.ron_factor = factor != options.ron_factor.end() ? factor->second : 1.0;
     // By element name, or by the name of the device's capacitor branch (a transistor's "q1:cbe").
     context.initial_value.reset();
+    context.line_initial.reset();
+    auto line = options.line_initial_conditions.find(device->name());
+    if (line != options.line_initial_conditions.end()) context.line_initial = line->second;
     auto given = options.initial_conditions.find(device->name());
     if (given != options.initial_conditions.end()) context.initial_value = given->second;
     for (const BranchDecl& b : device->branches()) {

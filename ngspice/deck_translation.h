@@ -53,6 +53,8 @@ struct TranslationOptions {
   // When set, ngspice starts from these capacitor voltages / inductor currents (by element name)
   // with UIC: lcspice's own initial state, for netlists whose IC= ngspice would ignore without UIC.
   std::map<std::string, double> initial_conditions;
+  // ... and these lines from their port voltages and currents (v1, i1, v2, i2; by element name).
+  std::map<std::string, std::array<double, 4>> line_initial_conditions;
 };
 
 struct TranslatedDeck {

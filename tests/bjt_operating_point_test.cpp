@@ -127,28 +127,32 @@ TEST(BjtOperatingPoint, BipolarAddersHaveAnOperatingPoint) {
 // The driver of ngspice's ltra4_1_line.sp cut down to what shows the fault: emitter followers
 // q8, q9 whose collectors float, into a lossy line (4.8 ohm) open at its far end. At DC no
 // current has a path: every current is zero and the line's far end sits at its near end's
-// potential. Lemke's conducting set on the regularised problem put 0.43 mA from VCC into the
-// line at its near end and none out at its far end (v(a) - v(b) = 0.105 V), which polish could
-// not make exact; the enumeration's one exact solution is now taken there. (With the diodes
-// given as VON = 0.6, RON = 1 the enumeration finds no exact solution and the 0.43 mA remains:
-// the regularised DC problem needs an exact mixed LCP there; README, known limits.)
+// potential. Two defects put 0.43 mA from VCC into the line at its near end and none out at its
+// far end (v(a) - v(b) = 0.105 V):
+//  - the regularisation of the singular DC problem (-eps I) scaled the line's DC relations
+//    (i1 + i2 = 0, v1 - v2 = R len i1: coefficients ~1) by the largest state coefficient (~1e10
+//    here), so they read i1 + i2 = 10 S x (wave); each row is now regularised on its own scale;
+//  - where Lemke's conducting set has no exact point, the enumeration's one exact solution is
+//    taken (the IS-only card needed this).
 TEST(BjtOperatingPoint, EmitterFollowersIntoAnOpenLossyLineCarryNoDcCurrent) {
   const fs::path dir = scratch_dir("bjt_op_open_line");
   const fs::path f = dir / "followers.cir";
-  std::ofstream(f) << "emitter followers whose collectors float, into a lossy line open at its far end\n"
-                      "vcc vcc 0 5\nq8 n7 n11 n10 qn\nq9 n7 n10 a qn\ndd1 n17 n10 dmod\nd501 n17 a dmod\n"
-                      "r6 n24 vcc 750\nr12 n24 n11 1.5k\no2 a 0 b 0 lline\n"
-                      ".model qn NPN(IS=1e-12 BF=100 CJE=0.09p)\n.model dmod D(IS=1e-14)\n"
-                      ".model lline ltra r=0.2 g=0 l=9.13e-9 c=3.65e-12 len=24\n.tran 0.1n 20n\n.end\n";
-  const Result r = run_lcspice("op '" + f.string() + "'", dir);
-  ASSERT_EQ(r.code, 0) << r.err;
-  std::map<std::string, double> values = op_values(r.out);
-  for (const char* current : {"i(vcc)", "i(o2)", "i2(o2)", "i(r6)", "i(q8:be)", "i(q9:be)"}) {
-    ASSERT_TRUE(values.count(current)) << current << "\n" << r.out;
-    EXPECT_LT(std::abs(values[current]), 1e-12) << current;
+  for (const char* diode : {"D(IS=1e-14)", "D(VON=0.6 RON=1)"}) {
+    std::ofstream(f) << "emitter followers whose collectors float, into a lossy line open at its far end\n"
+                        "vcc vcc 0 5\nq8 n7 n11 n10 qn\nq9 n7 n10 a qn\ndd1 n17 n10 dmod\nd501 n17 a dmod\n"
+                        "r6 n24 vcc 750\nr12 n24 n11 1.5k\no2 a 0 b 0 lline\n"
+                        ".model qn NPN(IS=1e-12 BF=100 CJE=0.09p)\n.model dmod " << diode << "\n"
+                        ".model lline ltra r=0.2 g=0 l=9.13e-9 c=3.65e-12 len=24\n.tran 0.1n 20n\n.end\n";
+    const Result r = run_lcspice("op '" + f.string() + "'", dir);
+    ASSERT_EQ(r.code, 0) << r.err;
+    std::map<std::string, double> values = op_values(r.out);
+    for (const char* current : {"i(vcc)", "i(o2)", "i2(o2)", "i(r6)", "i(q8:be)", "i(q9:be)"}) {
+      ASSERT_TRUE(values.count(current)) << current << "\n" << r.out;
+      EXPECT_LT(std::abs(values[current]), 1e-12) << diode << ": " << current;
+    }
+    EXPECT_NEAR(values["v(n11)"], 5.0, 1e-9) << diode;           // no current through r6, r12
+    EXPECT_NEAR(values["v(a)"], values["v(b)"], 1e-9) << diode;  // none through the line's 4.8 ohm
   }
-  EXPECT_NEAR(values["v(n11)"], 5.0, 1e-9);           // no current through r6, r12
-  EXPECT_NEAR(values["v(a)"], values["v(b)"], 1e-9);  // none through the line's 4.8 ohm
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <map>
 #include <set>
 #include <sstream>
 
@@ -364,6 +365,48 @@ TEST(ValidationTranslation, JumpsGroundPairsAndInitialConditionsAgree) {
   EXPECT_EQ(timeout.err_line(0), "error: --timeout must be a positive number of seconds");
 }
 
+
+// With UIC ngspice starts a line discharged unless its card carries IC=v1,i1,v2,i2. When
+// ngspice shares lcspice's start, each line's card carries the ports' values there; a user's
+// IC= on a line card is written through as the capacitor's is. In ngspice's ltra4_1_line.sp
+// the line sat at 2.06 V in lcspice's start and at 0 V in ngspice's: v(3) at the far end 86 %
+// of its range apart; with IC= on the card, 2.0 % (README, real decks).
+TEST(ValidationTranslation, LinesStartFromTheSharedStartsPortValues) {
+  const fs::path dir = scratch_dir("validate_line_start");
+  const fs::path f = dir / "followers.cir";
+  std::ofstream(f) << "emitter followers with floating collectors into a lossy line open at its far end\n"
+                      "VCC vcc 0 5\nV1 in 0 PULSE(3 4.5 10n 1n 1n 20n 100n)\nR12 in n11 1.5k\n"
+                      "Q8 n7 n11 n10 qn\nQ9 n7 n10 a qn\nDD1 n17 n10 dmod\nD501 n17 a dmod\nO2 a 0 b 0 lline\n"
+                      ".model qn NPN(IS=1e-12 BF=100 CJE=0.09p)\n.model dmod D(VON=0.6 RON=1)\n"
+                      ".model lline LTRA(R=0.2 L=9.13e-9 G=0 C=3.65e-12 LEN=24)\n.tran 0.1n 20n\n.end\n";
+  // The start `run` reads out at t = 0 (the one validate shares: after the junctions' refit).
+  const Result run = run_lcspice("run '" + f.string() + "' --probe 'v(a),i(o2),v(b),i2(o2)' -o '" +
+                                     (dir / "start.csv").string() + "'", dir);
+  ASSERT_EQ(run.code, 0) << run.err;
+  const Csv start = parse_csv(read_file(dir / "start.csv"));
+  ASSERT_FALSE(start.rows.empty());
+  const Result deck = run_lcspice("validate --print-deck '" + f.string() + "'", dir);
+  ASSERT_EQ(deck.code, 0) << deck.err;
+  const size_t card = deck.out.find("\no2 ");
+  ASSERT_NE(card, std::string::npos) << deck.out;
+  const std::string o2 = deck.out.substr(card + 1, deck.out.find('\n', card + 1) - card - 1);
+  const size_t ic = o2.find(" IC=");
+  ASSERT_NE(ic, std::string::npos) << o2;
+  std::vector<double> values;
+  std::istringstream list(o2.substr(ic + 4));
+  for (std::string v; std::getline(list, v, ',');) values.push_back(std::stod(v));
+  ASSERT_EQ(values.size(), 4u) << o2;
+  EXPECT_GT(values[0], 2.5) << o2;  // charged: the base's 3 V less at most two junctions at zero current
+  for (int k = 0; k < 4; ++k) EXPECT_NEAR(values[k], start.rows[0][k + 1], k % 2 ? 1e-12 : 1e-9) << k << ": " << o2;
+  EXPECT_NE(deck.out.find(" uic\n"), std::string::npos) << deck.out;
+
+  std::ofstream(dir / "lossless.cir") << "lossless line given IC\nV1 in 0 1\nR1 in a 50\n"
+                                         "T1 a 0 b 0 Z0=50 TD=1n IC=1,0.02,0.5,-0.01\nR2 b 0 50\n"
+                                         ".tran 0.1n 5n uic\n.end\n";
+  const Result t = run_lcspice("validate --print-deck '" + (dir / "lossless.cir").string() + "'", dir);
+  ASSERT_EQ(t.code, 0) << t.err;
+  EXPECT_NE(t.out.find(" Z0=50 TD=1e-09 IC=1,0.02,0.5,-0.01\n"), std::string::npos) << t.out;
+}
 
 // The acceptance test of `validate --method smooth`: on the same deck, lcspice's smooth method
 // (the very Shockley diodes of the ngspice deck) agrees with ngspice far more tightly than its

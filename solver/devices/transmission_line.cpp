@@ -210,13 +210,19 @@ NgspiceCards TransmissionLine::ngspice(const NgspiceDeckContext& context) const 
     cards.probes[p == 0 ? "i(" + name() + ")" : "i2(" + name() + ")"] = {meter + "#branch", ""};
   }
   const std::string ports = inner[0] + " " + n.at(1) + " " + inner[1] + " " + n.at(3);
+  // With UIC ngspice starts a line discharged unless its card has IC=v1,i1,v2,i2 (T and LTRA).
+  std::string ic;
+  std::vector<double> start = element_.line_ic;
+  if (context.line_initial) start.assign(context.line_initial->begin(), context.line_initial->end());
+  if (start.size() == 4)
+    ic = " IC=" + number(start[0]) + "," + number(start[1]) + "," + number(start[2]) + "," + number(start[3]);
   if (!kernel_) {
-    cards.lines.push_back(deck_name('t', name()) + " " + ports + " Z0=" + number(z0_) + " TD=" + number(delay_));
+    cards.lines.push_back(deck_name('t', name()) + " " + ports + " Z0=" + number(z0_) + " TD=" + number(delay_) + ic);
     return cards;
   }
   const std::string model = context.fresh("lcs_ltra_" + name());
   const RlcgLine& l = kernel_->line;
-  cards.lines.push_back(deck_name('o', name()) + " " + ports + " " + model);
+  cards.lines.push_back(deck_name('o', name()) + " " + ports + " " + model + ic);
   cards.models.push_back(".model " + model + " LTRA(R=" + number(l.r) + " L=" + number(l.l) + " G=" +
                          number(l.g) + " C=" + number(l.c) + " LEN=" + number(l.length) + ")");
   return cards;

@@ -92,8 +92,15 @@ StaticProblem static_problem(const CircuitModel& model, double t, double regular
       Eigen::MatrixXd kernel = lu.kernel();
       for (int j = 0; j < n; ++j)
         if (kernel.row(j).cwiseAbs().maxCoeff() > 1e-9) p.undetermined.push_back(unknown_label(model, j));
-      const double scale = A.size() > 0 ? A.cwiseAbs().maxCoeff() : 0.0;
-      A -= (scale > 0 ? regularisation * scale : regularisation) * Eigen::MatrixXd::Identity(n, n);
+      // A leak across each capacitor on the scale of the largest state coefficient (a GMIN); a
+      // line's DC-relation rows (i1 + i2 = 0, v1 - v2 = R len i1: coefficients ~1) on their own
+      // scale: on the states' (a fitted line's poles, ~1e10 s^-1) they read i1 + i2 = 10 S x wave.
+      const double states = f.n > 0 ? A.topRows(f.n).cwiseAbs().maxCoeff() : 0.0;
+      for (int j = 0; j < n; ++j) {
+        const double row = A.row(j).cwiseAbs().maxCoeff();
+        const double scale = j < f.n ? states : row;
+        A(j, j) -= regularisation * (scale > 0 ? scale : 1.0);
+      }
     }
     Eigen::PartialPivLU<Eigen::MatrixXd> lu_reg(A);
     p.XofZ = -solve_or_empty(lu_reg, f.B);
