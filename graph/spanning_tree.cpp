@@ -1,6 +1,5 @@
 #include "graph/spanning_tree.h"
 
-#include <algorithm>
 #include <deque>
 #include <iterator>
 #include <stdexcept>
@@ -74,17 +73,10 @@ SpanningTree build_normal_tree(const CircuitGraph& graph) {
     }
   }
 
-  t.node_paths.assign(n_nodes, {});
-  for (int v = 1; v < n_nodes; ++v) {
-    std::vector<LoopTerm> path;
-    for (int c = v; c != 0; c = parent[c]) {
-      const Branch& br = graph.branches[parent_branch[c]];
-      // Going down from parent[c] to c raises the potential by v(c) - v(parent[c]).
-      path.push_back({parent_branch[c], br.from == c ? +1 : -1});
-    }
-    std::reverse(path.begin(), path.end());
-    t.node_paths[v] = std::move(path);
-  }
+  // Going down from parent[c] to c raises the potential by v(c) - v(parent[c]).
+  t.to_parent.assign(n_nodes, {});
+  for (int c = 1; c < n_nodes; ++c) t.to_parent[c] = {parent_branch[c], graph.branches[parent_branch[c]].from == c ? +1 : -1};
+  t.parent = parent;
 
   // Fundamental loop of link e (a = n+, b = n-): a -e-> b, then back from b to a in the tree.
   std::vector<Eigen::Triplet<double>> b_entries;

@@ -25,8 +25,11 @@ struct SpanningTree {
   Eigen::SparseMatrix<double> B;
   // Per link: its fundamental loop, the link itself first with sign +1, then the tree path.
   std::vector<std::vector<LoopTerm>> loops;
-  // Per node: tree branches from ground to the node, so that v(node) = sum sign * v_branch.
-  std::vector<std::vector<LoopTerm>> node_paths;
+  // Per node: the tree branch to its parent on the way to ground (ground: branch -1), so that
+  // v(node) = v(parent) + sign * v_branch. (The whole path per node cost O(nodes x depth): a
+  // multiplier's tree is a chain.)
+  std::vector<LoopTerm> to_parent;
+  std::vector<int> parent;  // per node; -1 for ground
 };
 
 // Kruskal (Boost.Graph) with weights V < C < R < D < L < I, ties broken by card order: a normal

@@ -74,8 +74,8 @@ TEST(SpanningTree, LoopsSatisfyKvlAndNodePathsGivePotentials) {
       EXPECT_NEAR(from_b, v(t.links[j]), 1e-12);
     }
     for (size_t n = 0; n < g.nodes.size(); ++n) {
-      double sum = 0;
-      for (const LoopTerm& term : t.node_paths[n]) sum += term.sign * v(term.branch);
+      double sum = 0;  // down the tree from ground: v(node) = v(parent) + sign * v_branch
+      for (size_t c = n; c != 0; c = t.parent[c]) sum += t.to_parent[c].sign * v(t.to_parent[c].branch);
       EXPECT_NEAR(sum, phi[n], 1e-12);
     }
   }

@@ -658,16 +658,10 @@ Eigen::RowVectorXd CircuitModel::node_row(int node) const {
     node_row_known_[0] = true;  // ground
   }
   std::vector<int> pending;  // node, then its ancestors, up to the first known one
-  for (int v = node; !node_row_known_.at(v);) {
-    pending.push_back(v);
-    const Branch& br = graph_.branches[tree_.node_paths[v].back().branch];
-    v = br.from == v ? br.to : br.from;
-  }
+  for (int v = node; !node_row_known_.at(v); v = tree_.parent[v]) pending.push_back(v);
   for (auto it = pending.rbegin(); it != pending.rend(); ++it) {
-    const LoopTerm& last = tree_.node_paths[*it].back();
-    const Branch& br = graph_.branches[last.branch];
-    const int parent = br.from == *it ? br.to : br.from;
-    node_rows_[*it] = node_rows_[parent] + static_cast<double>(last.sign) *
+    const LoopTerm& last = tree_.to_parent[*it];
+    node_rows_[*it] = node_rows_[tree_.parent[*it]] + static_cast<double>(last.sign) *
                                                Eigen::SparseVector<double>(branch_v_.row(last.branch).transpose());
     node_row_known_[*it] = true;
   }
