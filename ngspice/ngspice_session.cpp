@@ -155,7 +155,10 @@ class Engine {
   void ensure_initialised();
   void command(const std::string& cmd);
   void clear_circuits_and_plots();
-  bool wait_for_thread_end(long ends_before, Clock::time_point deadline);
+  // Until the thread's start (end) callbacks exceed `before`, or the deadline.
+  bool wait_for_thread_start(long before, Clock::time_point deadline) { return wait_for_count(bg_starts_, before, deadline); }
+  bool wait_for_thread_end(long before, Clock::time_point deadline) { return wait_for_count(bg_ends_, before, deadline); }
+  bool wait_for_count(const long& counter, long before, Clock::time_point deadline);
   std::optional<std::string> tran_plot();
   double simulated_time_reached();
   void read_plot(const std::string& plot, NgspiceResult& result);
@@ -333,10 +336,10 @@ void Engine::clear_circuits_and_plots() {
   }
 }
 
-bool Engine::wait_for_thread_end(long ends_before, Clock::time_point deadline) {
+bool Engine::wait_for_count(const long& counter, long before, Clock::time_point deadline) {
   std::unique_lock<std::mutex> lock(state_mutex_);
   while (true) {
-    if (bg_ends_ > ends_before) return true;
+    if (counter > before) return true;
     const auto now = Clock::now();
     if (now >= deadline) return false;
     state_cv_.wait_for(lock, std::min<Clock::duration>(deadline - now, kPollInterval));
@@ -498,11 +501,16 @@ NgspiceResult Engine::run(const NgspiceRun& run) {
   const double cpu_seconds = process_cpu_seconds() - cpu_start;
 
   if (!finished) {
+    // A bg_halt that arrives before the thread has begun is lost: ngspice's _thread_stop reads
+    // the exit flag the thread has not yet cleared, skips the interrupt, joins a detached thread
+    // and reports it stopped, while the analysis runs on unhalted; destroying the circuit under
+    // it crashed the process (a 1 ms time limit on a loaded machine: SIGSEGV in libngspice about
+    // one run in ten). So the halt waits for the thread's start callback.
+    const bool started = wait_for_thread_start(starts_before, Clock::now() + kThreadStartLimit);
     command("bg_halt");  // sets ngspice's interrupt flag and waits up to 1 s for the thread
-    // (bg_halt clears ngspice's running flag once the thread has stopped; a thread that never
-    // started leaves nothing to stop)
-    const bool stopped =
-        wait_for_thread_end(ends_before, Clock::now() + kHaltLimit) || !ngspice_->ngSpice_running();
+    // Stopped: its end callback came, or it never started (nothing to stop). Not ngspice's
+    // running flag: a lost halt clears it with the thread still running.
+    const bool stopped = wait_for_thread_end(ends_before, Clock::now() + kHaltLimit) || !started;
     std::string what = "ngspice exceeded the time limit of " + format_seconds(run.timeout_seconds);
     if (!stopped) {
       unusable_ = "an analysis that exceeded its time limit could not be stopped";

@@ -277,13 +277,18 @@ TEST(ValidationCanFail, TheBinaryHasNoReverseDiodeHook) {
   EXPECT_EQ(out.find("OUTSIDE"), std::string::npos) << out;
 }
 
+// Repeated: a halt sent before ngspice's thread had begun was lost, the analysis ran on, and
+// clearing the circuit under it crashed the process (SIGSEGV, exit 139) in about one run in ten
+// on a loaded machine (ngspice_session.cpp); 100 runs under load since, none.
 TEST(ValidationErrors, NgspiceTimeoutIsAClearError) {
   const fs::path dir = scratch_dir("validate_timeout");
-  Result r = run_lcspice("validate '" + source_path("circuits/cockcroft_walton.cir").string() +
-                             "' --timeout 0.001",
-                         dir);
-  EXPECT_EQ(r.code, 3) << r.out << r.err;
-  EXPECT_EQ(r.err_line(0).rfind("lcspice: error: ngspice failed: ", 0), 0u) << r.err;
+  for (int k = 0; k < 8; ++k) {
+    Result r = run_lcspice("validate '" + source_path("circuits/cockcroft_walton.cir").string() +
+                               "' --timeout 0.001",
+                           dir);
+    ASSERT_EQ(r.code, 3) << k << "\n" << r.out << r.err;
+    ASSERT_EQ(r.err_line(0).rfind("lcspice: error: ngspice failed: ngspice exceeded the time limit of 0.001 s", 0), 0u) << r.err;
+  }
 }
 
 // libngspice is opened when a command needs it: without it `validate` and `bench` stop at once

@@ -56,11 +56,20 @@ bool DescriptorStep::start_values(const LcsProblem& model, double t, const Eigen
 }
 
 bool DescriptorStep::step(const LcsProblem& model, double t, Eigen::VectorXd& x, Eigen::VectorXd& z) {
+  return advance(model, t, t + h_, x, z);
+}
+
+bool DescriptorStep::step_ending_at(const LcsProblem& model, double t_end, Eigen::VectorXd& x, Eigen::VectorXd& z) {
+  return advance(model, t_end - h_, t_end, x, z);
+}
+
+bool DescriptorStep::advance(const LcsProblem& model, double t, double t_end, Eigen::VectorXd& x,
+                             Eigen::VectorXd& z) {
   if (fresh_) lcp_->prefer(z);
   fresh_ = false;
   const bool explicit_part = theta_ != 1.0;
   if (explicit_part && !start_values(model, t, x, z)) return false;
-  u_ = model.input_values(t + h_);
+  u_ = model.input_values(t_end);
   a_ = d_.Sx * x + d_.Uin * u_;
   if (explicit_part) a_ += (h_ * (1 - theta_)) * (d_.Sy * y_);
   a_ = a_.cwiseProduct(scale_);

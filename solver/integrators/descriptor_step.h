@@ -43,11 +43,16 @@ class DescriptorStep {
   // (x, z) at t to t + h. False when the mode search fails or the instant's system is singular
   // (x and z are then untouched: the caller's dense LCP decides the step).
   bool step(const LcsProblem& model, double t, Eigen::VectorXd& x, Eigen::VectorXd& z);
+  // The same step, ending at t_end (its inputs read there): a step of length h is taken, but
+  // t_end - h + h need not round to t_end when h is large (descriptor_operating_point.h).
+  bool step_ending_at(const LcsProblem& model, double t_end, Eigen::VectorXd& x, Eigen::VectorXd& z);
   const SparseActiveSetStats& stats() const { return lcp_->stats(); }
+  const Eigen::VectorXd& last_w() const { return w_; }  // w+ of the last step
 
  private:
   bool start_values(const LcsProblem& model, double t, const Eigen::VectorXd& x,
                     const Eigen::VectorXd& z);
+  bool advance(const LcsProblem& model, double t, double t_end, Eigen::VectorXd& x, Eigen::VectorXd& z);
 
   const SparseDescriptor& d_;
   double h_, theta_;

@@ -2,6 +2,7 @@
 
 #include "solver/lcp/sparse_active_set.h"
 #include "solver/model/sparse_lcs.h"
+#include "solver/model/descriptor_operating_point.h"
 #include "solver/model/empty_safe.h"
 
 #include <algorithm>
@@ -362,7 +363,7 @@ bool sparse_operating_point(const CircuitModel& model, double t, OperatingPoint&
 OperatingPoint solve_operating_point(const CircuitModel& model, double t) {
   if (!model.has_transfer_pairs()) {
     OperatingPoint op;
-    if (sparse_operating_point(model, t, op)) {
+    if (sparse_operating_point(model, t, op) || descriptor_operating_point(model, t, op)) {
       finish(model, op);
       return op;
     }

@@ -16,6 +16,7 @@
 #include "solver/integrators/theta_method.h"
 #include "solver/integrators/transient.h"
 #include "solver/model/circuit_model.h"
+#include "solver/model/operating_point.h"
 #include "solver/model/sparse_descriptor.h"
 
 namespace lcs {
@@ -257,6 +258,53 @@ TEST(DescriptorStep, StatsReportThePath) {
   ASSERT_NE(below.sparse_descriptor(), nullptr);
   EXPECT_EQ(ThetaMethod(below, 1.0).stats().descriptor_unknowns, 0);
   EXPECT_EQ(build(multiplier(20, 1)).sparse_descriptor(), nullptr);  // 40 pairs: dense
+}
+
+// The operating point of a circuit that steps on its descriptor form is solved on it where every
+// pair is off (descriptor_operating_point.h), never forming the dense LCS; elsewhere the dense
+// path decides. The dense path's answer is the reference: the same circuit with a capacitor across
+// its source (a dependent capacitor: no descriptor form, and no change at DC). States DC leaves
+// free (a multiplier's capacitors have no DC path) take the values of least stored energy on
+// both. Checked: every physical state and pair current, the list of free states, and the path.
+void expect_operating_points_agree(const std::string& text, const std::string& source_node, double t,
+                                   bool on_descriptor) {
+  const CircuitModel model = build(text);
+  ASSERT_NE(model.sparse_descriptor(), nullptr);
+  const size_t cut = text.find('\n', text.find("\nV1 ") + 1);
+  const CircuitModel reference = build(text.substr(0, cut + 1) + "CX " + source_node + " 0 1n\n" + text.substr(cut + 1));
+  ASSERT_EQ(reference.sparse_descriptor(), nullptr);
+  ASSERT_EQ(reference.state_count(), model.state_count());
+  const OperatingPoint op = solve_operating_point(model, t), ref = solve_operating_point(reference, t);
+  EXPECT_EQ(model.dense_formed_from_sparse(), !on_descriptor);
+  const Eigen::VectorXd x = model.physical_state(op.x, t), x_ref = reference.physical_state(ref.x, t);
+  const double x_scale = std::max(1.0, x_ref.cwiseAbs().maxCoeff());
+  const double z_scale = std::max(1e-6, ref.z.cwiseAbs().maxCoeff());
+  EXPECT_LT((x - x_ref).cwiseAbs().maxCoeff(), 1e-6 * x_scale);
+  EXPECT_LT((op.z - ref.z).cwiseAbs().maxCoeff(), 1e-6 * z_scale);
+  EXPECT_EQ(op.undetermined, ref.undetermined);
+}
+
+TEST(DescriptorOperatingPoint, AMultiplierAtRestIsSolvedOnItsDescriptor) {
+  const std::string at_rest = multiplier(30, 1);  // 60 pairs, every capacitor free
+  expect_operating_points_agree(at_rest, "in", 0.0, true);
+  // With the source at 30 V or -70 V the first diode conducts (its capacitor at least energy
+  // would put a1 at the source's potential): the dense path decides.
+  std::string offset = at_rest;
+  offset.replace(offset.find("SIN(0 100 50)"), 13, "SIN(30 100 50)");
+  expect_operating_points_agree(offset, "in", 0.0, false);
+  expect_operating_points_agree(offset, "in", 15e-3, false);
+}
+
+// The trees' third diode model has VON = 0: at rest those diodes sit on their threshold (not
+// strictly off), and the dense path decides; with VON = 0.1 every pair is strictly off.
+TEST(DescriptorOperatingPoint, RandomCapacitorTreesAtRestAgreeWithTheDensePath) {
+  for (unsigned seed : {3u, 11u, 29u}) {
+    SCOPED_TRACE(seed);
+    std::string tree = capacitor_tree(seed, 60);
+    expect_operating_points_agree(tree, "n1", 0.0, false);
+    tree.replace(tree.find("d2 D(VON=0 "), 11, "d2 D(VON=0.1 ");
+    expect_operating_points_agree(tree, "n1", 0.0, true);
+  }
 }
 
 }  // namespace
