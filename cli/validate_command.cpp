@@ -516,7 +516,10 @@ int validate_with_faults(const ValidateArgs& args, const NgspiceDeckFaults& faul
     // ngspice starts (UIC) from lcspice's initial state: every capacitor voltage and inductor current.
     try {
       topt.initial_conditions = smooth ? smooth_start(ours_model, run) : ideal_start(ours_model, run.uic);
-      topt.line_initial_conditions = take_line_starts(netlist, topt.initial_conditions);
+      // With UIC lcspice's lines start from their own IC= (or discharged), which their cards
+      // carry already; the start's port values at t = 0+ would be other waves.
+      std::map<std::string, std::array<double, 4>> lines = take_line_starts(netlist, topt.initial_conditions);
+      if (!run.uic) topt.line_initial_conditions = std::move(lines);
     } catch (const NumericalFailure& e) {
       throw CliError(kExitNumerical, std::string("lcspice: error: numerical failure ") + e.what());
     }

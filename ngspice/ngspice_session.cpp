@@ -508,9 +508,10 @@ NgspiceResult Engine::run(const NgspiceRun& run) {
     // one run in ten). So the halt waits for the thread's start callback.
     const bool started = wait_for_thread_start(starts_before, Clock::now() + kThreadStartLimit);
     command("bg_halt");  // sets ngspice's interrupt flag and waits up to 1 s for the thread
-    // Stopped: its end callback came, or it never started (nothing to stop). Not ngspice's
-    // running flag: a lost halt clears it with the thread still running.
-    const bool stopped = wait_for_thread_end(ends_before, Clock::now() + kHaltLimit) || !started;
+    // Stopped: its end callback came. Not ngspice's running flag: a lost halt clears it with
+    // the thread still running; and a thread that has not started within the limit may still
+    // start, so nothing is cleared under it (the session is given up below).
+    const bool stopped = started && wait_for_thread_end(ends_before, Clock::now() + kHaltLimit);
     std::string what = "ngspice exceeded the time limit of " + format_seconds(run.timeout_seconds);
     if (!stopped) {
       unusable_ = "an analysis that exceeded its time limit could not be stopped";

@@ -404,6 +404,15 @@ TEST(ValidationTranslation, LinesStartFromTheSharedStartsPortValues) {
   EXPECT_GT(values[0], 2.5) << o2;  // charged: the base's 3 V less at most two junctions at zero current
   for (int k = 0; k < 4; ++k) EXPECT_NEAR(values[k], start.rows[0][k + 1], k % 2 ? 1e-12 : 1e-9) << k << ": " << o2;
   EXPECT_NE(deck.out.find(" uic\n"), std::string::npos) << deck.out;
+  // With UIC the shared start keeps the lines as lcspice starts them, from their own IC= (none
+  // here: discharged), not the port values at t = 0+.
+  std::string text = read_file(f);
+  text.replace(text.find(".tran 0.1n 20n"), 14, ".tran 0.1n 20n uic");
+  std::ofstream(dir / "followers_uic.cir") << text;
+  const Result uic = run_lcspice("validate --print-deck '" + (dir / "followers_uic.cir").string() + "'", dir);
+  ASSERT_EQ(uic.code, 0) << uic.err;
+  EXPECT_NE(uic.out.find("IC="), std::string::npos) << uic.out;  // the transistors' capacitors
+  EXPECT_NE(uic.out.find("\no2 lcs_o2_1 0 lcs_o2_2 0 lcs_ltra_o2\n"), std::string::npos) << uic.out;
 
   std::ofstream(dir / "lossless.cir") << "lossless line given IC\nV1 in 0 1\nR1 in a 50\n"
                                          "T1 a 0 b 0 Z0=50 TD=1n IC=1,0.02,0.5,-0.01\nR2 b 0 50\n"

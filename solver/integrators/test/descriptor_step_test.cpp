@@ -295,6 +295,28 @@ TEST(DescriptorOperatingPoint, AMultiplierAtRestIsSolvedOnItsDescriptor) {
   expect_operating_points_agree(offset, "in", 15e-3, false);
 }
 
+// DC sources and every diode reverse-biased, so the answer is not zero: a chain of capacitors
+// hung from a 5 V source, a 1 Mohm resistor to ground at every third node (those nodes and the
+// capacitors into them are fixed; the others float: least energy), and at every node a clamp
+// diode (RON 1 ohm, so the largest conductance is 1e6 times the resistors') to a 10 V rail it
+// never reaches. A leak sized against the largest conductance alone (1e-9 S) moved the resistor
+// nodes by 1e-3 of their value; the answer must not depend on the leak.
+std::string reverse_biased_chain(int nodes) {
+  std::string s = "reverse-biased clamps on a capacitor chain\nV1 in 0 DC 5\nV2 rail 0 DC 10\n";
+  for (int k = 1; k <= nodes; ++k) {
+    const std::string prev = k == 1 ? "in" : "n" + std::to_string(k - 1), node = "n" + std::to_string(k);
+    s += "C" + std::to_string(k) + " " + prev + " " + node + " " + std::to_string(10 + k % 7) + "n\n";
+    if (k % 3 == 0) s += "R" + std::to_string(k) + " " + node + " 0 1meg\n";
+    s += "D" + std::to_string(k) + " " + node + " rail dclamp\n";
+  }
+  s += ".model dclamp D(VON=0.7 RON=1)\n.tran 1u 1m\n.end\n";
+  return s;
+}
+
+TEST(DescriptorOperatingPoint, ReverseBiasedClampsOnACapacitorChainAgreeWithTheDensePath) {
+  expect_operating_points_agree(reverse_biased_chain(70), "in", 0.0, true);
+}
+
 // The trees' third diode model has VON = 0: at rest those diodes sit on their threshold (not
 // strictly off), and the dense path decides; with VON = 0.1 every pair is strictly off.
 TEST(DescriptorOperatingPoint, RandomCapacitorTreesAtRestAgreeWithTheDensePath) {
