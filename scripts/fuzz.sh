@@ -1,13 +1,14 @@
 #!/usr/bin/env bash
-# Builds the libFuzzer targets (tests/fuzz) with clang, ASan and UBSan, and runs each for
+# Builds the libFuzzer targets (tests/fuzz) with clang, ASan and UBSan in build-asan (the tree
+# the sanitized suite ran in: scripts/instrumented_tree.sh), and runs each for
 # SECONDS (default 60) on a seed corpus of circuits/, tests/bad_netlists/ and, when present,
 # ../shared/realworld/. Fails on any crash, hang (10 s per input), sanitizer report or
 # undocumented exception. Long runs: bash scripts/fuzz.sh 36000
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds="${1:-60}"
-CC=clang CXX=clang++ cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DLCSPICE_FUZZ=ON >/dev/null
-cmake --build build-fuzz -j"$(nproc)" --target operating_point_fuzz transient_fuzz >/dev/null
+bash scripts/instrumented_tree.sh
+cmake --build build-asan -j"$(nproc)" --target operating_point_fuzz transient_fuzz >/dev/null
 
 seeds=build-fuzz/seeds
 rm -rf "$seeds" && mkdir -p "$seeds/op" "$seeds/tran"
@@ -35,7 +36,7 @@ for target in operating_point_fuzz transient_fuzz; do
   mkdir -p "$corpus"
   seed="$seeds/op"
   [ "$target" = transient_fuzz ] && seed="$seeds/tran"
-  "build-fuzz/tests/fuzz/$target" "$corpus" "$seed" -dict=tests/fuzz/spice.dict \
+  "build-asan/tests/fuzz/$target" "$corpus" "$seed" -dict=tests/fuzz/spice.dict \
     -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -max_len=4096 \
     -artifact_prefix="build-fuzz/${target}-" -print_final_stats=1 2> "build-fuzz/${target}.log" || {
     tail -40 "build-fuzz/${target}.log" >&2

@@ -47,13 +47,20 @@ std::string capacitor_tree(unsigned seed, int nodes) {
   std::mt19937 rng(seed);
   auto pick = [&](int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng); };
   auto node = [](int k) { return "n" + std::to_string(k); };
-  std::string s = "capacitor tree\nV1 n1 0 SIN(0 " + std::to_string(pick(5, 20)) + " " +
-                  std::to_string(pick(1, 5)) + "k)\nV2 ref 0 PULSE(0 " + std::to_string(pick(1, 5)) +
-                  " 0.2m 10u 10u 0.3m 1m)\n";
+  // One pick per statement: the order in which a compiler evaluates the operands of `+` is
+  // unspecified: gcc and clang built different trees from the same seed. These picks are in gcc's
+  // order (right to left), the trees the bounds below were measured on.
+  const int pulse = pick(1, 5);
+  const int frequency = pick(1, 5);
+  const int amplitude = pick(5, 20);
+  std::string s = "capacitor tree\nV1 n1 0 SIN(0 " + std::to_string(amplitude) + " " + std::to_string(frequency) +
+                  "k)\nV2 ref 0 PULSE(0 " + std::to_string(pulse) + " 0.2m 10u 10u 0.3m 1m)\n";
   int diodes = 0, inductors = 0;
   for (int k = 2; k <= nodes; ++k) {
     const std::string id = std::to_string(k);
-    s += "C" + id + " " + node(pick(std::max(1, k - 4), k - 1)) + " " + node(k) + " " + std::to_string(pick(1, 100)) + "n\n";
+    const int nanofarads = pick(1, 100);
+    const int from = pick(std::max(1, k - 4), k - 1);
+    s += "C" + id + " " + node(from) + " " + node(k) + " " + std::to_string(nanofarads) + "n\n";
     if (pick(0, 3) == 0) s += "R" + id + " " + node(k) + " 0 " + std::to_string(pick(100, 5000)) + "\n";
     for (int d = pick(1, 2); d > 0; --d) {
       const int other = pick(0, 4) == 0 ? -1 : pick(0, nodes);

@@ -203,13 +203,20 @@ std::string random_network(unsigned seed, int nodes) {
   std::mt19937 rng(seed);
   auto pick = [&](int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng); };
   auto node = [](int k) { return k == 0 ? std::string("0") : "n" + std::to_string(k); };
-  std::string s = "random network\nV1 n1 0 SIN(0 " + std::to_string(pick(3, 20)) + " " +
-                  std::to_string(pick(1, 5)) + "k)\nV2 ref 0 PULSE(0 " + std::to_string(pick(1, 5)) +
-                  " 0.2m 10u 10u 0.3m 1m)\n";
+  // One pick per statement: the order in which a compiler evaluates the operands of `+` is
+  // unspecified: gcc and clang built different networks from the same seed. These picks are in
+  // gcc's order (right to left), the networks the bounds below were measured on.
+  const int pulse = pick(1, 5);
+  const int frequency = pick(1, 5);
+  const int amplitude = pick(3, 20);
+  std::string s = "random network\nV1 n1 0 SIN(0 " + std::to_string(amplitude) + " " + std::to_string(frequency) +
+                  "k)\nV2 ref 0 PULSE(0 " + std::to_string(pulse) + " 0.2m 10u 10u 0.3m 1m)\n";
   int diodes = 0, inductors = 0;
   for (int k = 2; k <= nodes; ++k) {
     const std::string id = std::to_string(k);
-    s += "R" + id + " " + node(pick(1, k - 1)) + " " + node(k) + " " + std::to_string(pick(10, 2000)) + "\n";
+    const int ohms = pick(10, 2000);
+    const int from = pick(1, k - 1);
+    s += "R" + id + " " + node(from) + " " + node(k) + " " + std::to_string(ohms) + "\n";
     if (pick(0, 9) < 8) s += "C" + id + " " + node(k) + " 0 " + std::to_string(pick(1, 100)) + "n\n";
     for (int d = pick(0, 2); d > 0; --d) {
       const int other = pick(0, 3) == 0 ? -1 : pick(0, nodes);
