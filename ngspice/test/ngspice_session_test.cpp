@@ -465,9 +465,9 @@ TEST(NgspiceProcessDeathTest, WorksWithUnwritableHome) {
 // ngspice 39's init dereferences getpwuid(getuid()) unchecked (passwd_fallback.h).
 TEST(NgspiceProcessDeathTest, WorksForAUidWithoutPasswdEntry) {
   if (geteuid() != 0) GTEST_SKIP() << "needs root to switch to a uid without a passwd entry";
-  const uid_t uid = 4242;
+  constexpr uid_t uid = 4242;  // constexpr: the lambda below reads it without a capture
   if (getpwuid(uid) != nullptr) GTEST_SKIP() << "uid 4242 has a passwd entry here";
-  expect_rc_in_child([uid] {
+  expect_rc_in_child([] {
     if (setgroups(0, nullptr) != 0 || setresgid(uid, uid, uid) != 0 || setresuid(uid, uid, uid) != 0)
       std::_Exit(10);
     unsetenv("HOME");
