@@ -6,5 +6,9 @@
 # assertions stay on.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+# A build-asan left by the former gcc tree keeps its compiler in the cache: start it afresh.
+if [ -f build-asan/CMakeCache.txt ] && ! grep -q '^CMAKE_CXX_COMPILER:[A-Z]*=.*clang++' build-asan/CMakeCache.txt; then
+  rm -rf build-asan
+fi
 CC=clang CXX=clang++ cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-g -O1" \
   -DLCSPICE_SANITIZE=ON -DLCSPICE_FUZZ=ON >/dev/null
