@@ -162,7 +162,11 @@ class Generator {
   std::string waveform(bool amps) {
     switch (draw_.in(0, 3)) {
       case 0:
-        return (draw_.chance(50) ? "DC " : "") + str(level(amps));
+      {  // two draws, one per statement, in the order gcc gave the operands of + (unspecified)
+        const Dec value = level(amps);
+        const bool dc = draw_.chance(50);
+        return (dc ? "DC " : "") + str(value);
+      }
       case 1:
         return sin_waveform(amps);
       case 2:
