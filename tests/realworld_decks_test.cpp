@@ -125,13 +125,16 @@ TEST(RealWorldAdders, TransientRunsToTheEndAndAdds) {
     if (!fs::exists(deck)) GTEST_SKIP() << deck << " is missing";
     const fs::path dir = scratch_dir("realworld_adder_" + deck.stem().string());
     std::string text = read_file(deck);
-    const size_t at = text.find(std::string(a.card) + "\n");
-    ASSERT_NE(at, std::string::npos) << a.path;
-    text.insert(at + std::string(a.card).size(), " VON=0.653896259394 RON=1.20312099244");
-    const size_t q = text.find(std::string(a.transistor_card) + ")\n");
-    ASSERT_NE(q, std::string::npos) << a.path;
-    text.insert(q + std::string(a.transistor_card).size(),
-                " VONE=0.772662660638 RONE=1.20312099244 VONC=0.755077550043 RONC=1.20312099244");
+    // Writes `fit` after `card`, which the deck spells followed by `rest`.
+    auto pin = [&](const std::string& card, const std::string& rest, const char* fit) {
+      const size_t at = text.find(card + rest);
+      if (at != std::string::npos) text.insert(at + card.size(), fit);
+      return at != std::string::npos;
+    };
+    ASSERT_TRUE(pin(a.card, "\n", " VON=0.653896259394 RON=1.20312099244")) << a.path;
+    ASSERT_TRUE(pin(a.transistor_card, ")\n",
+                    " VONE=0.772662660638 RONE=1.20312099244 VONC=0.755077550043 RONC=1.20312099244"))
+        << a.path;
     std::ofstream(dir / deck.filename()) << text;
     const Result r = run_lcspice("run '" + (dir / deck.filename()).string() + "' -o '" + (dir / "out.csv").string() + "'", dir);
     ASSERT_EQ(r.code, 0) << a.path << "\n" << r.err;
