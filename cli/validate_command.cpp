@@ -219,14 +219,14 @@ ProbeComparison compare(const std::string& name, const std::vector<double>& time
 // last two the two simulators would pick different, equally valid, starts.
 std::string reason_to_share_the_start(const CircuitModel& model, bool uic) {
   const Netlist& netlist = model.netlist();
-  // A transistor's base-emitter capacitance (CJE, .options bjtcap) sits between the inner nodes
+  // A transistor's junction capacitances (CJE, .options bjtcap, CJC) sit between the inner nodes
   // of its ngspice cards, which ngspice's .ic cannot reach: with UIC it would start at 0 V.
   if (uic) {
     const CircuitGraph& g = model.graph();
     const bool inner_capacitor = std::any_of(g.branches.begin(), g.branches.end(), [&](const Branch& b) {
       return b.cls == BranchClass::Capacitor && netlist.elements.at(b.element).kind == ElementKind::Bjt;
     });
-    return inner_capacitor ? "a transistor's base-emitter capacitance, which .ic cannot reach in ngspice" : "";
+    return inner_capacitor ? "a transistor's junction capacitance, which .ic cannot reach in ngspice" : "";
   }
   if (std::any_of(netlist.elements.begin(), netlist.elements.end(),
                   [](const Element& el) { return el.ic.has_value(); }))

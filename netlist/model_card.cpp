@@ -29,7 +29,7 @@ const char* const kVendorDiodeFields[] = {"iave", "ipk", "vpk", "mfg", "type", "
 
 const char* const kIgnoredBjtParams[] = {
     "vaf", "va", "ikf", "ik", "ise", "ne", "var", "vb", "ikr", "isc", "nc", "rb", "irb", "rbm",
-    "re", "rc", "vje", "pe", "mje", "me", "tf", "xtf", "vtf", "itf", "ptf", "cjc", "vjc", "pc",
+    "re", "rc", "vje", "pe", "mje", "me", "tf", "xtf", "vtf", "itf", "ptf", "vjc", "pc",
     "mjc", "mc", "xcjc", "tr", "cjs", "ccs", "vjs", "ps", "mjs", "ms", "xtb", "eg", "xti", "kf",
     "af", "fc", "tnom", "tref", "level", "subs", "iss", "ns", "nkf", "quasimod", "rco", "vo",
     "gamma", "qco", "tlev", "tlevc", "temp", "dtemp", "vceo", "icrating", "icrate", "mfg", "type", "bvcbo",
@@ -90,9 +90,9 @@ void read_bjt_params(const Card& card, const std::vector<Assignment>& params, co
       check(v > 0, "be positive");
       (k == "nf" ? q.nf : q.nr) = v;
       (k == "nf" ? q.has_nf : q.has_nr) = true;
-    } else if (k == "cje") {
+    } else if (k == "cje" || k == "cjc") {
       check(v >= 0, "not be negative");
-      q.cje = v;
+      (k == "cje" ? q.cje : q.cjc) = v;
     } else {
       throw NetlistError(card.at(key), "unknown transistor model parameter " + quote(key.text));
     }

@@ -83,6 +83,7 @@ struct BjtModel {
   double is = 1e-16, nf = 1.0, nr = 1.0;  // smooth (Shockley) junction parameters
   bool has_is = false, has_nf = false, has_nr = false;
   std::optional<double> cje;           // B–E capacitance [F], the book's regularisation (bjtcap)
+  std::optional<double> cjc;           // B–C capacitance [F] (zero-bias, as CJE; the Miller capacitance)
   std::vector<std::string> ignored;    // accepted Gummel–Poon parameters unused by lcspice
   SourceLocation loc;
   // Set by smooth_netlist (the smooth method): the junctions are Shockley curves, an ideal one

@@ -76,6 +76,7 @@ TranslatedDeck translate_to_ngspice(const Netlist& netlist, const std::vector<st
     context.ron_factor = factor != options.ron_factor.end() ? factor->second : 1.0;
     // By element name, or by the name of the device's capacitor branch (a transistor's "q1:cbe").
     context.initial_value.reset();
+    context.branch_initial.clear();
     context.line_initial.reset();
     auto line = options.line_initial_conditions.find(device->name());
     if (line != options.line_initial_conditions.end()) context.line_initial = line->second;
@@ -84,7 +85,7 @@ TranslatedDeck translate_to_ngspice(const Netlist& netlist, const std::vector<st
     for (const BranchDecl& b : device->branches()) {
       auto inner = options.initial_conditions.find(b.name);
       if (b.name != device->name() && b.cls == BranchClass::Capacitor && inner != options.initial_conditions.end())
-        context.initial_value = inner->second;
+        context.branch_initial[b.name] = inner->second;
     }
     NgspiceCards cards = device->ngspice(context);
     std::vector<std::string>& into = device->branches().empty() ? after : deck.lines;

@@ -808,5 +808,59 @@ TEST(BjtTerminalCurrents, AddUpToZeroOnEveryRowOfEveryCircuitAndMethod) {
   }
 }
 
+// CJC is a base–collector capacitance between the transistor's base and collector, as CJE is
+// between base and emitter. With both junctions reverse biased (the base driven from 0 to -1 V
+// through RB, the collector held at VCC, the emitter at ground; PNP: every voltage negated) the
+// base is one RC node, tau = RB (CJE + CJC), driven by a ramp of rise TR from T0:
+//   during the ramp  v(b) = -(s - tau (1 - e^(-s/tau))) / TR,  s = t - T0,
+//   after it         v(b) = -1 + (v1 + 1) e^(-(t - T0 - TR)/tau),  v1 = -1 + tau/TR (1 - e^(-TR/tau)),
+// and the terminal currents are the capacitances' (into the terminal): ic = -CJC dv(b)/dt,
+// ie = -CJE dv(b)/dt, ib = (CJE + CJC) dv(b)/dt.
+TEST(BjtJunctionCapacitance, CollectorCapacitanceIsBetweenBaseAndCollectorClosedFormWithEvent) {
+  const double rb = 10e3, cje = 1e-12, cjc = 2e-12, t0 = 10e-9, tr = 1e-9, tau = rb * (cje + cjc);
+  const fs::path dir = scratch_dir("bjt_cjc_closed_form");
+  std::ofstream(dir / "cjc.cir") << "CJC of an NPN and a PNP, both junctions reverse biased\n"
+                                    "vin1 in1 0 PULSE(0 -1 10n 1n 1n 1 2)\nrb1 in1 b1 10k\nvc1 c1 0 DC 5\n"
+                                    "q1 c1 b1 0 qn\n"
+                                    "vin2 in2 0 PULSE(0 1 10n 1n 1n 1 2)\nrb2 in2 b2 10k\nvc2 c2 0 DC -5\n"
+                                    "q2 c2 b2 0 qp\n"
+                                    ".model qn NPN(BF=50 VON=0.7 RON=1 CJE=1p CJC=2p)\n"
+                                    ".model qp PNP(BF=50 VON=0.7 RON=1 CJE=1p CJC=2p)\n"
+                                    ".tran 1n 200n\n.end\n";
+  const auto vb = [&](double t) {
+    if (t <= t0) return 0.0;
+    const double s = t - t0;
+    if (s <= tr) return -(s - tau * (1 - std::exp(-s / tau))) / tr;
+    const double v1 = -1 + tau / tr * (1 - std::exp(-tr / tau));
+    return -1 + (v1 + 1) * std::exp(-(s - tr) / tau);
+  };
+  const auto dvb = [&](double t) {  // away from the ramp's corners
+    if (t <= t0) return 0.0;
+    const double s = t - t0;
+    if (s <= tr) return -(1 - std::exp(-s / tau)) / tr;
+    const double v1 = -1 + tau / tr * (1 - std::exp(-tr / tau));
+    return -(v1 + 1) / tau * std::exp(-(s - tr) / tau);
+  };
+  const Csv csv = run_csv(dir / "cjc.cir", "event",
+                          "--probe 'v(b1),ic(q1),ib(q1),ie(q1),v(b2),ic(q2),ib(q2),ie(q2)'");
+  const auto t = column(csv, "time");
+  ASSERT_GT(t.size(), 200u);
+  const double peak = cjc / tr;  // the largest |ic|, at the ramp's end
+  for (const auto& [q, sign] : {std::pair{std::string("1"), 1.0}, std::pair{std::string("2"), -1.0}}) {
+    const auto v = column(csv, "v(b" + q + ")"), ic = column(csv, "ic(q" + q + ")"),
+               ib = column(csv, "ib(q" + q + ")"), ie = column(csv, "ie(q" + q + ")");
+    for (size_t k = 0; k < t.size(); ++k) {
+      EXPECT_NEAR(v[k], sign * vb(t[k]), 1e-9) << "q" << q << " t = " << t[k];
+      if (std::abs(t[k] - t0) < 1e-12 || std::abs(t[k] - t0 - tr) < 1e-12) continue;  // the corners
+      EXPECT_NEAR(ic[k], -sign * cjc * dvb(t[k]), 1e-9 * peak) << "q" << q << " t = " << t[k];
+      EXPECT_NEAR(ie[k], -sign * cje * dvb(t[k]), 1e-9 * peak) << "q" << q << " t = " << t[k];
+      EXPECT_NEAR(ib[k], sign * (cje + cjc) * dvb(t[k]), 1e-9 * peak) << "q" << q << " t = " << t[k];
+    }
+  }
+  // It is a transistor's own capacitance, named by analyze.
+  const Result r = run_lcspice("analyze '" + (dir / "cjc.cir").string() + "'", dir);
+  EXPECT_NE(r.out.find("transistor q1: base-collector capacitance 2e-12 F (CJC)"), std::string::npos) << r.out;
+}
+
 }  // namespace
 }  // namespace lcs::cli_testing

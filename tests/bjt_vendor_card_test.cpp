@@ -27,7 +27,7 @@ const char* kSwitch =
 // raised by half its largest distance below the curve, reached where the curve's slope
 // N Vt / (IS + i) equals the chord's.
 void minimax(double is, double n, double i1, double i2, double& von, double& ron) {
-  const double vt = 0.025864186;
+  const double vt = 0.025864917007157;
   auto v = [&](double i) { return n * vt * std::log1p(i / is); };
   ron = (v(i2) - v(i1)) / (i2 - i1);
   const double i_star = n * vt / ron - is;
@@ -72,20 +72,23 @@ TEST(BjtVendorCard, LoadsFitsItsJunctionsAndListsWhatTheIdealModelIgnores) {
     EXPECT_NEAR(note.von, von, 1e-8 * von) << junction;
     EXPECT_NEAR(note.ron, ron, 1e-8 * ron) << junction;
   }
-  for (const char* p : {"vaf", "ikf", "ise", "ne", "rb", "rc", "cjc", "tf", "tr", "mfg", "vceo", "icrate"})
+  for (const char* p : {"vaf", "ikf", "ise", "ne", "rb", "rc", "vjc", "mjc", "tf", "tr", "mfg", "vceo", "icrate"})
     EXPECT_NE(r.out.find(std::string("transistor q1: model parameter ") + p + " is ignored by the ideal model"),
               std::string::npos)
         << p;
   EXPECT_NE(r.out.find("transistor q1: base-emitter capacitance 2.201e-11 F (CJE)"), std::string::npos);
+  EXPECT_NE(r.out.find("transistor q1: base-collector capacitance 7.306e-12 F (CJC)"), std::string::npos);
+  EXPECT_EQ(r.out.find("parameter cjc is ignored"), std::string::npos);
   // The card's warning lists them once, at the first ignored parameter.
   EXPECT_NE(r.err.find("warning: transistor model 'q2n2222': parameters xti, eg, vaf, ne, ise, ikf, xtb, nc, isc"),
             std::string::npos)
       << r.err;
   // In the active region the fitted B-E junction and BF give the base loop below. Without the
-  // card's CJE (`.options bjtcap=0`), so that ib is the junction's alone.
+  // card's CJE (`.options bjtcap=0`) and CJC, so that ib is the junction's alone.
   const fs::path bare = dir / "q2n2222_bare.cir";
   std::string text = kSwitch;
   text.insert(text.find(".tran"), ".options bjtcap=0\n");
+  text.replace(text.find("CJC=7.306p"), 10, "CJC=0");
   std::ofstream(bare) << text;
   for (const char* method : {"event", "euler", "radau5"}) {
     const fs::path csv = dir / (std::string(method) + ".csv");

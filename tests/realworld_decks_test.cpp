@@ -2,8 +2,14 @@
 // either runs or is refused with a located message naming a reason outside lcspice's scope (the
 // README's table lists each outcome). Exit code and first diagnostic per deck; the decks that run
 // are compared with ngspice in validate_command's tests and below where they pass.
+#include <algorithm>
+#include <cctype>
+#include <cstdio>
+#include <sstream>
+
 #include <gtest/gtest.h>
 
+#include "ngspice/ngspice_session.h"
 #include "tests/cli_support.h"
 #include "tests/support/sanitizers.h"
 
@@ -50,7 +56,7 @@ const Deck kDecks[] = {
     {"examples/xspice/original-examples/spice3.deck", 0, "lcspice: wrote 201 rows"},
     {"tests/general/rtlinv.cir", 0, "lcspice: wrote "},
     {"tests/general/schmitt.cir", 0, "lcspice: wrote "},
-    {"tests/general/rca3040.cir", 0, "lcspice: wrote 181 rows"},
+    {"tests/general/rca3040.cir", 0, "lcspice: wrote 161 rows"},
     // 466-pair TTL gates. Their step LCPs solve since Lemke restarts a path that rounding broke
     // (it cycled: exit 3 at 6 ns / 7 ns before), so the refit's transient passes run to the end.
     // fourbitadder's 4th refit pass leaves a model whose operating point Lemke misses; the refit
@@ -97,6 +103,23 @@ INSTANTIATE_TEST_SUITE_P(Decks, RealWorldDeck, ::testing::ValuesIn(kDecks),
                            return name;
                          });
 
+// ngspice's run of a deck as it is written (its `.control` block left out: the bridge runs the
+// deck's .tran), with ngspice's own Gummel–Poon transistors.
+NgspiceResult ngspice_of(const fs::path& deck) {
+  NgspiceRun run;
+  run.timeout_seconds = 600;
+  std::istringstream in(read_file(deck));
+  bool control = false;
+  for (std::string line; std::getline(in, line);) {
+    std::string lower = line;
+    std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return std::tolower(c); });
+    if (lower.rfind(".control", 0) == 0) control = true;
+    if (!control) run.deck.push_back(line);
+    if (lower.rfind(".endc", 0) == 0) control = false;
+  }
+  return run_ngspice_transient(run);
+}
+
 // The adders' transient to the end of their .tran (a step's LCP used to defeat Lemke: rounding
 // decided its degenerate ratio tests and the path cycled, exit 3 at 6 ns / 7 ns; solver/lcp/
 // lemke.cpp). The deck is run with the default fit written on its diode and transistor cards (a
@@ -104,16 +127,25 @@ INSTANTIATE_TEST_SUITE_P(Decks, RealWorldDeck, ::testing::ValuesIn(kDecks),
 // .options ifit, printed by `analyze`), because cards without them are refitted to the circuit's
 // currents by transient passes: the model of the fourth pass has an operating point Lemke does
 // not find (see the table above), and the passes cost four transients (adder_bip: 849 s of CPU
-// before its final run, 275 s, on this project's machine). Where
-// the inputs have been steady for 20 ns (the carry ripples through four bits), the outputs are
-// the binary sum of the inputs at TTL levels (high >= 2.4 V, low <= 0.4 V).
-TEST(RealWorldAdders, TransientRunsToTheEndAndAdds) {
+// before its final run, 275 s, on this project's machine).
+//
+// adder_bip's logic levels are ngspice's (the deck as written, Gummel–Poon transistors): at every
+// row and every output v(9)..v(13) where ngspice's output stays at one TTL level (high >= 2.4 V,
+// low <= 0.4 V) from 10 ns before the row to 10 ns after it, lcspice's is at that level too.
+// With CJC (3 pF) the gates take nanoseconds and the carry ripples for tens of them: ngspice
+// itself is not at the binary sum 20 ns after the inputs settle (at 200 ns bit 2 is at -0.09 V
+// where the sum has it high; 1.2 V at 240 ns). Before CJC was modelled lcspice's gates switched
+// in picoseconds; it was at the sum there, and off ngspice's level in 343 of 1575 such bit-rows of
+// the first 400 ns (measured; 0 now). lcspice's edges lag ngspice's by up to about 5 ns (its CJC
+// is the zero-bias value, ngspice's shrinks under reverse bias): at a window of 5 ns 19 bit-rows of
+// the first 400 ns are caught mid-edge, at 10 ns none.
+TEST(RealWorldAdders, TransientRunsToTheEndAtNgspicesLogicLevels) {
   if (kInstrumented) GTEST_SKIP() << "Release builds only (Lemke on 466 pairs, 6400 steps)";
   struct Adder {
     const char* path;
     const char* card;   // the diode card as the deck spells it
     const char* transistor_card;  // the transistor card, up to its closing parenthesis
-    bool adds;          // probes v(1)..v(8) (inputs) and v(9)..v(13) (sum bits, carry out)
+    bool adds;          // probes v(9)..v(13) (sum bits, carry out), compared with ngspice
     size_t rows;        // TSTOP / TSTEP + 1
   };
   const Adder adders[] = {
@@ -131,9 +163,9 @@ TEST(RealWorldAdders, TransientRunsToTheEndAndAdds) {
       if (at != std::string::npos) text.insert(at + card.size(), fit);
       return at != std::string::npos;
     };
-    ASSERT_TRUE(pin(a.card, "\n", " VON=0.653896259394 RON=1.20312099244")) << a.path;
+    ASSERT_TRUE(pin(a.card, "\n", " VON=0.653914740658 RON=1.20315499661")) << a.path;
     ASSERT_TRUE(pin(a.transistor_card, ")\n",
-                    " VONE=0.772662660638 RONE=1.20312099244 VONC=0.755077550043 RONC=1.20312099244"))
+                    " VONE=0.772684498632 RONE=1.20315499661 VONC=0.755098891024 RONC=1.20315499661"))
         << a.path;
     std::ofstream(dir / deck.filename()) << text;
     const Result r = run_lcspice("run '" + (dir / deck.filename()).string() + "' -o '" + (dir / "out.csv").string() + "'", dir);
@@ -141,27 +173,38 @@ TEST(RealWorldAdders, TransientRunsToTheEndAndAdds) {
     const Csv csv = parse_csv(read_file(dir / "out.csv"));
     ASSERT_EQ(csv.rows.size(), a.rows) << a.path;
     if (!a.adds) continue;
-    int checked = 0;
-    for (size_t k = 20; k < csv.rows.size(); ++k) {
-      bool steady = true;  // every input at 0 or 3 V and unchanged over the last 20 rows (20 ns)
-      for (size_t j = k - 20; j <= k && steady; ++j)
-        for (int in = 1; in <= 8 && steady; ++in) {
-          const double v = csv.rows[j][csv.column("v(" + std::to_string(in) + ")")];
-          steady = (v == 0.0 || v == 3.0) && v == csv.rows[k][csv.column("v(" + std::to_string(in) + ")")];
-        }
-      if (!steady) continue;
-      ++checked;
-      auto bit = [&](int node) { return csv.rows[k][csv.column("v(" + std::to_string(node) + ")")] > 1.5 ? 1 : 0; };
-      const int sum = (bit(1) + 2 * bit(3) + 4 * bit(5) + 8 * bit(7)) + (bit(2) + 2 * bit(4) + 4 * bit(6) + 8 * bit(8));
-      for (int j = 0; j < 5; ++j) {
-        const double out = csv.rows[k][csv.column("v(" + std::to_string(9 + j) + ")")];
-        if ((sum >> j) & 1)
-          EXPECT_GE(out, 2.4) << "bit " << j << " at t = " << csv.rows[k][0];
-        else
-          EXPECT_LE(out, 0.4) << "bit " << j << " at t = " << csv.rows[k][0];
+    const NgspiceResult ng = ngspice_of(deck);
+    const std::vector<double>& tn = ng.time;
+    const double window = 10e-9;
+    int checked = 0, off = 0;
+    for (int node = 9; node <= 13; ++node) {
+      const std::vector<double>& vn = ng.vectors.at(std::to_string(node));
+      auto at = [&](double t) {  // ngspice's output, linear between its time points
+        const size_t k = std::lower_bound(tn.begin(), tn.end(), t) - tn.begin();
+        if (k == 0) return vn.front();
+        if (k == tn.size()) return vn.back();
+        return vn[k - 1] + (vn[k] - vn[k - 1]) * (t - tn[k - 1]) / (tn[k] - tn[k - 1]);
+      };
+      const int column = csv.column("v(" + std::to_string(node) + ")");
+      for (const std::vector<double>& row : csv.rows) {
+        const double t = row[0];
+        double lo = std::min(at(t - window), at(t + window)), hi = std::max(at(t - window), at(t + window));
+        for (size_t k = std::lower_bound(tn.begin(), tn.end(), t - window) - tn.begin();
+             k < tn.size() && tn[k] <= t + window; ++k)
+          lo = std::min(lo, vn[k]), hi = std::max(hi, vn[k]);
+        if (hi > 0.4 && lo < 2.4) continue;  // an edge, or between the levels, within the window
+        ++checked;
+        const bool high = lo >= 2.4;
+        if (high ? row[column] >= 2.4 : row[column] <= 0.4) continue;
+        if (++off <= 10)
+          ADD_FAILURE() << "v(" << node << ") at t = " << t << ": " << row[column] << " V where ngspice stays "
+                        << (high ? "high" : "low") << " within 10 ns";
       }
     }
-    EXPECT_GE(checked, 40) << a.path;  // 48 such rows in 6400 ns
+    EXPECT_EQ(off, 0) << a.path;
+    std::printf("[ %s ] %d of %zu bit-rows at one level in ngspice within 10 ns, %d off it\n", a.path, checked,
+                5 * csv.rows.size(), off);
+    EXPECT_GE(checked, 22000) << a.path;  // of 32005 bit-rows (measured: 23089, none off)
   }
 }
 
@@ -264,32 +307,29 @@ TEST(RealWorldValidate, TransistorDecksWithSmoothJunctionsAgree) {
   }
 }
 
-// `--diode auto` on the transistor decks: the Schmitt trigger's and rca3040's answers depend on
-// their junctions' curves below the currents they carry (the trip point; the bias of the
-// differential stages), so auto runs their Shockley junctions, which `validate --method smooth`
-// passes above. rtlinv at its own output interval (TSTEP = 2 ns) does not: the edges its
-// junction tails move stay within a row (the ideal run is within 0.01 % of the smooth one in a
-// tube of one row), and auto keeps the ideal run.
+// `--diode auto` on the transistor decks: the Schmitt trigger's, rca3040's and rtlinv's answers
+// depend on their junctions' curves below the currents they carry (the trip point; the bias of
+// the differential stages; rtlinv's edges), so auto runs their Shockley junctions, which
+// `validate --method smooth` passes above. rtlinv's ideal run used to be kept (within 0.01 % of
+// the smooth one at its 2 ns rows): its edges took picoseconds. With CJC (1.5 pF, the Miller
+// capacitance through RB = 10k) they take nanoseconds, and where the lines cross the
+// exponential moves them: v(5) 4.03 % with the lines fitted lower. rca3040's q6 B-E junction
+// now carries currents over more decades than one line serves (worst 79 mV, 13 %).
 TEST(RealWorldAuto, TransistorDecksWhoseAnswerDependsOnTheCurveRunShockleyJunctions) {
   struct Case {
     const char* path;
-    const char* verdict;  // the note's start, or "" for the ideal run
+    const char* verdict;  // the note's start
   };
-  for (const Case& c : {Case{"tests/general/schmitt.cir", "the ideal answer depends on the junctions' curves: v(3) moves 9"},
-                        Case{"tests/general/rca3040.cir", "the ideal answer depends on the junctions' curves: v(6) moves 4"},
-                        Case{"tests/general/rtlinv.cir", ""}}) {
+  for (const Case& c : {Case{"tests/general/schmitt.cir", "the ideal answer depends on the junctions' curves: v(6) moves 1"},
+                        Case{"tests/general/rca3040.cir", "q6:be: the ideal fit is poor over the currents carried"},
+                        Case{"tests/general/rtlinv.cir", "the ideal answer depends on the junctions' curves: v(5) moves 4"}}) {
     const fs::path deck = kRealWorld / c.path;
     if (!fs::exists(deck)) GTEST_SKIP() << deck << " is missing";
     const fs::path dir = scratch_dir("realworld_auto_" + deck.stem().string());
     const Result r = run_lcspice("run '" + deck.string() + "' --diode auto --stats -o '" + (dir / "a.csv").string() + "'", dir);
     EXPECT_EQ(r.code, 0) << c.path << "\n" << r.err;
-    if (*c.verdict) {
-      EXPECT_NE(r.err.find(std::string("lcspice: --diode auto: ") + c.verdict), std::string::npos) << c.path << "\n" << r.err;
-      EXPECT_NE(r.err.find("running --method smooth with Shockley diodes\n"), std::string::npos) << r.err;
-    } else {
-      EXPECT_EQ(r.err.find("--diode auto:"), std::string::npos) << c.path << "\n" << r.err;
-      EXPECT_NE(r.err.find("fit sensitivity: v(3) moves 0.0544 % of its range"), std::string::npos) << r.err;
-    }
+    EXPECT_NE(r.err.find(std::string("lcspice: --diode auto: ") + c.verdict), std::string::npos) << c.path << "\n" << r.err;
+    EXPECT_NE(r.err.find("running --method smooth with Shockley diodes\n"), std::string::npos) << r.err;
   }
 }
 

@@ -11,7 +11,7 @@ namespace {
 
 using namespace cli_testing;
 
-constexpr double kVt = 0.025864186;  // ngspice's thermal voltage at 27 C
+constexpr double kVt = 0.025864917007157;  // ngspice 39's thermal voltage at 27 C
 
 // A common-emitter stage biased at microamperes: 2 V through 1 Mohm into the base, 10 kohm to 5 V
 // at the collector. In the active region the Ebers-Moll transistor's emitter junction carries

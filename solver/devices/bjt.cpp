@@ -35,6 +35,7 @@ DiodeModel junction_card(const BjtModel& model, Junction junction, double area) 
 Bjt::Bjt(const Element& element, const Netlist& netlist, const DeviceOptions& options)
     : Device(element), card_(model_of(element, netlist)), area_(element.value > 0 ? element.value : 1.0) {
   cbe_ = options.bjtcap ? *options.bjtcap : card_.cje ? *card_.cje * area_ : 0.0;
+  cbc_ = card_.cjc ? *card_.cjc * area_ : 0.0;
   alpha_f_ = alpha(card_.bf);
   alpha_r_ = alpha(card_.br);
   card_e_ = junction_card(card_, Junction::BaseEmitter, area_);
@@ -68,6 +69,7 @@ Bjt::Layout Bjt::layout() const {
     l.r = next++;
   }
   if (!e_open && cbe_ > 0) l.cbe = next++;
+  if (!c_open && cbc_ > 0) l.cbc = next++;
   return l;
 }
 
@@ -81,6 +83,7 @@ std::vector<BranchDecl> Bjt::branches() const {
   if (l.f >= 0) out.push_back({name() + ":f", BranchClass::CurrentSource, n ? c : b, n ? b : c});
   if (l.r >= 0) out.push_back({name() + ":r", BranchClass::CurrentSource, n ? e : b, n ? b : e});
   if (l.cbe >= 0) out.push_back({name() + ":cbe", BranchClass::Capacitor, n ? b : e, n ? e : b});
+  if (l.cbc >= 0) out.push_back({name() + ":cbc", BranchClass::Capacitor, n ? b : c, n ? c : b});
   return out;
 }
 
@@ -95,6 +98,7 @@ void Bjt::stamp(const StampContext& context, Stamps& stamps) const {
   pair(l.de, "be", card_e_, law_e_);
   pair(l.dc, "bc", card_c_, law_c_);
   if (l.cbe >= 0) stamps.storage.push_back({context.branch(l.cbe), cbe_, std::nullopt});
+  if (l.cbc >= 0) stamps.storage.push_back({context.branch(l.cbc), cbc_, std::nullopt});
   // i_F - alpha_F i_DE = 0 and i_R - alpha_R i_DC = 0 (both present or both left out).
   if (l.f >= 0) {
     stamps.relations.push_back({context.branch(l.f), {{Term::Of::Current, context.branch(l.f), 1.0},
@@ -104,17 +108,17 @@ void Bjt::stamp(const StampContext& context, Stamps& stamps) const {
   }
 }
 
-// Into the terminal, NPN: i_C = aF i_DE - i_DC, i_B = (1 - aF) i_DE + (1 - aR) i_DC + i_CBE,
-// i_E = aR i_DC - i_DE - i_CBE (the base-emitter capacitance is part of the device: its current
-// enters at the base and leaves at the emitter, as in ngspice's BJT); PNP: the negatives. A
-// left-out junction carries nothing.
+// Into the terminal, NPN: i_C = aF i_DE - i_DC - i_CBC, i_B = (1 - aF) i_DE + (1 - aR) i_DC +
+// i_CBE + i_CBC, i_E = aR i_DC - i_DE - i_CBE (the capacitances are part of the device: their
+// currents enter at the base and leave at the emitter and the collector, as in ngspice's BJT);
+// PNP: the negatives. A left-out junction carries nothing.
 std::vector<std::pair<int, double>> Bjt::terminal_current(char terminal) const {
   const Layout l = layout();
   const double s = card_.pnp ? -1.0 : 1.0;
-  double de = 0, dc = 0, cbe = 0;
+  double de = 0, dc = 0, cbe = 0, cbc = 0;
   switch (terminal) {
-    case 'c': de = alpha_f_, dc = -1; break;
-    case 'b': de = 1 - alpha_f_, dc = 1 - alpha_r_, cbe = 1; break;
+    case 'c': de = alpha_f_, dc = -1, cbc = -1; break;
+    case 'b': de = 1 - alpha_f_, dc = 1 - alpha_r_, cbe = 1, cbc = 1; break;
     case 'e': de = -1, dc = alpha_r_, cbe = -1; break;
     default: return {};
   }
@@ -122,6 +126,7 @@ std::vector<std::pair<int, double>> Bjt::terminal_current(char terminal) const {
   if (l.de >= 0 && de != 0) out.push_back({l.de, s * de});
   if (l.dc >= 0 && dc != 0) out.push_back({l.dc, s * dc});
   if (l.cbe >= 0 && cbe != 0) out.push_back({l.cbe, s * cbe});
+  if (l.cbc >= 0 && cbc != 0) out.push_back({l.cbc, s * cbc});
   return out;
 }
 
@@ -140,9 +145,14 @@ NgspiceCards Bjt::ngspice(const NgspiceDeckContext& context) const {
   }
   const bool n = !card_.pnp;
   const Layout l = layout();
-  if (l.cbe >= 0)
-    cards.lines.push_back(deck_name('c', name() + "_be") + " " + inner[n ? 'b' : 'e'] + " " + inner[n ? 'e' : 'b'] +
-                          " " + number(cbe_) + (context.initial_value ? " IC=" + number(*context.initial_value) : ""));
+  auto capacitance = [&](const char* tag, char other, double c) {
+    auto ic = context.branch_initial.find(name() + ":c" + tag);
+    cards.lines.push_back(deck_name('c', name() + "_" + tag) + " " + inner[n ? 'b' : other] + " " +
+                          inner[n ? other : 'b'] + " " + number(c) +
+                          (ic != context.branch_initial.end() ? " IC=" + number(ic->second) : ""));
+  };
+  if (l.cbe >= 0) capacitance("be", 'e', cbe_);
+  if (l.cbc >= 0) capacitance("bc", 'c', cbc_);
   const bool gummel_poon = law_e_.fitted && law_c_.fitted;
   if (gummel_poon) {
     const std::string model = context.fresh("lcs_m_" + name());
@@ -180,7 +190,7 @@ NgspiceCards Bjt::ngspice(const NgspiceDeckContext& context) const {
 }
 
 // The junctions' branches carry exactly the junction currents i_DE, i_DC (the transfer sources
-// and the base-emitter capacitance are branches of their own).
+// and the capacitances are branches of their own).
 std::vector<FittedJunction> Bjt::fitted_junctions() const {
   const Layout l = layout();
   std::vector<FittedJunction> out;
@@ -209,6 +219,10 @@ std::vector<std::string> Bjt::notes() const {
   if (cbe_ > 0) {
     std::snprintf(buf, sizeof buf, "transistor %s: base-emitter capacitance %.6g F (%s)", name().c_str(),
                   cbe_, card_.cje && cbe_ == *card_.cje * area_ ? "CJE" : ".options bjtcap");
+    out.push_back(buf);
+  }
+  if (cbc_ > 0) {
+    std::snprintf(buf, sizeof buf, "transistor %s: base-collector capacitance %.6g F (CJC)", name().c_str(), cbc_);
     out.push_back(buf);
   }
   return out;

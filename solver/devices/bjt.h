@@ -10,8 +10,11 @@
 // every branch reversed. alpha = beta / (1 + beta) < 1 is what keeps the LCS well posed (5.4.7):
 // the transfer sources make D non-symmetric, and with alpha < 1 a lone transistor's D is still a
 // P-matrix. A base–emitter capacitance (CJE on the card, or `.options bjtcap=` for every
-// transistor) is the book's physical regularisation, never a default. A junction whose two terminals are one node carries no current (v = 0, as the smooth
-// junction at zero bias) and is left out with its transfer source.
+// transistor) is the book's physical regularisation, never a default; a base–collector one (CJC)
+// is the card's too. Both are linear, at their zero-bias values: SPICE's depletion capacitances
+// shrink under reverse bias (VJE/MJE, VJC/MJC, not modelled), and the diffusion charges TF, TR
+// are not modelled. A junction whose two terminals are one node carries no current (v = 0, as
+// the smooth junction at zero bias) and is left out with its transfer source and capacitance.
 #pragma once
 
 #include "solver/devices/device.h"
@@ -44,13 +47,14 @@ class Bjt : public Device {
 
  private:
   // Local branch indices of the four primitives (-1: left out, its terminals are one node).
-  struct Layout { int de = -1, dc = -1, f = -1, r = -1, cbe = -1; };
+  struct Layout { int de = -1, dc = -1, f = -1, r = -1, cbe = -1, cbc = -1; };
   Layout layout() const;
   const std::string& node(char terminal) const;
 
   BjtModel card_;
   double area_ = 1;
   double cbe_ = 0;  // base–emitter capacitance: `.options bjtcap=`, else CJE * area, else none
+  double cbc_ = 0;  // base–collector capacitance: CJC * area, else none
   double alpha_f_ = 0, alpha_r_ = 0;
   DiodeModel card_e_, card_c_;
   ResolvedDiodeLaw law_e_, law_c_;

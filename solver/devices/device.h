@@ -104,6 +104,7 @@ struct NgspiceDeckContext {
   double ron_factor = 1.0;
   bool open = false;
   std::optional<double> initial_value;  // UIC start value of a capacitor or inductor
+  std::map<std::string, double> branch_initial;  // of a device's inner capacitors, by branch ("q1:cbe")
   std::optional<std::array<double, 4>> line_initial;  // a line's UIC start: v1, i1, v2, i2
   // A name unique in the deck (threshold sources, ammeters, their nodes).
   std::function<std::string(const std::string&)> fresh;

@@ -10,8 +10,12 @@
 
 namespace lcs {
 
-// Thermal voltage kT/q at ngspice's nominal 27 °C.
-constexpr double kThermalVoltage = 0.025864186;
+// Thermal voltage kT/q at ngspice's nominal 27 °C (300.15 K), with the constants ngspice 39 uses
+// (CODATA 2014: k = 1.38064852e-23 J/K, q = 1.6021766208e-19 C). Measured: a diode with IS = 1e-14
+// at 1 mA in ngspice 39 sits at 0.6551178957 V = 0.0258649170 ln(1 + 1e11). The SPICE3 constants
+// (1.3806226e-23, 1.6021918e-19: 0.025864186) put every junction 2.8e-5 of its voltage lower, 23 uV
+// at 0.8 V: in rca3040 v(13)'s offset from ngspice's operating point, 3.6 % of that node's range.
+constexpr double kThermalVoltage = 1.38064852e-23 * 300.15 / 1.6021766208e-19;
 
 struct SmoothJunction {
   double is = 1e-14;  // saturation current [A]

@@ -20,7 +20,7 @@ namespace lcs {
 namespace {
 
 // The NAND and one-bit adder subcircuits of fourbitadder.cir, with the transistor parameters
-// lcspice uses (RB and CJC are ignored there). Inputs: the deck's first three pulses.
+// lcspice used before it modelled CJC (RB is ignored; CJC left out). Inputs: the deck's first three pulses.
 const char* kTwoBitAdder = R"(two one-bit TTL adders
 .model dmod D
 .model qmod NPN(BF=75 CJE=1PF)
