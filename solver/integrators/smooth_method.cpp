@@ -27,6 +27,7 @@ namespace {
 // Steps IDA may take between two output times before it reports IDA_TOO_MUCH_WORK.
 constexpr long kMaxStepsPerOutput = 100000;
 constexpr long kMaxStalledSteps = 100;  // consecutive IDA steps that leave t where it was
+constexpr long kMaxRestartsPerOutput = 100;  // restart_after_failure's, before the failure stands
 
 // What IDA's callbacks see: the DAE, and the switch guards (GuardedMethod) as root functions
 // after the pairs'.
@@ -179,6 +180,7 @@ class SmoothMethod::IdaRun {
                const std::function<void(double, const Eigen::VectorXd&)>& on_step = {}) {
     long steps = 0;
     IDAGetNumSteps(mem_.get(), &steps);
+    restarts_since_output_ = 0;
     // IDA refuses a first step to a time within rounding of the start.
     if (steps == 0 && std::abs(tout - t0_) <= 4 * DBL_EPSILON * (std::abs(t0_) + std::abs(tout))) {
       t = tout;
@@ -262,16 +264,14 @@ class SmoothMethod::IdaRun {
     realtype tcur = 0;
     IDAGetCurrentTime(mem_.get(), &tcur);
     if (!(tcur > t0_)) return false;  // no step since the last start: starting again is the same
+    if (++restarts_since_output_ > kMaxRestartsPerOutput) return false;  // failing at every step
     check(IDAGetDky(mem_.get(), tcur, 0, y_.get()), tcur, "IDAGetDky");
-    ++restarts_;
     const double sampled = sampled_;
     start(tcur, tout);
     sampled_ = sampled;
     last_error_.clear();
     return true;
   }
-
-  long restarts() const { return restarts_; }
 
   // Adds the counters of the run since the last start (IDAReInit resets them).
   void add_stats(StepperStats& s) {
@@ -317,7 +317,7 @@ class SmoothMethod::IdaRun {
   double reported_ = -INFINITY;  // the last time IDA_ONE_STEP returned
   double sampled_ = -INFINITY;   // the last time on_step saw
   double sample_step_ = 0;       // history samples between steps: every multiple of it
-  long restarts_ = 0;            // restarts after a failed step (restart_after_failure)
+  long restarts_since_output_ = 0;  // restart_after_failure's within this advance()
   std::string last_error_;
 };
 
