@@ -55,7 +55,10 @@ bool all_finite(const SparseMatrixD& S) {
 void clear_structural_zeros_sparse(const SparseMatrixD& E, const SparseMatrixD& R, SparseMatrixD& X) {
   std::mt19937_64 rng(0x5eed);
   std::uniform_real_distribution<double> magnitude(1.0, 2.0);
-  auto draw = [&] { return (rng() & 1 ? 1.0 : -1.0) * magnitude(rng); };
+  auto draw = [&] {
+    const double sign = rng() & 1 ? 1.0 : -1.0;  // drawn first, as gcc and clang did (checked)
+    return sign * magnitude(rng);
+  };
   SparseMatrixD random = E, random_rhs = R;
   for (int k = 0; k < random.outerSize(); ++k)
     for (SparseMatrixD::InnerIterator it(random, k); it; ++it) it.valueRef() = draw();

@@ -14,7 +14,10 @@ void clear_structural_zeros(const Eigen::MatrixXd& E, const Eigen::MatrixXd& R,
   Eigen::MatrixXd random = Eigen::MatrixXd::Zero(n, n);
   for (Eigen::Index i = 0; i < n; ++i)
     for (Eigen::Index j = 0; j < n; ++j)
-      if (E(i, j) != 0) random(i, j) = (rng() & 1 ? 1.0 : -1.0) * magnitude(rng);
+      if (E(i, j) != 0) {
+        const double sign = rng() & 1 ? 1.0 : -1.0;  // drawn first, as gcc and clang did (checked)
+        random(i, j) = sign * magnitude(rng);
+      }
   Eigen::FullPivLU<Eigen::MatrixXd> lu(random);
   if (!lu.isInvertible()) return;  // structurally singular: E was not invertible either
   const Eigen::MatrixXd inverse = lu.inverse();
