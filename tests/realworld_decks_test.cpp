@@ -135,7 +135,7 @@ NgspiceResult ngspice_of(const fs::path& deck) {
 // With CJC (3 pF) the gates take nanoseconds and the carry ripples for tens of them: ngspice
 // itself is not at the binary sum 20 ns after the inputs settle (at 200 ns bit 2 is at -0.09 V
 // where the sum has it high; 1.2 V at 240 ns). Before CJC was modelled lcspice's gates switched
-// in picoseconds; it was at the sum there, and off ngspice's level in 343 of 1575 such bit-rows of
+// in picoseconds; it was at the sum there, and off ngspice's level in 199 of 1343 such bit-rows of
 // the first 400 ns (measured; 0 now). lcspice's edges lag ngspice's by up to about 5 ns (its CJC
 // is the zero-bias value, ngspice's shrinks under reverse bias): at a window of 5 ns 19 bit-rows of
 // the first 400 ns are caught mid-edge, at 10 ns none.
