@@ -61,9 +61,10 @@ const Deck kDecks[] = {
     // (it cycled: exit 3 at 6 ns / 7 ns before), so the refit's transient passes run to the end.
     // fourbitadder's 4th refit pass leaves a model whose operating point Lemke misses; the refit
     // then keeps the ranges of the last pass that ran, and the run reaches TSTOP. adder_bip's
-    // default run (four refit passes, not converged, then the final run: 17 min of CPU,
-    // measured 2026-11-27) is too long for the suite: RealWorldAdders below runs its transient
-    // on the default-fit cards and checks its sums.
+    // default run (with CJC: two refit passes, the second without an operating point Lemke
+    // finds, then the final run; 280 s of CPU, measured 2026-11-27) is too long for the suite:
+    // RealWorldAdders below runs its transient on the default-fit cards and compares its logic
+    // levels with ngspice's run of the deck.
     {"tests/general/fourbitadder.cir", 0, "lcspice: wrote 7 rows",
      true},
 };

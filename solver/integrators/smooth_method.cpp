@@ -27,7 +27,9 @@ namespace {
 // Steps IDA may take between two output times before it reports IDA_TOO_MUCH_WORK.
 constexpr long kMaxStepsPerOutput = 100000;
 constexpr long kMaxStalledSteps = 100;  // consecutive IDA steps that leave t where it was
-constexpr long kMaxRestartsPerOutput = 100;  // restart_after_failure's, before the failure stands
+// restart_after_failure's per advance() (to the next output time, or to a root before it),
+// before the failure stands.
+constexpr long kMaxRestartsPerOutput = 100;
 
 // What IDA's callbacks see: the DAE, and the switch guards (GuardedMethod) as root functions
 // after the pairs'.
