@@ -189,7 +189,8 @@ TEST(RealWorldAdders, TransientRunsToTheEndAtNgspicesLogicLevels) {
       const int column = csv.column("v(" + std::to_string(node) + ")");
       for (const std::vector<double>& row : csv.rows) {
         const double t = row[0];
-        double lo = std::min(at(t - window), at(t + window)), hi = std::max(at(t - window), at(t + window));
+        const double before = at(t - window), after = at(t + window);
+        double lo = std::min(before, after), hi = std::max(before, after);
         for (size_t k = std::lower_bound(tn.begin(), tn.end(), t - window) - tn.begin();
              k < tn.size() && tn[k] <= t + window; ++k)
           lo = std::min(lo, vn[k]), hi = std::max(hi, vn[k]);

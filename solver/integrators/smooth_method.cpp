@@ -224,14 +224,14 @@ class SmoothMethod::IdaRun {
         // sized by the states, would undersample them. So the history also gets IDA's
         // interpolant on the sample grid inside the step, in time order, then the step itself.
         if (sample_step_ > 0) {
-          // IDA interpolates inside its last step only: after a restart (restart_after_failure)
-          // the grid between the last sample and the restart's time is not sampled.
+          // IDA interpolates inside its last step only (a restart begins a new one).
           realtype hu = 0;
           IDAGetLastStep(mem_.get(), &hu);
-          for (double k = std::floor(std::max(sampled_, tret - hu) / sample_step_) + 1;; k += 1) {
+          const double from = std::max(sampled_, tret - hu);
+          for (double k = std::floor(from / sample_step_) + 1;; k += 1) {
             const double ts = k * sample_step_;
             if (ts >= tret) break;
-            if (ts <= sampled_ || ts < tret - hu) continue;
+            if (ts <= from) continue;
             check(IDAGetDky(mem_.get(), ts, 0, sample_.get()), ts, "IDAGetDky");
             on_step(ts, Eigen::Map<Eigen::VectorXd>(N_VGetArrayPointer(sample_.get()), dae_.size()));
           }
@@ -268,9 +268,7 @@ class SmoothMethod::IdaRun {
     if (!(tcur > t0_)) return false;  // no step since the last start: starting again is the same
     if (++restarts_since_output_ > kMaxRestartsPerOutput) return false;  // failing at every step
     check(IDAGetDky(mem_.get(), tcur, 0, y_.get()), tcur, "IDAGetDky");
-    const double sampled = sampled_;
     start(tcur, tout);
-    sampled_ = sampled;
     last_error_.clear();
     return true;
   }
