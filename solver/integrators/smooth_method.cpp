@@ -93,9 +93,12 @@ void error_fn(int, const char*, const char* function, char* msg, void* user_data
 // One IDA integrator for the DAE, restarted at breakpoints.
 class SmoothMethod::IdaRun {
  public:
-  explicit IdaRun(ShockleyDae& dae, int guard_count = 0,
-                  std::function<void(double, const Eigen::VectorXd&, double*)> guards = {})
+  // IDA's counters are added to `stats` at each re-initialisation (which resets them) and at
+  // flush_stats().
+  IdaRun(ShockleyDae& dae, StepperStats& stats, int guard_count = 0,
+         std::function<void(double, const Eigen::VectorXd&, double*)> guards = {})
       : dae_(dae),
+        stats_(stats),
         ctx_(sundials::make_context()),
         y_(sundials::checked(N_VNew_Serial(dae.size(), ctx_.get()))),
         yp_(sundials::checked(N_VNew_Serial(dae.size(), ctx_.get()))),
@@ -149,7 +152,9 @@ class SmoothMethod::IdaRun {
       }
       initialised_ = true;
     } else {
+      flush_stats();
       check(IDAReInit(mem, t, y_.get(), yp_.get()), t, "IDAReInit");
+      counted_ = {};  // IDA's counters restart at 0 (its Jacobian count at IDACalcIC below)
     }
     t0_ = t;
     reported_ = t;
@@ -268,26 +273,30 @@ class SmoothMethod::IdaRun {
     if (!(tcur > t0_)) return false;  // no step since the last start: starting again is the same
     if (++restarts_since_output_ > kMaxRestartsPerOutput) return false;  // failing at every step
     check(IDAGetDky(mem_.get(), tcur, 0, y_.get()), tcur, "IDAGetDky");
+    ++stats_.restarts;
     start(tcur, tout);
     last_error_.clear();
     return true;
   }
 
-  // Adds the counters of the run since the last start (IDAReInit resets them).
-  void add_stats(StepperStats& s) {
+  // Adds to the run's stats IDA's counters not yet added (IDAReInit resets them).
+  void flush_stats() {
     void* mem = mem_.get();
-    long steps = 0, res = 0, jac = 0, nni = 0, netf = 0, ncfn = 0;
-    IDAGetNumSteps(mem, &steps);
-    IDAGetNumResEvals(mem, &res);
-    IDAGetNumJacEvals(mem, &jac);
-    IDAGetNumNonlinSolvIters(mem, &nni);
+    StepperStats now;
+    long netf = 0, ncfn = 0;
+    IDAGetNumSteps(mem, &now.steps);
+    IDAGetNumResEvals(mem, &now.residual_evals);
+    IDAGetNumJacEvals(mem, &now.jacobian_evals);
+    IDAGetNumNonlinSolvIters(mem, &now.newton_iterations);
     IDAGetNumErrTestFails(mem, &netf);
     IDAGetNumNonlinSolvConvFails(mem, &ncfn);
-    s.steps += steps;
-    s.residual_evals += res;
-    s.jacobian_evals += jac;
-    s.newton_iterations += nni;
-    s.rejected_steps += netf + ncfn;
+    now.rejected_steps = netf + ncfn;
+    stats_.steps += now.steps - counted_.steps;
+    stats_.residual_evals += now.residual_evals - counted_.residual_evals;
+    stats_.jacobian_evals += now.jacobian_evals - counted_.jacobian_evals;
+    stats_.newton_iterations += now.newton_iterations - counted_.newton_iterations;
+    stats_.rejected_steps += now.rejected_steps - counted_.rejected_steps;
+    counted_ = now;
   }
 
  private:
@@ -304,6 +313,8 @@ class SmoothMethod::IdaRun {
   }
 
   ShockleyDae& dae_;
+  StepperStats& stats_;
+  StepperStats counted_;  // IDA's counters since its last (re)initialisation, already in stats_
   IdaUserData user_;
   // Declared in order of creation, so destroyed in reverse: IDA first, the context last.
   sundials::Context ctx_;
@@ -533,7 +544,7 @@ std::optional<GuardCrossing> SmoothMethod::RunSegment(const SegmentStart& start,
     return std::nullopt;
   }
 
-  IdaRun ida(dae_, guard_count_, [this](double t, const Eigen::VectorXd& yy, double* g) {
+  IdaRun ida(dae_, stats_, guard_count_, [this](double t, const Eigen::VectorXd& yy, double* g) {
     const Eigen::VectorXd v = guard_values(t, yy);
     std::copy(v.data(), v.data() + v.size(), g);
   });
@@ -551,7 +562,7 @@ std::optional<GuardCrossing> SmoothMethod::RunSegment(const SegmentStart& start,
       double t = 0;
       if (ida.advance(target, t, on_step)) {
         if (std::vector<int> crossed = ida.guards_crossed(); !crossed.empty()) {
-          ida.add_stats(stats_);
+          ida.flush_stats();
           return crossing(t, ida.y(), std::move(crossed));
         }
         ++stats_.events;
@@ -564,7 +575,6 @@ std::optional<GuardCrossing> SmoothMethod::RunSegment(const SegmentStart& start,
     }
     if (k + 1 < stops.size()) {
       // Restart: a source may jump at b; x is continuous, s follows the new source values.
-      ida.add_stats(stats_);
       dae_.set_segment_end(stops[k + 1]);
       y = ida.y();
       const Eigen::VectorXd x = y.head(n), s_before = y.tail(m);
@@ -574,7 +584,7 @@ std::optional<GuardCrossing> SmoothMethod::RunSegment(const SegmentStart& start,
       y.tail(m) = sb;
       // A source jump that puts a switch's control past its threshold: a crossing at b.
       if (std::vector<int> crossed = guards_below(b, y); !crossed.empty()) {
-        ida.add_stats(stats_);
+        ida.flush_stats();
         return crossing(b, y, std::move(crossed));
       }
       if (switched(s_before, sb)) {  // a source jump switched a diode: an event at b itself
@@ -592,7 +602,7 @@ std::optional<GuardCrossing> SmoothMethod::RunSegment(const SegmentStart& start,
       ++out;
     }
   }
-  ida.add_stats(stats_);
+  ida.flush_stats();
   return std::nullopt;
 }
 

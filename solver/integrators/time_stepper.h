@@ -22,6 +22,7 @@ struct StepperStats {
   long mode_switches = 0;   // active-set changes (event)
   int modes = 0;            // distinct modes visited (event)
   long rejected_steps = 0;  // error-test or convergence failures (smooth)
+  long restarts = 0;        // fresh starts after IDA failed a step repeatedly (smooth)
   long residual_evals = 0;  // DAE residual evaluations (smooth)
   long jacobian_evals = 0;  // Jacobian evaluations (smooth)
   long newton_iterations = 0;

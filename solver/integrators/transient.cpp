@@ -100,6 +100,10 @@ std::string TransientSummary::BriefReport() const {
                   stepper.residual_evals, stepper.jacobian_evals, stepper.newton_iterations,
                   stepper.rejected_steps);
     out += buf;
+    if (stepper.restarts > 0) {
+      std::snprintf(buf, sizeof buf, ", restarts after failed steps %ld", stepper.restarts);
+      out += buf;
+    }
   }
   std::snprintf(buf, sizeof buf,
                 "\nCPU time: setup %.6f s, steps with output %.6f s (%.3f us/step including the "
