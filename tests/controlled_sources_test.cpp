@@ -152,6 +152,13 @@ TEST(ControlledSources, TopologyErrorsNameTheElements) {
        "(l1 and g1)"},
       {"F series I\nV1 a 0 1\nR1 a 0 1k\nF1 b 0 v1 2\nI1 b 0 1m\n.tran 1u 1m\n.end\n",
        "error: current sources form a cutset: "},
+      // A transistor's CJE and CJC with a controlled source across collector and emitter: the
+      // loop is named by branch and the advice fits a capacitor inside a device.
+      {"E across CE\nvin in 0 PULSE(0 5 10n 1n 1n 40n 100n)\ne1 c 0 in 0 1\nrb in b 10k\nq1 c b 0 qn\n"
+       ".model qn NPN(BF=50 VON=0.7 RON=10 CJE=1p CJC=5p)\n.tran 1n 100n\n.end\n",
+       "error: capacitor q1:cbc is in a loop of capacitors and voltage sources with a controlled voltage source "
+       "(q1:cbc, e1 and q1:cbe): its voltage would follow the controlled source, not be a state; add a resistance in "
+       "series with a terminal of q1 in that loop, or take the capacitance out of q1's model"},
   };
   int k = 0;
   for (const TopologyCase& c : cases) {

@@ -364,7 +364,7 @@ TEST(ValidationTranslation, JumpsGroundPairsAndInitialConditionsAgree) {
   std::ofstream(dir / "empty.cir") << "title only\n.tran 1u 10u\n.end\n";
   Result empty = run_lcspice("validate '" + (dir / "empty.cir").string() + "'", dir);
   EXPECT_EQ(empty.code, 2);
-  EXPECT_EQ(empty.err_line(0), (dir / "empty.cir").string() + ": error: nothing to compare: the circuit has no probes");
+  EXPECT_EQ(empty.err_line(0), (dir / "empty.cir").string() + ": error: the netlist has no elements: nothing to simulate or analyze");
   Result timeout = run_lcspice("validate '" + (dir / "ic.cir").string() + "' --timeout 0", dir);
   EXPECT_EQ(timeout.code, 1);
   EXPECT_EQ(timeout.err_line(0), "error: --timeout must be a positive number of seconds");
@@ -500,6 +500,38 @@ TEST(ValidationTranslation, CollectorCapacitanceIsInNgspicesDeck) {
   const Result r = run_lcspice("validate '" + f.string() + "'", dir);
   EXPECT_EQ(r.code, 0) << r.out << r.err;
   EXPECT_NE(r.out.find("PASS: every probe within 0.02 of its range"), std::string::npos) << r.out;
+}
+
+// Under a start the deck gives (.ic with UIC), lcspice's start is ngspice's: each of the
+// transistor's two inner capacitors gets its own IC=, its voltage in the card's orientation
+// (NPN: base to emitter, base to collector; PNP: emitter to base, collector to base). Here
+// v(b) = 0.3, v(c) = 2 (PNP: negated), so v(b,e) = 0.3 and v(b,c) = -1.7 for both.
+TEST(ValidationTranslation, InnerCapacitorsEachGetTheirStartUnderUic) {
+  const fs::path dir = scratch_dir("validate_inner_ic");
+  const std::string npn = "common-emitter switch from a given start\nvcc vcc 0 5\nvin in 0 PULSE(0 5 100n 10n 10n 400n 1u)\n"
+                          "rb in b 10k\nrc vcc c 1k\nq1 c b 0 qn\n"
+                          ".model qn NPN(BF=50 VON=0.7 RON=10 CJE=1p CJC=5p)\n"
+                          ".ic v(b)=0.3 v(c)=2\n.tran 1n 1u uic\n.end\n";
+  const std::string pnp = "common-emitter switch from a given start\nvcc vcc 0 -5\nvin in 0 PULSE(0 -5 100n 10n 10n 400n 1u)\n"
+                          "rb in b 10k\nrc vcc c 1k\nq1 c b 0 qn\n"
+                          ".model qn PNP(BF=50 VON=0.7 RON=10 CJE=1p CJC=5p)\n"
+                          ".ic v(b)=-0.3 v(c)=-2\n.tran 1n 1u uic\n.end\n";
+  struct Case {
+    std::string name, text, cbe, cbc;
+  };
+  for (const Case& c : {Case{"npn", npn, "\nc_q1_be lcs_q1_b lcs_q1_e 1e-12 IC=0.3\n", "\nc_q1_bc lcs_q1_b lcs_q1_c 5e-12 IC=-1.7\n"},
+                        Case{"pnp", pnp, "\nc_q1_be lcs_q1_e lcs_q1_b 1e-12 IC=0.3\n", "\nc_q1_bc lcs_q1_c lcs_q1_b 5e-12 IC=-1.7\n"}}) {
+    SCOPED_TRACE(c.name);
+    const fs::path f = dir / (c.name + ".cir");
+    std::ofstream(f) << c.text;
+    const Result deck = run_lcspice("validate --print-deck '" + f.string() + "'", dir);
+    ASSERT_EQ(deck.code, 0) << deck.err;
+    EXPECT_NE(deck.out.find(c.cbe), std::string::npos) << deck.out;
+    EXPECT_NE(deck.out.find(c.cbc), std::string::npos) << deck.out;
+    const Result r = run_lcspice("validate '" + f.string() + "' --probe 'v(b),v(c)'", dir);
+    EXPECT_EQ(r.code, 0) << r.out << r.err;
+    EXPECT_NE(r.out.find("PASS: every probe within 0.02 of its range"), std::string::npos) << r.out;
+  }
 }
 
 }  // namespace

@@ -1,5 +1,7 @@
 #include "solver/devices/bjt.h"
 
+#include <tuple>
+
 namespace lcs {
 
 namespace {
@@ -205,7 +207,16 @@ std::vector<std::string> Bjt::notes() const {
   std::snprintf(buf, sizeof buf, "transistor %s: %s, alphaF = %.6g, alphaR = %.6g", name().c_str(),
                 card_.pnp ? "PNP" : "NPN", alpha_f_, alpha_r_);
   out.push_back(buf);
-  for (auto [tag, law] : {std::pair{"B-E", &law_e_}, std::pair{"B-C", &law_c_}}) {
+  // A junction whose terminals share a node carries nothing: it and its capacitance are left
+  // out of the model (layout()), and so out of these notes.
+  const Layout l = layout();
+  for (auto [tag, law, present] : {std::tuple{"B-E", &law_e_, l.de >= 0}, std::tuple{"B-C", &law_c_, l.dc >= 0}}) {
+    if (!present) {
+      std::snprintf(buf, sizeof buf, "transistor %s: %s junction left out (its terminals are one node, %s)",
+                    name().c_str(), tag, node('b').c_str());
+      out.push_back(buf);
+      continue;
+    }
     if (!law->fitted) continue;
     std::snprintf(buf, sizeof buf,
                   "transistor %s: %s junction fitted to its Shockley curve between %.9g A and %.9g A (%s): "
@@ -216,12 +227,12 @@ std::vector<std::string> Bjt::notes() const {
   }
   for (const std::string& p : card_.ignored)
     out.push_back("transistor " + name() + ": model parameter " + p + " is ignored by the ideal model");
-  if (cbe_ > 0) {
+  if (l.cbe >= 0) {
     std::snprintf(buf, sizeof buf, "transistor %s: base-emitter capacitance %.6g F (%s)", name().c_str(),
                   cbe_, card_.cje && cbe_ == *card_.cje * area_ ? "CJE" : ".options bjtcap");
     out.push_back(buf);
   }
-  if (cbc_ > 0) {
+  if (l.cbc >= 0) {
     std::snprintf(buf, sizeof buf, "transistor %s: base-collector capacitance %.6g F (CJC)", name().c_str(), cbc_);
     out.push_back(buf);
   }

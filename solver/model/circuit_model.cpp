@@ -134,25 +134,40 @@ std::vector<StateInfo> magnetising_states(const std::vector<StateInfo>& states,
 // derivative of them; the loop equations of the normal tree give no state for that.
 TopologyError storage_loop_with_controlled_source(const Netlist& netlist, const CircuitGraph& g,
                                                   const SpanningTree& t, int b, bool capacitor) {
-  std::vector<int> elements{g.branches[b].element};
+  std::vector<int> branches{b};
   if (capacitor) {
     const std::vector<LoopTerm>& loop = t.loops[t.position[b]];
-    for (size_t j = 1; j < loop.size(); ++j) elements.push_back(g.branches[loop[j].branch].element);
+    for (size_t j = 1; j < loop.size(); ++j) branches.push_back(loop[j].branch);
   } else {
     const int i = t.position[b];
     for (size_t j = 0; j < t.links.size(); ++j)
-      if (t.B.coeff(i, j) != 0) elements.push_back(g.branches[t.links[j]].element);
+      if (t.B.coeff(i, j) != 0) branches.push_back(t.links[j]);
   }
-  std::sort(elements.begin() + 1, elements.end());
-  elements.erase(std::unique(elements.begin() + 1, elements.end()), elements.end());
+  std::sort(branches.begin() + 1, branches.end());
+  branches.erase(std::unique(branches.begin() + 1, branches.end()), branches.end());
+  // Named by branch: a transistor's inner capacitors are two branches of one element (q1:cbe,
+  // q1:cbc). The notes point at each element once.
   std::vector<std::string> names;
-  for (int e : elements) names.push_back(netlist.elements[e].name);
+  std::vector<int> elements;
+  for (int k : branches) {
+    names.push_back(g.branches[k].name);
+    if (std::find(elements.begin(), elements.end(), g.branches[k].element) == elements.end())
+      elements.push_back(g.branches[k].element);
+  }
   const std::string what = capacitor ? "capacitor " : "inductor ";
   const std::string where = capacitor ? " is in a loop of capacitors and voltage sources with a controlled voltage source ("
                                       : " is in a cutset of inductors and current sources with a controlled current source (";
+  std::string remedy = capacitor ? "resistance in series with it" : "resistance in parallel with it";
+  const std::string& own = g.branches[b].name;
+  if (const size_t colon = own.find(':'); colon != std::string::npos) {
+    // Inside a device (a transistor's CJE or CJC): its terminals are where a resistance can go.
+    const std::string device = netlist.elements[g.branches[b].element].name;
+    remedy = "resistance in series with a terminal of " + device + " in that loop, or take the capacitance out of " +
+             device + "'s model";
+  }
   return TopologyError(what + names[0] + where + join_names(names) + "): its " +
                            (capacitor ? "voltage" : "current") + " would follow the controlled source, not be a state; add a " +
-                           (capacitor ? "resistance in series with it" : "resistance in parallel with it"),
+                           remedy,
                        elements);
 }
 
