@@ -16,6 +16,9 @@ Netlist load_netlist(const std::string& path, bool require_transient) {
     options.require_transient = require_transient;
     Netlist netlist = parse_netlist_file(path, options);
     for (const std::string& w : netlist.warnings) std::cerr << w << "\n";
+    // ngspice refuses an empty circuit too: an analysis or a run of nothing would pass for a result.
+    if (netlist.elements.empty())
+      throw CliError(kExitNetlist, path + ": error: the netlist has no elements: nothing to simulate or analyze");
     return netlist;
   } catch (const FileError& e) {
     throw CliError(kExitUsage, std::string("error: ") + e.what());

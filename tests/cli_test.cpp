@@ -196,6 +196,25 @@ TEST(BadNetlists, BadOptionValueIsALocatedErrorForEveryCommand) {
   EXPECT_EQ(trap.err_line(0).rfind("method theta: 2 steps, 3 rows", 0), 0u) << trap.err;
 }
 
+// A netlist with no elements (an empty file, a title and .end, or a .tran and nothing to run it
+// on) is refused by every command with exit 2; analyze used to print an analysis of nothing
+// and exit 0, and run wrote rows with only a time column.
+TEST(BadNetlists, NoElementsIsRefusedByEveryCommand) {
+  const fs::path dir = scratch_dir("no_elements");
+  std::ofstream(dir / "empty.cir") << "";
+  std::ofstream(dir / "title.cir") << "title only\n.tran 1n 10n\n.end\n";
+  for (const std::string name : {"empty.cir", "title.cir"}) {
+    const std::string deck = (dir / name).string();
+    for (const std::string command : {"run", "op", "analyze", "validate"}) {
+      if (command == "validate" && name == "empty.cir") continue;  // "no .tran card: nothing to validate"
+      const Result r = run_lcspice(command + " '" + deck + "'" + (command == "run" ? " --tstop 10n --step 1n" : ""), dir);
+      EXPECT_EQ(r.code, 2) << command << " " << name << "\n" << r.err;
+      EXPECT_EQ(r.err_line(0), deck + ": error: the netlist has no elements: nothing to simulate or analyze")
+          << command << " " << name;
+    }
+  }
+}
+
 // ---------------------------------------------------------------------------------------------
 // CSV (SPEC §3)
 
