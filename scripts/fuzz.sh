@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer targets (tests/fuzz) with clang, ASan and UBSan in build-asan (the tree
 # the sanitized suite ran in: scripts/instrumented_tree.sh), and runs each for SECONDS (default
-# 60) on a seed corpus of circuits/, tests/bad_netlists/ and, when present, ../shared/realworld/.
+# 60) on a seed corpus of circuits/, tests/bad_netlists/, tests/fuzz/seeds/ (circuits large
+# enough for the sparse and descriptor step paths) and, when present, ../shared/realworld/.
 # Fails on any crash, hang, sanitizer report or undocumented exception. A hang is 25 s on one
 # input: this -O1 tree with Eigen's assertions on runs about a third as fast as the former -O2
 # fuzz tree, against whose 10 s transient_fuzz.cpp's input filters were set.
@@ -16,12 +17,19 @@ seeds=build-fuzz/seeds
 rm -rf "$seeds" && mkdir -p "$seeds/op" "$seeds/tran"
 shopt -s nullglob
 n=0
-for f in circuits/*.cir circuits/*/*.cir tests/bad_netlists/*.cir $(find ../shared/realworld -name "*.cir" -o -name "*.sp" 2>/dev/null); do
+for f in circuits/*.cir circuits/*/*.cir tests/bad_netlists/*.cir tests/fuzz/seeds/*.cir $(find ../shared/realworld -name "*.cir" -o -name "*.sp" 2>/dev/null); do
   [ "$(stat -c %s "$f")" -le 4096 ] || continue
   n=$((n + 1))
   cp "$f" "$seeds/op/$n.cir"
   # transient_fuzz reads the method from the first byte.
   { printf "\\x$(printf %02x $((n % 6)))"; cat "$f"; } > "$seeds/tran/$n.cir"
+done
+# The large seeds with every method byte (the adaptive methods skip them: kMaxElementsAdaptive).
+for f in tests/fuzz/seeds/*.cir; do
+  for m in 0 1 2 3 4 5; do
+    n=$((n + 1))
+    { printf "\\x0$m"; cat "$f"; } > "$seeds/tran/$n.cir"
+  done
 done
 # Inputs that once failed (first byte: the method), replayed by both targets.
 for f in tests/fuzz/regressions/*; do

@@ -23,6 +23,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   lcs::fuzz::run_expecting_documented_errors([&] {
     lcs::Netlist netlist = lcs::parse_netlist_string(text, "/nonexistent-fuzz-dir/deck.cir");
     if (netlist.elements.size() > lcs::fuzz::kMaxElements || !netlist.tran) return;
+    if (entry.adaptive() && netlist.elements.size() > lcs::fuzz::kMaxElementsAdaptive) return;
     // The event and smooth methods stop at every source corner: a PULSE train of more periods
     // than this is work in proportion to the deck (1e7 periods: minutes), not a hang to find.
     for (const lcs::Element& e : netlist.elements) {
