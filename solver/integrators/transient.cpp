@@ -59,6 +59,11 @@ std::string TransientSummary::BriefReport() const {
                   stepper.lcp.solves, hit_rate, stepper.lcp.lemke_calls, stepper.lcp.lemke_pivots,
                   stepper.factorisations);
     out += buf;
+    if (stepper.lcp.pivoted > 0) {  // warm hits missed, answered from the last basis (LcpWarmSolver)
+      std::snprintf(buf, sizeof buf, ", %ld pivoted from the last basis (%ld pivots)", stepper.lcp.pivoted,
+                    stepper.lcp.pivoted_pivots);
+      out += buf;
+    }
     if (stepper.lcp.lemke_restarts > 0) {  // rounding broke a path (solve_lemke)
       std::snprintf(buf, sizeof buf, ", %ld Lemke paths restarted on a shifted q", stepper.lcp.lemke_restarts);
       out += buf;

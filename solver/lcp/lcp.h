@@ -91,9 +91,13 @@ struct LcpWarmStats {
   long lemke_pivots = 0;
   long polished = 0;           // Lemke's numerical failures repaired by principal pivoting
   long lemke_restarts = 0;     // Lemke paths restarted on a shifted q (see solve_lemke)
+  long pivoted = 0;            // answered by parametric pivoting from the last basis (LcpWarmSolver)
+  long pivoted_pivots = 0;
 
   LcpWarmStats& operator+=(const LcpWarmStats& o) {
     solves += o.solves;
+    pivoted += o.pivoted;
+    pivoted_pivots += o.pivoted_pivots;
     polished += o.polished;
     lemke_restarts += o.lemke_restarts;
     warm_hits += o.warm_hits;
@@ -141,6 +145,7 @@ class LcpWarmSolver {
 
  private:
   const LcpSolution& solve_once(const Eigen::VectorXd& q);
+  bool solve_on_active_set(const Eigen::VectorXd& q);
   void polish_by_principal_pivoting(const Eigen::VectorXd& q);
   bool several_possible_ = false, several_seen_ = false, preferred_ = false;
   Multiplicity multiplicity_ = Multiplicity::Unknown;
@@ -152,6 +157,10 @@ class LcpWarmSolver {
   LcpWarmStats stats_;
   LcpSolution last_;
   std::string active_;         // the last active set: active_[i] = 1 for i in J (any n)
+  // The Lemke engine's basis, when it is the last answer's (else empty), and the last q it is
+  // feasible for: where they hold, a step the warm hit misses pivots from there.
+  std::string engine_basis_;
+  Eigen::VectorXd engine_q_;
   std::shared_ptr<Impl> impl_; // factorisation cache
 };
 

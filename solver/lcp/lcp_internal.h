@@ -52,6 +52,17 @@ class LemkeEngine {
   // The final basis's basic z variables: set[i] = 1 for z_i basic (any n).
   void basic_z(std::string& set) const;
 
+  // Parametric principal pivoting from the current complementary basis (warm_solver.cpp): that
+  // basis must be feasible for LCP(from_q, M); the path q(s) = q + s (from_q - q) is followed
+  // from s = 1 to s = 0 (Murty, Linear Complementarity, ch. 5; Lemke's scheme with covering
+  // vector from_q - q started from a solved basis), one principal pivot where a basic variable
+  // reaches 0. False, leaving the basis unusable, where the path folds back (the pivot's sign:
+  // where a transistor circuit's branch ends, a regenerative switching), at a tie, past
+  // max_pivots, or when the answer misses feas_tol: the caller then runs solve(). Solved: out
+  // as solve() fills it (no polish), and the basis is the new one.
+  bool solve_from_basis(const Eigen::MatrixXd& M, const Eigen::VectorXd& q, const Eigen::VectorXd& from_q,
+                        const LemkeOptions& options, int max_pivots, LcpSolution& out);
+
  private:
   void pivot(int row, int entering);
   void entering_column(int var);
@@ -69,6 +80,7 @@ class LemkeEngine {
   Eigen::VectorXd b_;           // current basic values Binv * qt
   Eigen::VectorXd a_;           // entering column Binv * column(var)
   Eigen::VectorXd qt_, y_, y2_, v_;
+  Eigen::VectorXd dq_, bd_;     // solve_from_basis: from_q - q normalised, and Binv * dq_
   Eigen::RowVectorXd prow_;     // pivot row scratch
   std::vector<int> basis_;      // variable in each row: w_i = i, z_i = n + i, s = 2n
   std::vector<int> ray_;        // at a ray termination: the z_i growing along the ray

@@ -85,6 +85,8 @@ void LemkeEngine::set_matrix(const Eigen::MatrixXd& M) {
   y_.resize(n_);
   y2_.resize(n_);
   v_.resize(n_);
+  dq_.resize(n_);
+  bd_.resize(n_);
   prow_.resize(n_);
   basis_.assign(n_, 0);
   keep_.reserve(n_);
@@ -355,6 +357,66 @@ void LemkeEngine::solve_path(const Eigen::MatrixXd& M, const Eigen::VectorXd& q,
   out.ray.clear();
   if (status == LcpStatus::RayTermination) out.ray = ray_;
   finish(M, q, qn, options, status == LcpStatus::Solved, out);
+}
+
+bool LemkeEngine::solve_from_basis(const Eigen::MatrixXd& M, const Eigen::VectorXd& q,
+                                   const Eigen::VectorXd& from_q, const LemkeOptions& options, int max_pivots,
+                                   LcpSolution& out) {
+  check_square(M, q, "solve_from_basis");
+  if (M.rows() != n_ || from_q.size() != n_ || n_ == 0) return false;
+  for (int i = 0; i < n_; ++i)
+    if (basis_[i] == 2 * n_) return false;  // the artificial variable is basic: no solved basis
+  const double qn = normalise_q(eq_, q, qt_);
+  dq_ = eq_.row.cwiseProduct(from_q) / qn - qt_;
+  int pivots = 0;
+  double s_now = 1.0;
+  const int refactor_every = std::max(64, n_);
+  for (;;) {
+    // Basic values along the path: y_B(s) = b + s bd, feasible at s_now.
+    b_.noalias() = Binv_ * qt_;
+    bd_.noalias() = Binv_ * dq_;
+    const double scale = std::max(1.0, b_.cwiseAbs().maxCoeff() + bd_.cwiseAbs().maxCoeff());
+    int r = -1;
+    double s_block = 0.0;
+    auto blocks_at = [&](int i) {  // where y_i reaches 0 as s falls; -1 if it stays >= 0 to s = 0
+      return bd_(i) > kTieTol * scale && b_(i) < 0.0 ? -b_(i) / bd_(i) : -1.0;
+    };
+    for (int i = 0; i < n_; ++i)
+      if (const double si = blocks_at(i); si > s_block) s_block = si, r = i;
+    bool tie = false;
+    for (int i = 0; i < n_ && r >= 0 && !tie; ++i)
+      tie = i != r && std::abs(blocks_at(i) - s_block) <= 1e-9 * s_block;
+    if (r < 0) break;  // feasible down to s = 0
+    if (tie || s_block > s_now * (1 + 1e-9) + 1e-12 || pivots >= max_pivots) return false;
+    s_now = s_block;
+    const int leaving = basis_[r];
+    const int entering = leaving < n_ ? leaving + n_ : leaving - n_;
+    entering_column(entering);
+    // The entering variable grows from 0 as s falls below s_now only if a_r < 0 (row r reads
+    // y_r = b_r + s bd_r - a_r x_e = 0); otherwise the path turns back here.
+    const double amax = std::max(1.0, a_.cwiseAbs().maxCoeff());
+    if (!(a_(r) < -options.pivot_tol * amax)) return false;
+    pivot(r, entering);
+    ++pivots;
+    if (++since_refactor_ >= refactor_every) refactor();
+  }
+  y_.setZero();
+  for (int i = 0; i < n_; ++i)
+    if (basis_[i] >= n_ && basis_[i] < 2 * n_) y_(basis_[i] - n_) = std::max(0.0, b_(i));
+  const double accept = options.feas_tol * std::max(1.0, y_.cwiseAbs().maxCoeff());
+  if (!(scaled_residual(eq_.S, qt_, y_, v_) <= accept)) return false;
+  out.status = LcpStatus::Solved;
+  out.pivots = pivots;
+  out.restarts = 0;
+  out.ray.clear();
+  out.basic_z.clear();
+  for (int i = 0; i < n_; ++i)
+    if (basis_[i] >= n_ && basis_[i] < 2 * n_) out.basic_z.push_back(basis_[i] - n_);
+  std::sort(out.basic_z.begin(), out.basic_z.end());
+  out.z = eq_.col.cwiseProduct(y_) * qn;
+  out.w = q;
+  out.w.noalias() += M * out.z;
+  return true;
 }
 
 }  // namespace lcp_detail

@@ -30,6 +30,9 @@ constexpr std::size_t kMaxModes = 4096;  // cache cap; cleared when exceeded
 // 64 modes of 1000 pairs, or every mode of a small circuit.
 constexpr std::size_t kWarmCacheBytes = std::size_t{512} << 20;
 constexpr double kMinRcond = 1e-13;      // S_JJ treated as singular below (then Lemke)
+// From this many pairs a missed warm hit pivots from the last basis before Lemke (below, the
+// multiplicity watch enumerates and Lemke's own pivots are few).
+constexpr int kMinPivotedPairs = 32;
 }  // namespace
 
 struct LcpWarmSolver::Impl {
@@ -88,6 +91,7 @@ LcpWarmSolver::LcpWarmSolver(Eigen::MatrixXd M, LemkeOptions options)
   last_.z = Eigen::VectorXd::Zero(M_.rows());
   last_.w = Eigen::VectorXd::Zero(M_.rows());
   active_.assign(M_.rows(), 0);
+  engine_q_ = Eigen::VectorXd::Zero(M_.rows());
 }
 
 void LcpWarmSolver::watch_multiplicity() {
@@ -185,66 +189,96 @@ void LcpWarmSolver::polish_by_principal_pivoting(const Eigen::VectorXd& q) {
   ++stats_.polished;
 }
 
+// The active set active_ (one cached LU of S_JJ): y_J from it, accepted when y_J >= -tol and
+// w >= -tol off J (see the file's header). Fills last_ when it is accepted.
+bool LcpWarmSolver::solve_on_active_set(const Eigen::VectorXd& q) {
+  const int n = static_cast<int>(M_.rows());
+  Impl::Mode& m = impl_->mode(active_, n);
+  if (!m.usable) return false;
+  const lcp_detail::Equilibration& eq = impl_->engine.equilibration();
+  double qn = 0.0;
+  for (int i = 0; i < n; ++i) qn = std::max(qn, std::abs(eq.row(i) * q(i)));
+  if (!(qn > 0)) qn = 1.0;
+  const int k = static_cast<int>(m.J.size());
+  double tol = options_.feas_tol;
+  if (k > 0) {
+    for (int a = 0; a < k; ++a) m.rhs(a) = -eq.row(m.J[a]) * q(m.J[a]) / qn;
+    m.y.noalias() = m.lu.solve(m.rhs);
+    double ymax = 0.0;
+    for (int a = 0; a < k; ++a) ymax = std::max(ymax, std::abs(m.y(a)));
+    tol *= std::max(1.0, ymax);
+    for (int a = 0; a < k; ++a)
+      if (!(m.y(a) >= -tol)) return false;  // false for NaN too
+  }
+  last_.z.setZero();
+  last_.w = q;
+  for (int a = 0; a < k; ++a) {
+    const int j = m.J[a];
+    const double zj = m.y(a) > 0.0 ? eq.col(j) * m.y(a) * qn : 0.0;
+    last_.z(j) = zj;
+    if (zj != 0.0) last_.w += M_.col(j) * zj;
+  }
+  for (int i : m.rest)
+    if (!(eq.row(i) * last_.w(i) / qn >= -tol)) return false;
+  last_.status = LcpStatus::Solved;
+  last_.pivots = 0;
+  return true;
+}
+
 const LcpSolution& LcpWarmSolver::solve_once(const Eigen::VectorXd& q) {
   const int n = static_cast<int>(M_.rows());
   lcp_detail::check_square(M_, q, "LcpWarmSolver::solve");
   ++stats_.solves;
 
-  {
-    Impl::Mode& m = impl_->mode(active_, n);
-    if (m.usable) {
-      const lcp_detail::Equilibration& eq = impl_->engine.equilibration();
-      double qn = 0.0;
-      for (int i = 0; i < n; ++i) qn = std::max(qn, std::abs(eq.row(i) * q(i)));
-      if (!(qn > 0)) qn = 1.0;
-      const int k = static_cast<int>(m.J.size());
-      bool ok = true;
-      double tol = options_.feas_tol;
-      if (k > 0) {
-        for (int a = 0; a < k; ++a) m.rhs(a) = -eq.row(m.J[a]) * q(m.J[a]) / qn;
-        m.y.noalias() = m.lu.solve(m.rhs);
-        double ymax = 0.0;
-        for (int a = 0; a < k; ++a) ymax = std::max(ymax, std::abs(m.y(a)));
-        tol *= std::max(1.0, ymax);
-        for (int a = 0; a < k && ok; ++a) ok = m.y(a) >= -tol;  // false for NaN too
-      }
-      if (ok) {
-        last_.z.setZero();
-        last_.w = q;
-        for (int a = 0; a < k; ++a) {
-          const int j = m.J[a];
-          const double zj = m.y(a) > 0.0 ? eq.col(j) * m.y(a) * qn : 0.0;
-          last_.z(j) = zj;
-          if (zj != 0.0) last_.w += M_.col(j) * zj;
-        }
-        for (int i : m.rest)
-          if (!(eq.row(i) * last_.w(i) / qn >= -tol)) {
-            ok = false;
-            break;
-          }
-      }
-      if (ok) {
-        last_.status = LcpStatus::Solved;
-        last_.pivots = 0;
-        // Keep the basis that worked, zero-level z_j included: at a degenerate vertex (a
-        // continuum of solutions, e.g. the potential of a sub-circuit that no conducting diode
-        // ties down) the support {z > 0} alone has a singular block.
-        ++stats_.warm_hits;
-        return last_;
-      }
+  if (solve_on_active_set(q)) {
+    // Keep the basis that worked, zero-level z_j included: at a degenerate vertex (a
+    // continuum of solutions, e.g. the potential of a sub-circuit that no conducting diode
+    // ties down) the support {z > 0} alone has a singular block.
+    ++stats_.warm_hits;
+    // The engine's basis, if it is this one, is feasible for this q too.
+    if (!engine_basis_.empty() && active_ == engine_basis_) engine_q_ = q;
+    else engine_basis_.clear();
+    return last_;
+  }
+
+  // The warm hit missed: the step's q has moved past the last answer's basis. Where the Lemke
+  // engine holds that basis, follow q from the last one to this one by principal pivots (a few
+  // where a few pairs switch, each O(n^2) like one of Lemke's, against Lemke's hundreds from
+  // the all-w basis on a TTL adder's 466 pairs); where that path folds (a regenerative
+  // switching), ties or runs long, Lemke decides as before. The basis it ends on is solved
+  // afresh as a warm hit is (its LU, cached for the next steps, not the pivoted inverse, which
+  // drifts: on a TTL adder's step the pivoted w was 6e-9 below 0 where Lemke's polish has 4e-9).
+  if (n >= kMinPivotedPairs && !engine_basis_.empty() && active_ == engine_basis_ &&
+      impl_->engine.solve_from_basis(M_, q, engine_q_, options_, n, last_)) {
+    const int pivots = last_.pivots;
+    impl_->engine.basic_z(active_);
+    if (solve_on_active_set(q)) {
+      ++stats_.pivoted;
+      stats_.pivoted_pivots += pivots;
+      last_.pivots = pivots;
+      engine_basis_ = active_;
+      engine_q_ = q;
+      return last_;
     }
   }
+  engine_basis_.clear();
 
   impl_->engine.solve(M_, q, options_, last_);
   ++stats_.lemke_calls;
   stats_.lemke_pivots += last_.pivots;
   stats_.lemke_restarts += last_.restarts;
+  const bool lemke_solved = last_.status == LcpStatus::Solved;
   if (last_.status == LcpStatus::NumericalFailure) polish_by_principal_pivoting(q);
   if (last_.status == LcpStatus::Solved) {
     // The final complementary basis, not the support of z (see the warm-hit branch).
     impl_->engine.basic_z(active_);
     for (int i = 0; i < n; ++i)
       if (last_.z(i) > 0.0) active_[i] = 1;
+    if (lemke_solved) {  // (a polished answer is not the engine's basis)
+      impl_->engine.basic_z(engine_basis_);
+      if (engine_basis_ == active_) engine_q_ = q;
+      else engine_basis_.clear();
+    }
   }
   return last_;
 }
