@@ -73,6 +73,7 @@ class LemkeEngine {
                   const LemkeOptions& options, double shift, LcpSolution& out);
   void finish(const Eigen::MatrixXd& M, const Eigen::VectorXd& q, double qn,
               const LemkeOptions& options, bool solved, LcpSolution& out);
+  void answer_from_basis(const Eigen::MatrixXd& M, const Eigen::VectorXd& q, double qn, LcpSolution& out) const;
 
   int n_ = 0;
   Equilibration eq_;

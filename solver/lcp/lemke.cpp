@@ -187,6 +187,18 @@ void LemkeEngine::basic_z(std::string& set) const {
     if (basis_[i] >= n_ && basis_[i] < 2 * n_) set[basis_[i] - n_] = 1;
 }
 
+// out's basic_z, z and w from the current basis and y_ (normalised units, qn the scale of q).
+void LemkeEngine::answer_from_basis(const Eigen::MatrixXd& M, const Eigen::VectorXd& q, double qn,
+                                    LcpSolution& out) const {
+  out.basic_z.clear();
+  for (int i = 0; i < n_; ++i)
+    if (basis_[i] >= n_ && basis_[i] < 2 * n_) out.basic_z.push_back(basis_[i] - n_);
+  std::sort(out.basic_z.begin(), out.basic_z.end());
+  out.z = eq_.col.cwiseProduct(y_) * qn;
+  out.w = q;
+  out.w.noalias() += M * out.z;
+}
+
 void LemkeEngine::finish(const Eigen::MatrixXd& M, const Eigen::VectorXd& q, double qn,
                          const LemkeOptions& options, bool solved, LcpSolution& out) {
   y_.setZero();
@@ -238,13 +250,7 @@ void LemkeEngine::finish(const Eigen::MatrixXd& M, const Eigen::VectorXd& q, dou
     }
     out.status = res <= accept ? LcpStatus::Solved : LcpStatus::NumericalFailure;
   }
-  out.basic_z.clear();
-  for (int i = 0; i < n_; ++i)
-    if (basis_[i] >= n_ && basis_[i] < 2 * n_) out.basic_z.push_back(basis_[i] - n_);
-  std::sort(out.basic_z.begin(), out.basic_z.end());
-  out.z = eq_.col.cwiseProduct(y_) * qn;
-  out.w = q;
-  out.w.noalias() += M * out.z;
+  answer_from_basis(M, q, qn, out);
 }
 
 // Complementary pivoting on the normalised data qt_ from the all-w basis until the artificial
@@ -409,13 +415,7 @@ bool LemkeEngine::solve_from_basis(const Eigen::MatrixXd& M, const Eigen::Vector
   out.pivots = pivots;
   out.restarts = 0;
   out.ray.clear();
-  out.basic_z.clear();
-  for (int i = 0; i < n_; ++i)
-    if (basis_[i] >= n_ && basis_[i] < 2 * n_) out.basic_z.push_back(basis_[i] - n_);
-  std::sort(out.basic_z.begin(), out.basic_z.end());
-  out.z = eq_.col.cwiseProduct(y_) * qn;
-  out.w = q;
-  out.w.noalias() += M * out.z;
+  answer_from_basis(M, q, qn, out);
   return true;
 }
 
