@@ -57,8 +57,10 @@ class LemkeEngine {
   // from s = 1 to s = 0 (Murty, Linear Complementarity, ch. 5; Lemke's scheme with covering
   // vector from_q - q started from a solved basis), one principal pivot where a basic variable
   // reaches 0. False, leaving the basis unusable, where the path folds back (the pivot's sign:
-  // where a transistor circuit's branch ends, a regenerative switching), at a tie, past
-  // max_pivots, or when the answer misses feas_tol: the caller then runs solve(). Solved: out
+  // where a transistor circuit's branch ends, a regenerative switching), past max_pivots, or
+  // when the answer misses feas_tol: the caller then runs solve(). Rows reaching 0 together
+  // (degenerate: on a TTL adder, 846 of its 868 misses that went to Lemke before they were
+  // handled) leave one by one, the first whose pivot continues the path first. Solved: out
   // as solve() fills it (no polish), and the basis is the new one.
   bool solve_from_basis(const Eigen::MatrixXd& M, const Eigen::VectorXd& q, const Eigen::VectorXd& from_q,
                         const LemkeOptions& options, int max_pivots, LcpSolution& out);
@@ -85,7 +87,7 @@ class LemkeEngine {
   Eigen::RowVectorXd prow_;     // pivot row scratch
   std::vector<int> basis_;      // variable in each row: w_i = i, z_i = n + i, s = 2n
   std::vector<int> ray_;        // at a ray termination: the z_i growing along the ray
-  std::vector<int> keep_, keep2_;
+  std::vector<int> keep_, keep2_, tied_;
   std::unordered_set<std::uint64_t> visited_;  // hashes of the bases on the current path
   int since_refactor_ = 0;
 };

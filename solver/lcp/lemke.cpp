@@ -389,12 +389,24 @@ bool LemkeEngine::solve_from_basis(const Eigen::MatrixXd& M, const Eigen::Vector
     };
     for (int i = 0; i < n_; ++i)
       if (const double si = blocks_at(i); si > s_block) s_block = si, r = i;
-    bool tie = false;
-    for (int i = 0; i < n_ && r >= 0 && !tie; ++i)
-      tie = i != r && std::abs(blocks_at(i) - s_block) <= 1e-9 * s_block;
     if (r < 0) break;  // feasible down to s = 0
-    if (tie || s_block > s_now * (1 + 1e-9) + 1e-12 || pivots >= max_pivots) return false;
-    s_now = s_block;
+    if (s_block > s_now * (1 + 1e-9) + 1e-12 || pivots >= max_pivots) return false;
+    // Rows reaching 0 together (a degenerate vertex: junctions that switch as one): the first
+    // whose principal pivot continues the path (a_r < 0, below) leaves.
+    tied_.clear();
+    for (int i = 0; i < n_; ++i)
+      if (std::abs(blocks_at(i) - s_block) <= 1e-9 * s_block) tied_.push_back(i);
+    if (tied_.size() > 1) {
+      for (int i : tied_) {
+        const int leaving = basis_[i];
+        entering_column(leaving < n_ ? leaving + n_ : leaving - n_);
+        if (a_(i) < -options.pivot_tol * std::max(1.0, a_.cwiseAbs().maxCoeff())) {
+          r = i;
+          break;
+        }
+      }
+    }
+    s_now = std::min(s_now, s_block);
     const int leaving = basis_[r];
     const int entering = leaving < n_ ? leaving + n_ : leaving - n_;
     entering_column(entering);

@@ -245,7 +245,7 @@ const LcpSolution& LcpWarmSolver::solve_once(const Eigen::VectorXd& q) {
   // engine holds that basis, follow q from the last one to this one by principal pivots (a few
   // where a few pairs switch, each O(n^2) like one of Lemke's, against Lemke's hundreds from
   // the all-w basis on a TTL adder's 466 pairs); where that path folds (a regenerative
-  // switching), ties or runs long, Lemke decides as before. The basis it ends on is solved
+  // switching) or runs long, Lemke decides as before. The basis it ends on is solved
   // afresh as a warm hit is (its LU, cached for the next steps, not the pivoted inverse, which
   // drifts: on a TTL adder's step the pivoted w was 6e-9 below 0 where Lemke's polish has 4e-9).
   if (n >= kMinPivotedPairs && !engine_basis_.empty() && active_ == engine_basis_ &&

@@ -215,6 +215,26 @@ TEST(WarmSolver, MissedHitsPivotFromTheLastBasis) {
   }
 }
 
+// Pairs reaching zero together along the pivoted path (identical rows: junctions that switch as
+// one, as in a TTL gate) leave one after the other at the same s; before, such a tie went to
+// Lemke (846 of a TTL adder's 868 Lemke calls).
+TEST(WarmSolver, TiedPairsArePivotedTogether) {
+  const int n = 32;
+  const Eigen::MatrixXd M = 2.0 * Eigen::MatrixXd::Identity(n, n);
+  LcpWarmSolver warm(M);
+  Eigen::VectorXd q = Eigen::VectorXd::Ones(n);
+  q(5) = -1;
+  ASSERT_EQ(warm.solve(q).status, LcpStatus::Solved);  // Lemke: its basis is the engine's
+  ASSERT_EQ(warm.stats().lemke_calls, 1);
+  q(0) = q(1) = -1;  // both reach w = 0 at the same point of the path
+  const LcpSolution& s = warm.solve(q);
+  ASSERT_EQ(s.status, LcpStatus::Solved);
+  EXPECT_EQ(warm.stats().pivoted, 1);
+  EXPECT_EQ(warm.stats().pivoted_pivots, 2);
+  EXPECT_EQ(warm.stats().lemke_calls, 1);
+  for (int i = 0; i < n; ++i) EXPECT_DOUBLE_EQ(s.z(i), i == 0 || i == 1 || i == 5 ? 0.5 : 0.0) << i;
+}
+
 #ifdef LCS_COUNT_ALLOCS
 // Periodic excitation: after the first period every mode's factorisation is cached, so a warm
 // hit allocates nothing (the Lemke fallback may).
