@@ -161,6 +161,7 @@ class LcpWarmSolver {
   // feasible for: where they hold, a step the warm hit misses pivots from there.
   std::string engine_basis_;
   Eigen::VectorXd engine_q_;
+  std::string previous_active_;  // scratch
   std::shared_ptr<Impl> impl_; // factorisation cache
 };
 

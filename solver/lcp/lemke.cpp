@@ -78,7 +78,7 @@ double generic_shift(int i) { return 1.0 + std::fmod(0.6180339887498949 * (i + 1
 void LemkeEngine::set_matrix(const Eigen::MatrixXd& M) {
   eq_ = equilibrate(M);
   n_ = static_cast<int>(M.rows());
-  Binv_.resize(n_, n_);
+  Binv_.setIdentity(n_, n_);
   b_.resize(n_);
   a_.resize(n_);
   qt_.resize(n_);
@@ -313,7 +313,10 @@ void LemkeEngine::solve(const Eigen::MatrixXd& M, const Eigen::VectorXd& q,
   out.restarts = 0;
   out.status = LcpStatus::Solved;
   if ((q.array() >= 0.0).all()) {
-    for (int i = 0; i < n_; ++i) basis_[i] = i;  // the all-w basis
+    // The all-w basis, its inverse with it (solve_from_basis may start from it).
+    for (int i = 0; i < n_; ++i) basis_[i] = i;
+    Binv_.setIdentity();
+    since_refactor_ = 0;
     out.z.setZero(n_);
     out.w = q;
     return;

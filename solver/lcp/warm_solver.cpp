@@ -30,8 +30,8 @@ constexpr std::size_t kMaxModes = 4096;  // cache cap; cleared when exceeded
 // 64 modes of 1000 pairs, or every mode of a small circuit.
 constexpr std::size_t kWarmCacheBytes = std::size_t{512} << 20;
 constexpr double kMinRcond = 1e-13;      // S_JJ treated as singular below (then Lemke)
-// From this many pairs a missed warm hit pivots from the last basis before Lemke (below, the
-// multiplicity watch enumerates and Lemke's own pivots are few).
+// From this many pairs a missed warm hit pivots from the last basis before Lemke. Below, Lemke's
+// own pivots are few, and up to 16 pairs the multiplicity watch enumerates (solve()).
 constexpr int kMinPivotedPairs = 32;
 }  // namespace
 
@@ -114,7 +114,10 @@ void LcpWarmSolver::prefer(const Eigen::VectorXd& z, bool always) {
 // trigger the step's LCP has several solutions (the switched state, and states that keep the
 // other transistor half on), and the end of Lemke's complementary path from the ray is the
 // switched one, checked against the event method and ngspice (tests/bjt_circuits_test.cpp); the
-// nearest mode would keep both on. With no previous state at all (a start without .ic/.nodeset
+// nearest mode would keep both on. (From kMinPivotedPairs pairs a miss first follows q from the
+// last answer by pivots, solve_once; at such a switching that path folds back and Lemke decides.
+// Where pairs reach zero together, which of them leaves first is a heuristic outside
+// P-matrices: the TTL adders' runs equal Lemke's to 6.7e-10 V.) With no previous state at all (a start without .ic/.nodeset
 // choosing) the solutions are told apart by their index sign(det M_JJ) (J = {z > 0}; the indices
 // of a nondegenerate LCP's solutions sum to 1): an index -1 solution is a saddle of the fast
 // dynamics any small charge storage adds (a flip-flop's balanced state); a single index +1
@@ -251,15 +254,18 @@ const LcpSolution& LcpWarmSolver::solve_once(const Eigen::VectorXd& q) {
   if (n >= kMinPivotedPairs && !engine_basis_.empty() && active_ == engine_basis_ &&
       impl_->engine.solve_from_basis(M_, q, engine_q_, options_, n, last_)) {
     const int pivots = last_.pivots;
+    previous_active_ = active_;
     impl_->engine.basic_z(active_);
     if (solve_on_active_set(q)) {
       ++stats_.pivoted;
       stats_.pivoted_pivots += pivots;
       last_.pivots = pivots;
+      last_.basic_z.clear();  // (from the warm solver: empty, lcp.h)
       engine_basis_ = active_;
       engine_q_ = q;
       return last_;
     }
+    active_ = previous_active_;  // the last answer's set stays the next guess if Lemke fails
   }
   engine_basis_.clear();
 

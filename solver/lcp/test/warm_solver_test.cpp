@@ -235,6 +235,31 @@ TEST(WarmSolver, TiedPairsArePivotedTogether) {
   for (int i = 0; i < n; ++i) EXPECT_DOUBLE_EQ(s.z(i), i == 0 || i == 1 || i == 5 ? 0.5 : 0.0) << i;
 }
 
+// Lemke's answer z = 0 for q >= 0 takes no pivot; the engine's basis is then the all-w one and
+// its inverse must be the identity, not the previous path's (review finding: a pivoted path
+// started from that stale inverse). Here the next miss pivots from the all-w basis.
+TEST(WarmSolver, PivotsFromTheAllWBasisAfterLemkesShortcut) {
+  const int n = 32;
+  Eigen::MatrixXd M = 2.0 * Eigen::MatrixXd::Identity(n, n);
+  M(5, 7) = M(7, 5) = 0.5;  // so the stale inverse (basis z5) reaches pair 7's row
+  LcpWarmSolver warm(M);
+  Eigen::VectorXd q = Eigen::VectorXd::Ones(n);
+  q(5) = -1;
+  ASSERT_EQ(warm.solve(q).status, LcpStatus::Solved);  // Lemke's path: z5 basic
+  Eigen::VectorXd other = Eigen::VectorXd::Zero(n);
+  other(9) = 1;
+  warm.prefer(other, /*always=*/true);  // a guess that is not the engine's basis
+  q(5) = 1;
+  ASSERT_EQ(warm.solve(q).status, LcpStatus::Solved);  // q >= 0: Lemke's shortcut, z = 0
+  ASSERT_EQ(warm.stats().lemke_calls, 2);
+  q(7) = -1;
+  const LcpSolution& s = warm.solve(q);
+  ASSERT_EQ(s.status, LcpStatus::Solved);
+  EXPECT_EQ(warm.stats().pivoted, 1);
+  EXPECT_EQ(warm.stats().lemke_calls, 2);
+  for (int i = 0; i < n; ++i) EXPECT_DOUBLE_EQ(s.z(i), i == 7 ? 0.5 : 0.0) << i;
+}
+
 #ifdef LCS_COUNT_ALLOCS
 // Periodic excitation: after the first period every mode's factorisation is cached, so a warm
 // hit allocates nothing (the Lemke fallback may).
