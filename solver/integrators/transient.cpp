@@ -192,9 +192,16 @@ void run_fixed_step(const CircuitModel& model, const OutputMap& outputs, const T
   const long full_steps = static_cast<long>(std::floor(options.tstop / h * (1 + 1e-12)));
   const bool partial = options.tstop - full_steps * h > 1e-9 * h;
   const long total = full_steps + (partial ? 1 : 0);
-  const double inner = h / options.substeps;
-  const int substeps =
-      options.substeps * (inner > model.max_step() ? static_cast<int>(std::ceil(inner / model.max_step())) : 1);
+  // Lines: no step longer than the shortest delay (max_step). Counted on the longest step taken,
+  // min(h, TSTOP), in double: a step of 10 s on a 24 ns run with a 1 ns line asked for 1e10
+  // substeps of the step given, past int (a fuzz finding: UBSan's float-cast overflow).
+  const double inner = std::min(h, options.tstop) / options.substeps;
+  const double per_step = inner > model.max_step() ? std::ceil(inner / model.max_step()) : 1.0;
+  if (!(per_step * options.substeps <= 1e9))
+    throw NumericalFailure(0.0, "a step of " + std::to_string(std::min(h, options.tstop)) +
+                                    " s would take more than 1e9 substeps of the shortest line delay (" +
+                                    std::to_string(model.max_step()) + " s)");
+  const int substeps = options.substeps * static_cast<int>(per_step);
   const double loop0 = process_cpu_seconds();
   if (options.tstart <= 0) emit(0.0);
   double t = 0.0;
