@@ -41,7 +41,11 @@ DescriptorStep::~DescriptorStep() = default;
 
 bool DescriptorStep::start_values(const LcsProblem& model, double t, const Eigen::VectorXd& x,
                                   const Eigen::VectorXd& z) {
-  if (y_.size() == d_.unknowns() && x == x_last_ && z == z_last_) return true;  // the last step's
+  // The last step's (sizes first: Eigen's == asserts on vectors of different sizes, and x_last_
+  // is empty until a step has ended; a fuzz finding in the instrumented build).
+  if (y_.size() == d_.unknowns() && x.size() == x_last_.size() && z.size() == z_last_.size() && x == x_last_ &&
+      z == z_last_)
+    return true;
   if (!instant_) {
     instant_ = std::make_unique<Instant>();
     instant_->lu.compute(d_.Kst);
