@@ -117,9 +117,9 @@ void LcpWarmSolver::prefer(const Eigen::VectorXd& z, bool always) {
 // nearest mode would keep both on. (From kMinPivotedPairs pairs a miss first follows q from the
 // last answer by pivots, solve_once; at such a switching that path folds back and Lemke decides.
 // Where pairs reach zero together, which of them leaves first is a heuristic outside
-// P-matrices: the TTL adders' runs equal Lemke's to 6.7e-10 V.) With no previous state at all (a start without .ic/.nodeset
-// choosing) the solutions are told apart by their index sign(det M_JJ) (J = {z > 0}; the indices
-// of a nondegenerate LCP's solutions sum to 1): an index -1 solution is a saddle of the fast
+// P-matrices: the TTL adders' runs equal Lemke's to 6.7e-10 V.) With no previous state at all
+// (a start without .ic/.nodeset choosing) the solutions are told apart by their index
+// sign(det M_JJ) (J = {z > 0}; the indices of a nondegenerate LCP's solutions sum to 1): an index -1 solution is a saddle of the fast
 // dynamics any small charge storage adds (a flip-flop's balanced state); a single index +1
 // solution is taken, several are the run's exit 3.
 const LcpSolution& LcpWarmSolver::solve(const Eigen::VectorXd& q) {
