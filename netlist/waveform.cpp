@@ -547,7 +547,7 @@ std::vector<double> Waveform::breakpoints(double t0, double t1) const {
         if (n.t < s.per && (corners.empty() || corners.back() != n.t)) corners.push_back(n.t);
       double kfirst = std::max(0.0, std::floor((t0 - s.td) / s.per));
       double klast = std::ceil((t1 - s.td) / s.per);
-      if (!std::isfinite(kfirst) || !std::isfinite(klast)) break;
+      if (!std::isfinite(kfirst) || !std::isfinite(klast) || klast < kfirst) break;  // no period in [t0, t1]
       // An integer count, so a period tiny against t (k beyond 2^53) cannot loop forever.
       const double periods = std::min(klast - kfirst, static_cast<double>(kMaxBreakpoints));
       for (long long j = 0; j <= static_cast<long long>(periods) && out.size() < kMaxBreakpoints; ++j)

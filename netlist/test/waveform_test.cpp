@@ -156,6 +156,14 @@ TEST(WaveformPulse, BreakpointsStrictlyInside) {
   expect_times(w.breakpoints(0, 0.5e-3), {});
 }
 
+// A fuzz finding: with TD = 1.1e300 s no period starts before TSTOP, and the count of periods
+// (negative, -5e306) was cast to an integer (UB; the sanitized suite reports it).
+TEST(WaveformPulse, NoBreakpointsWhenTheDelayIsBeyondTheInterval) {
+  Waveform w = make(Waveform::Kind::Pulse, {0, 1, 1.1e300, 1e-11, 1e-11, 1e-7, 2e-7});
+  expect_times(w.breakpoints(0, 16e-9), {});
+  EXPECT_EQ(w.value(16e-9), 0);
+}
+
 TEST(WaveformPulse, ExactRange) {
   Waveform w = trapezoid();
   auto r = w.range(1.5e-3, 1.8e-3);
