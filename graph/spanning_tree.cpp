@@ -79,7 +79,6 @@ SpanningTree build_normal_tree(const CircuitGraph& graph) {
   t.parent = parent;
 
   // Fundamental loop of link e (a = n+, b = n-): a -e-> b, then back from b to a in the tree.
-  std::vector<Eigen::Triplet<double>> b_entries;
   t.loops.resize(t.links.size());
   for (int j = 0; j < static_cast<int>(t.links.size()); ++j) {
     const int e = t.links[j];
@@ -96,15 +95,21 @@ SpanningTree build_normal_tree(const CircuitGraph& graph) {
         y = parent[y];
       }
     }
-    std::vector<LoopTerm> loop{{e, +1}};
+    std::vector<LoopTerm>& loop = t.loops[j];
+    loop.reserve(1 + up_from_b.size() + up_from_a.size());
+    loop.push_back({e, +1});
     loop.insert(loop.end(), up_from_b.begin(), up_from_b.end());
     loop.insert(loop.end(), up_from_a.rbegin(), up_from_a.rend());
-    for (size_t k = 1; k < loop.size(); ++k) b_entries.emplace_back(t.position[loop[k].branch], j, loop[k].sign);
-    t.loops[j] = std::move(loop);
   }
-  t.B.resize(static_cast<int>(t.tree.size()), static_cast<int>(t.links.size()));
-  t.B.setFromTriplets(b_entries.begin(), b_entries.end());
   return t;
+}
+
+std::vector<LoopTerm> fundamental_cutset(const SpanningTree& tree, int tree_branch) {
+  std::vector<LoopTerm> cutset;
+  for (size_t j = 0; j < tree.links.size(); ++j)
+    for (size_t k = 1; k < tree.loops[j].size(); ++k)
+      if (tree.loops[j][k].branch == tree_branch) cutset.push_back({tree.links[j], tree.loops[j][k].sign});
+  return cutset;
 }
 
 }  // namespace lcs

@@ -3,9 +3,6 @@
 
 #include <vector>
 
-#include <Eigen/Dense>
-#include <Eigen/Sparse>
-
 #include "graph/circuit_graph.h"
 
 namespace lcs {
@@ -20,10 +17,9 @@ struct SpanningTree {
   std::vector<int> tree;       // tree branches, in branch order
   std::vector<int> links;      // link (co-tree) branches, in branch order
   std::vector<int> position;   // branch -> its index in `tree` or in `links`
-  // b_{f,e} of (5.34): rows are tree branches, columns links. KCL: i_tree = B i_link;
-  // KVL: v_link = -B^T v_tree. Sparse: one column per fundamental loop.
-  Eigen::SparseMatrix<double> B;
   // Per link: its fundamental loop, the link itself first with sign +1, then the tree path.
+  // The tree path's signs are b_{f,e} of (5.34) (KCL: i_tree = B i_link; KVL: v_link =
+  // -B^T v_tree): the loops are B's columns, kept once (a multiplier's hold O(N^2) entries).
   std::vector<std::vector<LoopTerm>> loops;
   // Per node: the tree branch to its parent on the way to ground (ground: branch -1), so that
   // v(node) = v(parent) + sign * v_branch. (The whole path per node cost O(nodes x depth): a
@@ -38,5 +34,10 @@ struct SpanningTree {
 // than the link, and the cutset of a tree branch only links no lighter than it; the model
 // builder relies on this.
 SpanningTree build_normal_tree(const CircuitGraph& graph);
+
+// The fundamental cutset of tree branch `tree_branch`: the links whose loops pass through it,
+// each with b_{f,l} (i_f = sum of b_{f,l} i_l), in link order. O(total loop length): for the
+// topology errors, not for formation.
+std::vector<LoopTerm> fundamental_cutset(const SpanningTree& tree, int tree_branch);
 
 }  // namespace lcs

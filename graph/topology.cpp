@@ -75,8 +75,7 @@ void check_source_loops_and_cutsets(const Netlist& netlist, const CircuitGraph& 
     const Branch& tb = graph.branches[tree.tree[i]];
     if (tb.cls != BranchClass::CurrentSource) continue;
     std::vector<int> elements{tb.element};
-    for (size_t j = 0; j < tree.links.size(); ++j)
-      if (tree.B.coeff(i, j) != 0) elements.push_back(graph.branches[tree.links[j]].element);
+    for (const LoopTerm& l : fundamental_cutset(tree, tree.tree[i])) elements.push_back(graph.branches[l.branch].element);
     throw TopologyError("current sources form a cutset: " + join_names(names_of(netlist, elements)) +
                             " (KCL cannot hold for arbitrary source values)",
                         elements);

@@ -46,7 +46,7 @@ Netlist random_circuit(std::mt19937& rng, int nodes, int extra) {
   return b.build();
 }
 
-TEST(SpanningTree, LoopsSatisfyKvlAndNodePathsGivePotentials) {
+TEST(SpanningTree, LoopsSatisfyKvlCutsetsSatisfyKclAndNodePathsGivePotentials) {
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> potential(-5, 5);
   for (int trial = 0; trial < 300; ++trial) {
@@ -68,11 +68,19 @@ TEST(SpanningTree, LoopsSatisfyKvlAndNodePathsGivePotentials) {
                   static_cast<int>(g.branches[t.links[j]].cls));
       }
       EXPECT_NEAR(kvl, 0.0, 1e-12);
-      // KVL in matrix form: v_link = -B^T v_tree.
-      double from_b = 0;
-      for (size_t i = 0; i < t.tree.size(); ++i) from_b -= t.B.coeff(i, j) * v(t.tree[i]);
-      EXPECT_NEAR(from_b, v(t.links[j]), 1e-12);
     }
+    // KCL through the fundamental cutsets: link currents drawn at random, every tree current
+    // i_f = sum of b_{f,l} i_l; then every node's currents sum to zero.
+    std::vector<double> current(g.branches.size(), 0.0);
+    for (int l : t.links) current[l] = potential(rng);
+    for (int f : t.tree)
+      for (const LoopTerm& l : fundamental_cutset(t, f)) current[f] += l.sign * current[l.branch];
+    std::vector<double> leaving(g.nodes.size(), 0.0);
+    for (size_t b = 0; b < g.branches.size(); ++b) {
+      leaving[g.branches[b].from] += current[b];
+      leaving[g.branches[b].to] -= current[b];
+    }
+    for (double sum : leaving) EXPECT_NEAR(sum, 0.0, 1e-12);
     for (size_t n = 0; n < g.nodes.size(); ++n) {
       double sum = 0;  // down the tree from ground: v(node) = v(parent) + sign * v_branch
       for (size_t c = n; c != 0; c = t.parent[c]) sum += t.to_parent[c].sign * v(t.to_parent[c].branch);

@@ -17,12 +17,6 @@
 
 namespace lcs {
 
-// Pairs from which a circuit with a dense LCS steps on its descriptor form. Measured on the
-// Cockcroft–Walton family (`bench --scale cw`, euler, CPU per simulated second, shared machine):
-// dense 0.034 / 0.27 / 4.1 and descriptor 0.14 / 0.44 / 1.1 at 50 / 100 / 200 pairs; the two
-// power laws cross near 120 pairs.
-constexpr int kDescriptorPairs = 128;
-
 class ThetaMethod : public TimeStepper {
  public:
   // `sparse`: large circuits with a sparse LCS step on the sparse system (else always dense).

@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <functional>
+#include <map>
 #include <set>
 #include <stdexcept>
 #include <unordered_map>
@@ -14,6 +16,7 @@
 #include "solver/model/netlist_options.h"
 #include "solver/model/inductance_check.h"
 #include "solver/model/perfect_coupling.h"
+#include "solver/model/row_product.h"
 #include "solver/model/sparse_descriptor.h"
 #include "solver/model/sparse_lcs.h"
 #include "solver/model/sparse_solve.h"
@@ -139,9 +142,7 @@ TopologyError storage_loop_with_controlled_source(const Netlist& netlist, const 
     const std::vector<LoopTerm>& loop = t.loops[t.position[b]];
     for (size_t j = 1; j < loop.size(); ++j) branches.push_back(loop[j].branch);
   } else {
-    const int i = t.position[b];
-    for (size_t j = 0; j < t.links.size(); ++j)
-      if (t.B.coeff(i, j) != 0) branches.push_back(t.links[j]);
+    for (const LoopTerm& l : fundamental_cutset(t, b)) branches.push_back(l.branch);
   }
   std::sort(branches.begin() + 1, branches.end());
   branches.erase(std::unique(branches.begin() + 1, branches.end()), branches.end());
@@ -171,7 +172,104 @@ TopologyError storage_loop_with_controlled_source(const Netlist& netlist, const 
                        elements);
 }
 
+using RowSparse = Eigen::SparseMatrix<double, Eigen::RowMajor>;
+
+// Rp of the state equations Mdyn x' = Rp p (p the primary unknowns): per state, the links of its
+// cutset that are not capacitors (a tree capacitor, KCL) or the tree branches of its loop that
+// are not inductors (a link inductor, KVL), each with its sign. By rows, straight into compressed
+// storage: a multiplier's cutsets hold O(n^2) entries.
+SparseMatrixD state_equation_rows(const std::vector<StateInfo>& states, const std::vector<BranchClass>& cls,
+                                  const RowSparse& Imap,
+                                  const std::function<const std::vector<LoopTerm>&(int branch)>& loop_of) {
+  const int n = static_cast<int>(states.size()), nb = static_cast<int>(cls.size());
+  RowSparse rows(n, nb);
+  std::vector<LoopTerm> path;
+  for (int j = 0; j < n; ++j) {
+    const int b = states[j].branch;
+    rows.startVec(j);
+    if (cls[b] == BranchClass::Capacitor) {  // its cutset: the links through it
+      for (RowSparse::InnerIterator it(Imap, b); it; ++it)
+        if (cls[it.col()] != BranchClass::Capacitor) rows.insertBack(j, it.col()) = it.value();
+    } else {  // its loop: the tree path
+      const std::vector<LoopTerm>& loop = loop_of(b);
+      path.clear();
+      for (size_t k = 1; k < loop.size(); ++k)
+        if (cls[loop[k].branch] != BranchClass::Inductor) path.push_back(loop[k]);
+      std::sort(path.begin(), path.end(), [](const LoopTerm& x, const LoopTerm& y) { return x.branch < y.branch; });
+      for (const LoopTerm& f : path) rows.insertBack(j, f.branch) = -f.sign;
+    }
+  }
+  rows.finalize();
+  return SparseMatrixD(rows);
+}
+
+// Xdot = Mdyn^-1 R; false when Mdyn is singular.
+bool solve_state_derivatives(const SparseMatrixD& MdynS, const SparseMatrixD& R, SparseMatrixD& Xdot) {
+  if (MdynS.rows() < kSparseSolveSize) {  // small circuits keep the unscaled dense solve they always had
+    Eigen::FullPivLU<Eigen::MatrixXd> m_lu{Eigen::MatrixXd(MdynS)};
+    if (!m_lu.isInvertible()) return false;
+    Xdot = Eigen::MatrixXd(solve_or_empty(m_lu, Eigen::MatrixXd(R))).sparseView();
+    return true;
+  }
+  return solve_scaled(MdynS, R, false, Xdot);
+}
+
+// The complementarity outputs w as rows over the branch rows' columns: pair k reads the rows
+// row[k] of bv and bi (its branch's voltage and current): w = i (voltage-type) or
+// VON + RON i - v (current-type, VON on column von_column). By rows, each merged from its branch
+// rows, then one transpose.
+SparseMatrixD pair_output_rows(const std::vector<PairInfo>& pairs, const RowSparse& bv, const RowSparse& bi,
+                               const std::vector<int>& row, int von_column) {
+  const int mp = static_cast<int>(pairs.size());
+  RowSparse rows(mp, bv.cols());
+  std::vector<std::pair<int, double>> entries;
+  for (int k = 0; k < mp; ++k) {
+    const PairInfo& pr = pairs[k];
+    const int r = row[k];
+    entries.clear();
+    if (pr.voltage_type) {
+      for (RowSparse::InnerIterator it(bi, r); it; ++it) entries.emplace_back(it.col(), it.value());
+    } else {
+      for (RowSparse::InnerIterator it(bi, r); it; ++it) entries.emplace_back(it.col(), pr.law.ron * it.value());
+      for (RowSparse::InnerIterator it(bv, r); it; ++it) entries.emplace_back(it.col(), -it.value());
+      if (pr.law.von != 0) entries.emplace_back(von_column, pr.law.von);
+    }
+    std::stable_sort(entries.begin(), entries.end(),
+                     [](const std::pair<int, double>& x, const std::pair<int, double>& y) { return x.first < y.first; });
+    rows.startVec(k);
+    for (size_t e = 0; e < entries.size();) {  // duplicates summed in the order written
+      const int col = entries[e].first;
+      double sum = 0;
+      for (; e < entries.size() && entries[e].first == col; ++e) sum += entries[e].second;
+      if (sum != 0) rows.insertBack(k, col) = sum;
+    }
+  }
+  rows.finalize();
+  return SparseMatrixD(rows);
+}
+
+// Every MdynS entry off the diagonal is zero and every diagonal one positive: uncoupled
+// capacitors and inductors.
+bool positive_diagonal(const SparseMatrixD& M) {
+  for (int c = 0; c < M.outerSize(); ++c) {
+    bool diagonal = false;
+    for (SparseMatrixD::InnerIterator it(M, c); it; ++it) {
+      if (it.row() != c && it.value() != 0) return false;
+      if (it.row() == c) diagonal = it.value() > 0;
+    }
+    if (!diagonal) return false;
+  }
+  return true;
+}
+
 }  // namespace
+
+struct CircuitModel::PrimaryRows {
+  RowSparse Vmap, Imap, P_rows;  // P_rows: P by rows
+  SparseMatrixD P;
+  std::vector<BranchClass> cls;                          // per branch
+  std::map<int, std::vector<LoopTerm>> inductor_loops;  // per link inductor state's branch
+};
 
 CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& options) {
   CircuitModel m;
@@ -293,21 +391,40 @@ CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& opt
   // voltage and current is linear in p: KCL i_tree = B i_link, KVL v_link = -B^T v_tree.
   // Sparse throughout (issue 12): a row holds one fundamental loop or cutset, not nb entries,
   // and the products below cost O(nnz * columns), not O(nb^2 * columns).
-  using RowSparse = Eigen::SparseMatrix<double, Eigen::RowMajor>;
   using Triplets = std::vector<Eigen::Triplet<double>>;
+  // Both are written straight into compressed storage from the loops (no triplets: a
+  // multiplier's loops hold O(N^2) entries): Vmap by rows, Imap by columns, then one transpose.
   RowSparse Vmap(nb, nb), Imap(nb, nb);
   {
-    Triplets vt, it;
-    for (int b = 0; b < nb; ++b) (t.in_tree[b] ? vt : it).emplace_back(b, b, 1.0);
-    for (int l : t.links) {
-      const std::vector<LoopTerm>& loop = t.loops[t.position[l]];
-      for (size_t k = 1; k < loop.size(); ++k) {
-        it.emplace_back(loop[k].branch, l, loop[k].sign);   // Imap(f, l) = b_{f,l}
-        vt.emplace_back(l, loop[k].branch, -loop[k].sign);  // Vmap(l, f) = -b_{f,l}
+    Eigen::Index entries = nb;
+    for (const std::vector<LoopTerm>& loop : t.loops) entries += static_cast<Eigen::Index>(loop.size()) - 1;
+    Vmap.reserve(entries);
+    Eigen::SparseMatrix<double> Icols(nb, nb);  // column l: Imap(f, l) = b_{f,l}, and Imap(l, l) = 1
+    Icols.reserve(entries);
+    std::vector<LoopTerm> sorted;
+    for (int b = 0; b < nb; ++b) {
+      Vmap.startVec(b);
+      Icols.startVec(b);
+      if (t.in_tree[b]) {
+        Vmap.insertBack(b, b) = 1.0;
+        continue;
+      }
+      const std::vector<LoopTerm>& loop = t.loops[t.position[b]];
+      sorted.assign(loop.begin() + 1, loop.end());
+      sorted.push_back({b, 0});  // the link's own place in its column of Imap
+      std::sort(sorted.begin(), sorted.end(), [](const LoopTerm& x, const LoopTerm& y) { return x.branch < y.branch; });
+      for (const LoopTerm& f : sorted) {
+        if (f.branch == b) {
+          Icols.insertBack(b, b) = 1.0;
+          continue;
+        }
+        Vmap.insertBack(b, f.branch) = -f.sign;  // Vmap(l, f) = -b_{f,l}
+        Icols.insertBack(f.branch, b) = f.sign;
       }
     }
-    Vmap.setFromTriplets(vt.begin(), vt.end());
-    Imap.setFromTriplets(it.begin(), it.end());
+    Vmap.finalize();
+    Icols.finalize();
+    Imap = Icols;
   }
 
   // Static (resistive, source and diode) equations, one per Static branch:
@@ -446,24 +563,95 @@ CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& opt
   const SparseMatrixD CdTc = Cd.asDiagonal() * Tc, LfTl = Lf * Tl;
   SparseMatrixD MdynS = SparseMatrixD(Tc.transpose() * CdTc) + SparseMatrixD(Tl.transpose() * LfTl);
   Eigen::MatrixXd Kdu = -(CdTc.transpose() * Tcu + LfTl.transpose() * Tlu);
-  SparseMatrixD Rp(n, nb);
-  {
-    Triplets rp;
-    for (int b = 0; b < nb; ++b) {
-      if (role[b] != Role::State) continue;
-      const int j = state_of[b];
-      if (g.branches[b].cls == BranchClass::Capacitor) {  // its cutset: the links through it
-        for (RowSparse::InnerIterator it(Imap, b); it; ++it)
-          if (g.branches[it.col()].cls != BranchClass::Capacitor) rp.emplace_back(j, it.col(), it.value());
-      } else {  // its loop: the tree path
-        const std::vector<LoopTerm>& loop = t.loops[t.position[b]];
-        for (size_t k = 1; k < loop.size(); ++k)
-          if (g.branches[loop[k].branch].cls != BranchClass::Inductor)
-            rp.emplace_back(j, loop[k].branch, -loop[k].sign);
+  std::vector<bool> inductor_state(n, false);
+  for (int j = 0; j < n; ++j) inductor_state[j] = !m.states_[j].capacitor;
+  // Without inductor states nothing can be flux-free (capacitances are positive): no dense Mdyn.
+  const bool inductors = std::find(inductor_state.begin(), inductor_state.end(), true) != inductor_state.end();
+  const FluxReduction flux = inductors ? flux_reduction(Eigen::MatrixXd(MdynS), uncancelled_diagonal(Tc, Cd, Tl, Lf), inductor_state)
+                                       : FluxReduction{};
+
+  // A circuit that will step on its descriptor form (sparse_descriptor.h) reads no eliminated LCS
+  // on its run path, and a multiplier's holds O(n^2) entries (every diode's loop runs down both
+  // capacitor chains): forming it was two thirds of a 1000-diode run's CPU and most of its memory.
+  // Such a circuit is recognised from its loops and cutsets before anything O(n^2) is formed, and
+  // eliminated when something asks for its LCS (lcs(): event, radau, analyze, a dense fallback),
+  // to the same numbers. Only where nothing below would change the states or add rows: no perfect
+  // couplings (flux), dependent storage (Kdu, forced roles), lines or transistor junctions, and a
+  // diagonal Mdyn (uncoupled capacitors and inductors: invertible, no error left to raise later).
+  if (options.defer_elimination && mp >= kDescriptorPairs && flux.empty() && stamps.delayed.empty() &&
+      stamps.dc_relations.empty() && Kdu.isZero(0) && positive_diagonal(MdynS) &&
+      std::find(role.begin(), role.end(), Role::Forced) == role.end()) {
+    // The nonzeros of A and B are Rp's (P reads each primary unknown of a multiplier once), those
+    // of C and D the pairs' loop and cutset rows: an estimate for the rule, exact there.
+    double estimate = 0;
+    for (const StateInfo& state : m.states_) {
+      const int b = state.branch;
+      if (g.branches[b].cls == BranchClass::Capacitor) {
+        for (RowSparse::InnerIterator it(Imap, b); it; ++it) estimate += g.branches[it.col()].cls != BranchClass::Capacitor;
+      } else {
+        for (const LoopTerm& f : t.loops[t.position[b]]) estimate += g.branches[f.branch].cls != BranchClass::Inductor;
       }
     }
-    Rp.setFromTriplets(rp.begin(), rp.end());
+    for (const PairInfo& pr : m.pairs_)
+      estimate += static_cast<double>(Vmap.row(pr.branch).nonZeros() + Imap.row(pr.branch).nonZeros());
+    const double dense = kSparseDensity * static_cast<double>(n + mp) * static_cast<double>(n + mp);
+    std::unique_ptr<SparseDescriptor> descriptor;
+    if (estimate > dense)
+      descriptor = sparse_descriptor_if_worth(g, stamps, m.states_, m.pairs_, nu, static_cast<long>(estimate), true, false);
+    if (descriptor) {
+      m.sparse_descriptor_ = std::move(descriptor);
+      m.energy_xx_ = MdynS;
+      m.energy_xu_ = -Kdu;
+      m.lcs_.Gamma = Eigen::MatrixXd::Zero(n, nu);
+      auto rows = std::make_shared<PrimaryRows>();
+      rows->P_rows = P;
+      rows->P = std::move(P);
+      rows->Vmap = std::move(Vmap);
+      rows->Imap = std::move(Imap);
+      for (const Branch& br : g.branches) rows->cls.push_back(br.cls);
+      for (const StateInfo& state : m.states_)
+        if (!state.capacitor) rows->inductor_loops[state.branch] = t.loops[t.position[state.branch]];
+      m.primary_rows_ = rows;
+      m.defer_elimination([rows, states = m.states_, pairs = m.pairs_, MdynS, n, mp, nu, ncol, nb] {
+        // What the formation below does for such a circuit: R = Rp P, Mdyn x' = R, the pairs'
+        // branch rows and their outputs W.
+        const PrimaryRows& r = *rows;
+        const SparseMatrixD Rp = state_equation_rows(states, r.cls, r.Imap, [&](int b) -> const std::vector<LoopTerm>& {
+          return r.inductor_loops.at(b);
+        });
+        SparseMatrixD Xdot(n, ncol);
+        if (n > 0 && !solve_state_derivatives(MdynS, SparseMatrixD(Rp * r.P), Xdot))
+          throw std::logic_error("circuit model: a positive diagonal Mdyn was singular");
+        RowSparse pair_v(mp, nb), pair_i(mp, nb);
+        for (int k = 0; k < mp; ++k) {
+          pair_v.startVec(k);
+          for (RowSparse::InnerIterator it(r.Vmap, pairs[k].branch); it; ++it) pair_v.insertBack(k, it.col()) = it.value();
+          pair_i.startVec(k);
+          for (RowSparse::InnerIterator it(r.Imap, pairs[k].branch); it; ++it) pair_i.insertBack(k, it.col()) = it.value();
+        }
+        pair_v.finalize();
+        pair_i.finalize();
+        std::vector<int> own_row(mp);
+        for (int k = 0; k < mp; ++k) own_row[k] = k;
+        const SparseMatrixD W = pair_output_rows(pairs, row_product(pair_v, r.P_rows), row_product(pair_i, r.P_rows),
+                                                 own_row, n + mp);  // column of u_0
+        auto lcs = std::make_shared<SparseLcs>();
+        lcs->A = Xdot.leftCols(n);
+        lcs->B = Xdot.middleCols(n, mp);
+        lcs->C = W.leftCols(n);
+        lcs->D = W.middleCols(n, mp);
+        lcs->E = Xdot.middleCols(n + mp, nu);
+        lcs->F = W.middleCols(n + mp, nu);
+        return std::shared_ptr<const SparseLcs>(std::move(lcs));
+      });
+      return m;
+    }
   }
+  std::vector<BranchClass> branch_class;
+  for (const Branch& br : g.branches) branch_class.push_back(br.cls);
+  SparseMatrixD Rp = state_equation_rows(m.states_, branch_class, Imap, [&](int b) -> const std::vector<LoopTerm>& {
+    return t.loops[t.position[b]];
+  });
   SparseMatrixD Rfull = Rp * P;  // forced rows of P are still zero and Rp never uses them
   release(Rp);
 
@@ -471,12 +659,6 @@ CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& opt
   // algebraic (perfect_coupling.h). Change to the kept states xi, x = T xi + N eta(xi, z, u):
   // every row over [x z u du] becomes a row over [xi z u du], and the equations are projected
   // on T^T. Lf Tl N = 0 and Tc N = 0, so the forced rows below need only xi'.
-  std::vector<bool> inductor_state(n, false);
-  for (int j = 0; j < n; ++j) inductor_state[j] = !m.states_[j].capacitor;
-  // Without inductor states nothing can be flux-free (capacitances are positive): no dense Mdyn.
-  const bool inductors = std::find(inductor_state.begin(), inductor_state.end(), true) != inductor_state.end();
-  const FluxReduction flux = inductors ? flux_reduction(Eigen::MatrixXd(MdynS), uncancelled_diagonal(Tc, Cd, Tl, Lf), inductor_state)
-                                       : FluxReduction{};
   if (!flux.empty()) {  // small circuits (transformers): dense
     Eigen::MatrixXd Cmap;
     const Eigen::MatrixXd Rdense(Rfull);
@@ -520,15 +702,7 @@ CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& opt
           if (Kdu(j, c) != 0) r.emplace_back(j, ncol - nu + c, Kdu(j, c));
       R.setFromTriplets(r.begin(), r.end());
     }
-    bool invertible;
-    if (n < kSparseSolveSize) {  // small circuits keep the unscaled dense solve they always had
-      Eigen::FullPivLU<Eigen::MatrixXd> m_lu{Eigen::MatrixXd(MdynS)};
-      invertible = m_lu.isInvertible();
-      if (invertible) Xdot = Eigen::MatrixXd(solve_or_empty(m_lu, Eigen::MatrixXd(R))).sparseView();
-    } else {
-      invertible = solve_scaled(MdynS, R, false, Xdot);
-    }
-    if (!invertible) {  // not expected once perfect couplings are reduced
+    if (!solve_state_derivatives(MdynS, R, Xdot)) {  // not expected once perfect couplings are reduced
       std::vector<int> elements;
       for (int b : inds) elements.push_back(g.branches[b].element);
       throw TopologyError("the inductance matrix is singular", elements);
@@ -568,29 +742,16 @@ CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& opt
   }
   {  // by rows throughout: a multiplier's link voltages hold O(n^2) entries, converted never
     const RowSparse Prows = P;
-    m.branch_v_ = Vmap * Prows;
-    m.branch_i_ = Imap * Prows;
+    m.branch_v_ = row_product(Vmap, Prows);
+    m.branch_i_ = row_product(Imap, Prows);
   }
   release(Vmap);
   release(Imap);
 
   // Complementarity outputs w, sparse like the branch rows.
-  SparseMatrixD W(mp, ncol);
-  {
-    Triplets w;
-    for (const PairInfo& pr : m.pairs_) {
-      const int b = pr.branch, k = pair_of[b];
-      if (pr.voltage_type) {
-        for (RowSparse::InnerIterator it(m.branch_i_, b); it; ++it) w.emplace_back(k, it.col(), it.value());
-      } else {
-        for (RowSparse::InnerIterator it(m.branch_i_, b); it; ++it) w.emplace_back(k, it.col(), law[b].ron * it.value());
-        for (RowSparse::InnerIterator it(m.branch_v_, b); it; ++it) w.emplace_back(k, it.col(), -it.value());
-        if (law[b].von != 0) w.emplace_back(k, col_u(0), law[b].von);
-      }
-    }
-    W.setFromTriplets(w.begin(), w.end());
-    W.prune([](const Eigen::Index&, const Eigen::Index&, const double& v) { return v != 0; });
-  }
+  std::vector<int> pair_branch(mp);
+  for (int k = 0; k < mp; ++k) pair_branch[k] = m.pairs_[k].branch;
+  SparseMatrixD W = pair_output_rows(m.pairs_, m.branch_v_, m.branch_i_, pair_branch, col_u(0));
   s.F = W.middleCols(n + mp, nu);
   // The shift x_lcs = x_phys - Gamma u: x_lcs' = A x_lcs + B z + (E + A Gamma) u.
   SparseMatrixD A_sparse = Xdot.leftCols(n), C_sparse = W.leftCols(n);
@@ -609,7 +770,8 @@ CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& opt
     m.sparse_lcs_ = std::make_shared<const SparseLcs>(std::move(formed));
     m.defer_dense(m.sparse_lcs_);
   } else {  // a dense LCS of a sparse circuit: its steps keep the static unknowns
-    m.sparse_descriptor_ = sparse_descriptor_if_worth(g, stamps, m.states_, m.pairs_, formed, s.Gamma,
+    m.sparse_descriptor_ = sparse_descriptor_if_worth(g, stamps, m.states_, m.pairs_, nu, lcs_nonzeros(formed),
+                                                      s.Gamma.size() == 0 || s.Gamma.cwiseAbs().maxCoeff() == 0,
                                                       !stamps.delayed.empty());
     if (m.sparse_descriptor_) {
       m.defer_dense(std::make_shared<const SparseLcs>(std::move(formed)));
@@ -656,19 +818,28 @@ OutputRow CircuitModel::row_from_physical(const Eigen::RowVectorXd& r) const {
   return o;
 }
 
+Eigen::RowVectorXd CircuitModel::branch_row(int branch, bool voltage) const {
+  if (!primary_rows_) return Eigen::RowVectorXd((voltage ? branch_v_ : branch_i_).row(branch));
+  const PrimaryRows& r = *primary_rows_;  // the row of the product (Vmap or Imap) P, summed as there
+  Eigen::RowVectorXd out = Eigen::RowVectorXd::Zero(r.P_rows.cols());
+  for (RowSparse::InnerIterator it(voltage ? r.Vmap : r.Imap, branch); it; ++it)
+    for (RowSparse::InnerIterator p(r.P_rows, it.col()); p; ++p) out(p.col()) += it.value() * p.value();
+  return out;
+}
+
 OutputRow CircuitModel::branch_voltage(int branch) const {
-  return row_from_physical(Eigen::RowVectorXd(branch_v_.row(branch)));
+  return row_from_physical(branch_row(branch, true));
 }
 
 OutputRow CircuitModel::branch_current(int branch) const {
-  return row_from_physical(Eigen::RowVectorXd(branch_i_.row(branch)));
+  return row_from_physical(branch_row(branch, false));
 }
 
 // v(node) = v(parent) + sign * v(the tree branch from the parent), memoised: summing each node's
 // whole tree path cost O(depth * columns) per node, O(n^3) for a chain-like tree (a multiplier).
 Eigen::RowVectorXd CircuitModel::node_row(int node) const {
   if (node_rows_.empty()) {
-    node_rows_.assign(graph_.nodes.size(), Eigen::SparseVector<double>(branch_v_.cols()));
+    node_rows_.assign(graph_.nodes.size(), Eigen::SparseVector<double>(row_columns()));
     node_row_known_.assign(graph_.nodes.size(), false);
     node_row_known_[0] = true;  // ground
   }
@@ -676,8 +847,9 @@ Eigen::RowVectorXd CircuitModel::node_row(int node) const {
   for (int v = node; !node_row_known_.at(v); v = tree_.parent[v]) pending.push_back(v);
   for (auto it = pending.rbegin(); it != pending.rend(); ++it) {
     const LoopTerm& last = tree_.to_parent[*it];
-    node_rows_[*it] = node_rows_[tree_.parent[*it]] + static_cast<double>(last.sign) *
-                                               Eigen::SparseVector<double>(branch_v_.row(last.branch).transpose());
+    const Eigen::SparseVector<double> step = primary_rows_ ? Eigen::SparseVector<double>(branch_row(last.branch, true).transpose().sparseView())
+                                                            : Eigen::SparseVector<double>(branch_v_.row(last.branch).transpose());
+    node_rows_[*it] = node_rows_[tree_.parent[*it]] + static_cast<double>(last.sign) * step;
     node_row_known_[*it] = true;
   }
   return Eigen::RowVectorXd(node_rows_[node].transpose());
@@ -719,8 +891,8 @@ OutputRow CircuitModel::device_current(const Device& d, const std::vector<std::p
   int first = -1;  // the device's branches are consecutive in the graph
   for (int b = 0; b < static_cast<int>(graph_.branches.size()) && first < 0; ++b)
     if (graph_.branches[b].element == d.element_index()) first = b;
-  Eigen::RowVectorXd r = Eigen::RowVectorXd::Zero(branch_i_.cols());
-  for (auto [local, coeff] : terms) r += coeff * Eigen::RowVectorXd(branch_i_.row(first + local));
+  Eigen::RowVectorXd r = Eigen::RowVectorXd::Zero(row_columns());
+  for (auto [local, coeff] : terms) r += coeff * branch_row(first + local, false);
   return row_from_physical(r);
 }
 

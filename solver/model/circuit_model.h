@@ -61,6 +61,9 @@ struct ModelOptions {
   double t0 = 0, t1 = 0;      // interval over which sources are checked (Figure 5.5 test)
   // Switches: the configuration to form (switch name -> on); see DeviceOptions::switch_on.
   std::map<std::string, bool> switch_on;
+  // A circuit that will step on its descriptor form (sparse_descriptor.h) is eliminated to its
+  // LCS only when something asks for it (lcs_problem.h); false eliminates at once (tests).
+  bool defer_elimination = true;
 };
 
 // The model of one netlist: its devices, graph, normal tree, and the LCS they form, which the
@@ -106,6 +109,10 @@ class CircuitModel : public LcsProblem {
   OutputRow row_from_physical(const Eigen::RowVectorXd& r) const;
   OutputRow device_current(const Device& d, const std::vector<std::pair<int, double>>& terms) const;  // [x z u du] -> shifted row
   Eigen::RowVectorXd node_row(int node) const;                     // physical, memoised
+  // A branch's voltage or current over [x_phys | z | u | du]: branch_v_/branch_i_'s row, or made
+  // from the loop/cutset map and the primary unknowns' rows where formation deferred them.
+  Eigen::RowVectorXd branch_row(int branch, bool voltage) const;
+  int row_columns() const { return state_count() + pair_count() + 2 * input_count(); }
 
   Netlist netlist_;
   ModelOptions options_;
@@ -116,6 +123,11 @@ class CircuitModel : public LcsProblem {
   // Branch voltages and currents as rows over [x_phys | z | u | du] (physical state), sparse: a
   // branch reads a few states, pairs and inputs.
   Eigen::SparseMatrix<double, Eigen::RowMajor> branch_v_, branch_i_;
+  // Where formation deferred the elimination: Vmap, Imap (every branch voltage and current over
+  // the primary unknowns, rows) and P (the primary unknowns over [x_phys | z | u | du]), so that
+  // branch rows are made one at a time (branch_v_ and branch_i_ stay empty).
+  struct PrimaryRows;
+  std::shared_ptr<const PrimaryRows> primary_rows_;
   Eigen::SparseMatrix<double> energy_xx_;  // Mdyn: as sparse as the capacitor and inductor loops
   Eigen::MatrixXd energy_xu_;
   // node_row's memo, sparse like the branch rows (an empty vector: not yet). Not thread-safe.

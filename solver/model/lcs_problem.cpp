@@ -41,15 +41,22 @@ void LcsProblem::begin_history(const std::vector<double>& before) const {
 double LcsProblem::max_step() const { return max_step_; }
 
 int LcsProblem::state_count() const {
-  return dense_formed_ ? lcs_.states() : static_cast<int>(deferred_->A.rows());
+  if (dense_formed_) return lcs_.states();
+  return deferred_ ? static_cast<int>(deferred_->A.rows()) : static_cast<int>(states_.size());
 }
 
 int LcsProblem::pair_count() const {
-  return dense_formed_ ? lcs_.pairs() : static_cast<int>(deferred_->D.rows());
+  if (dense_formed_) return lcs_.pairs();
+  return deferred_ ? static_cast<int>(deferred_->D.rows()) : static_cast<int>(pairs_.size());
 }
 
 void LcsProblem::form_dense() const {
   Lcs& s = lcs_;
+  if (!deferred_) {
+    deferred_ = make_deferred_();
+    s.E = deferred_->E;
+    s.F = deferred_->F;
+  }
   s.A = Eigen::MatrixXd(deferred_->A);
   s.B = Eigen::MatrixXd(deferred_->B);
   s.C = Eigen::MatrixXd(deferred_->C);

@@ -5,6 +5,7 @@
 //   dx/dt = A x + B z + E u(t),   w = C x + D z + F u(t),   0 <= w ⟂ z >= 0
 #pragma once
 
+#include <functional>
 #include <limits>
 #include <memory>
 #include <string>
@@ -68,7 +69,9 @@ class LcsProblem {
   // The dense LCS. A large circuit's A, B, C and D are formed from formation's sparse ones at the
   // first call (O(n^2) bytes: 32 MB at 1000 diodes), so runs that read only the sparse LCS (the
   // sparse step, start and operating point) or the descriptor form (its step and start) never pay
-  // for them. E, F and Gamma are always there. Not thread-safe.
+  // for them. E, F and Gamma are always there, except for a circuit whose formation deferred the
+  // elimination itself (a multiplier that steps on its descriptor form, circuit_model.cpp): its
+  // first call eliminates, then forms. Not thread-safe.
   const Lcs& lcs() const {
     if (!dense_formed_) form_dense();
     return lcs_;
@@ -76,13 +79,16 @@ class LcsProblem {
   // The LCS's sizes, without forming the dense matrices.
   int state_count() const;
   int pair_count() const;
-  int input_count() const { return lcs_.inputs(); }
+  int input_count() const { return make_deferred_ && !deferred_ ? inputs_.size() : lcs_.inputs(); }
   const Eigen::MatrixXd& gamma() const { return lcs_.Gamma; }
   // Whether lcs() has formed the dense A, B, C, D of a circuit whose formation deferred them (a
   // sparse LCS or a descriptor form; tests).
   bool dense_formed_from_sparse() const { return dense_formed_ && deferred_ && !dense_at_formation_; }
   // Whether formation deferred them: false for small circuits, formed dense at once.
-  bool dense_deferred() const { return deferred_ != nullptr; }
+  bool dense_deferred() const { return deferred_ != nullptr || make_deferred_ != nullptr; }
+  // Whether the elimination to the LCS has run (false only for a circuit whose formation deferred
+  // it and that nothing has asked for its LCS yet; tests).
+  bool eliminated() const { return !make_deferred_ || deferred_; }
   const std::vector<StateInfo>& states() const { return states_; }
   const std::vector<PairInfo>& pairs() const { return pairs_; }
   const InputProvider& inputs() const { return inputs_; }
@@ -135,10 +141,17 @@ class LcsProblem {
     deferred_ = std::move(source);
     dense_formed_ = dense_at_formation_ = false;
   }
+  // The same with the sparse LCS itself made on first use by `make` (its E and F too).
+  void defer_elimination(std::function<std::shared_ptr<const SparseLcs>()> make) {
+    make_deferred_ = std::move(make);
+    dense_formed_ = dense_at_formation_ = false;
+  }
 
  private:
   void form_dense() const;
-  std::shared_ptr<const SparseLcs> deferred_;  // what lcs() forms A, B, C, D from; null: formed
+  // What lcs() forms A, B, C, D from; null: formed, or not made yet (make_deferred_).
+  mutable std::shared_ptr<const SparseLcs> deferred_;
+  std::function<std::shared_ptr<const SparseLcs>()> make_deferred_;
   mutable bool dense_formed_ = true;
   bool dense_at_formation_ = true;
 };

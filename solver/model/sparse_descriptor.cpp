@@ -42,6 +42,10 @@ Eigen::SparseMatrix<double> sparse(int rows, int cols, const Triplets& t) {
 
 }  // namespace
 
+long lcs_nonzeros(const SparseLcs& lcs) {
+  return exact_nonzeros(lcs.A) + exact_nonzeros(lcs.B) + exact_nonzeros(lcs.C) + exact_nonzeros(lcs.D);
+}
+
 // The rule. Per step that keeps its mode (most steps), the dense path costs about (n + m)^2
 // multiply-adds (q = C Phi x, x+ = Phi x + W^-1 B z: dense n x n and n x m products) and the
 // descriptor about 2 nnz(LU) + nnz(P), where nnz(LU) grows like its unknowns (nodes + branches
@@ -53,17 +57,17 @@ Eigen::SparseMatrix<double> sparse(int rows, int cols, const Triplets& t) {
 //   - the LCS is dense (sparse_lcs_if_worth declined it: nonzeros of A, B, C, D above
 //     kSparseDensity (n + m)^2), and
 //   - the descriptor holds fewer nonzeros than the dense LCS.
-// The θ-method steps on it from kDescriptorPairs pairs on (theta_method.h: the measured
+// The θ-method steps on it from kDescriptorPairs pairs on (sparse_descriptor.h: the measured
 // crossover; the descriptor's constant is larger).
 std::unique_ptr<SparseDescriptor> sparse_descriptor_if_worth(
     const CircuitGraph& g, const Stamps& stamps,
-    const std::vector<StateInfo>& states, const std::vector<PairInfo>& pairs, const SparseLcs& lcs,
-    const Eigen::MatrixXd& gamma, bool has_history) {
-  const int n = static_cast<int>(lcs.A.rows()), m = static_cast<int>(lcs.D.rows()), nu = static_cast<int>(lcs.E.cols());
+    const std::vector<StateInfo>& states, const std::vector<PairInfo>& pairs, int inputs, long lcs_nonzeros,
+    bool shift_free, bool has_history) {
+  const int n = static_cast<int>(states.size()), m = static_cast<int>(pairs.size()), nu = inputs;
   if (m < kSparsePairs || has_history) return nullptr;
   for (const PairInfo& p : pairs)
     if (p.transfer) return nullptr;
-  if (gamma.size() > 0 && gamma.cwiseAbs().maxCoeff() != 0) return nullptr;
+  if (!shift_free) return nullptr;
   const int nb = static_cast<int>(g.branches.size());
   std::vector<int> state_of(nb, -1);
   for (int j = 0; j < n; ++j) {
@@ -75,8 +79,6 @@ std::unique_ptr<SparseDescriptor> sparse_descriptor_if_worth(
     storage[s.branch] = &s;
     if (state_of[s.branch] < 0) return nullptr;  // a dependent capacitor or inductor
   }
-  const long lcs_nonzeros = exact_nonzeros(lcs.A) + exact_nonzeros(lcs.B) + exact_nonzeros(lcs.C) +
-                            exact_nonzeros(lcs.D);
   if (lcs_nonzeros <= kSparseDensity * static_cast<double>(n + m) * static_cast<double>(n + m))
     return nullptr;  // sparse enough for the sparse LCS step (sparse_lcs.h)
 

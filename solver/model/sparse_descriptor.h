@@ -59,14 +59,24 @@ struct SparseDescriptor {
   long nonzeros() const { return K0.nonZeros() + K1.nonZeros() + Lz.nonZeros() + P.nonZeros(); }
 };
 
+// Pairs from which a circuit with a dense LCS steps on its descriptor form. Measured on the
+// Cockcroft–Walton family (`bench --scale cw`, euler, CPU per simulated second, shared machine):
+// dense 0.034 / 0.27 / 4.1 and descriptor 0.14 / 0.44 / 1.1 at 50 / 100 / 200 pairs; the two
+// power laws cross near 120 pairs. Formation defers the whole elimination of such a circuit
+// (circuit_model.cpp).
+constexpr int kDescriptorPairs = 128;
+
 // The descriptor when the step should be solved on it (sparse_descriptor.cpp states the rule and
-// its cost model), else null. `lcs` is the LCS formation made from the same stamps, A, B, C, D
-// still sparse (formation decides here, before forming them dense: a circuit that steps on its
-// descriptor defers them, lcs_problem.h), `gamma` its state shift; its states and pairs are
-// `states`, `pairs`. Formation calls this once, after the LCS.
+// its cost model), else null. The LCS formed from the same stamps has the states `states`, the
+// pairs `pairs`, `inputs` inputs, `lcs_nonzeros` nonzeros in A, B, C, D (counted, or estimated
+// from the circuit's loops and cutsets by a formation that has not formed them yet) and a state
+// shift Gamma u unless `shift_free`. Formation calls this once.
 std::unique_ptr<SparseDescriptor> sparse_descriptor_if_worth(
     const CircuitGraph& g, const Stamps& stamps,
-    const std::vector<StateInfo>& states, const std::vector<PairInfo>& pairs, const SparseLcs& lcs,
-    const Eigen::MatrixXd& gamma, bool has_history);
+    const std::vector<StateInfo>& states, const std::vector<PairInfo>& pairs, int inputs, long lcs_nonzeros,
+    bool shift_free, bool has_history);
+
+// The entries of A, B, C, D that are not exactly zero: what the dense matrices would hold.
+long lcs_nonzeros(const SparseLcs& lcs);
 
 }  // namespace lcs

@@ -82,6 +82,26 @@ void clear_structural_zeros_sparse(const SparseMatrixD& E, const SparseMatrixD& 
   X.prune([](const Eigen::Index&, const Eigen::Index&, const double& v) { return v != 0; });
 }
 
+// E diagonal (a circuit whose capacitors all sit in the tree: Mdyn = diag(C)): X = E^-1 R entry
+// by entry, as the singleton-row substitution would compute it on the scaled system ((s r) /
+// (s d), the same rounding), without its copies of an R that can hold O(n^2) entries.
+bool solve_diagonal(const SparseMatrixD& E, const Eigen::VectorXd& row_scale, const SparseMatrixD& R,
+                    SparseMatrixD& X) {
+  Eigen::VectorXd pivot(E.rows());
+  for (int k = 0; k < E.outerSize(); ++k) {
+    SparseMatrixD::InnerIterator it(E, k);
+    if (!it || it.row() != k || it.value() == 0) return false;
+    pivot(k) = row_scale(k) * it.value();
+    if (++it) return false;
+  }
+  X = R;
+  for (int c = 0; c < X.outerSize(); ++c)
+    for (SparseMatrixD::InnerIterator it(X, c); it; ++it)
+      it.valueRef() = row_scale(it.row()) * it.value() / pivot(it.row());
+  X.prune([](const Eigen::Index&, const Eigen::Index&, const double& v) { return v != 0; });
+  return true;
+}
+
 }  // namespace
 
 // The size threshold is a choice, not a measurement: small circuits keep the dense results they
@@ -101,6 +121,8 @@ bool solve_scaled(const SparseMatrixD& E, const SparseMatrixD& R, bool clear_str
     X = dense.sparseView();
     return true;
   }
+  // |s d| is 1 to rounding: a diagonal amplifies nothing, and a non-finite X is R's own.
+  if (solve_diagonal(E, row_scale, R, X) && all_finite(X)) return true;
   const SparseMatrixD scaled = row_scale.asDiagonal() * E;
   const SparseMatrixD Rs = row_scale.asDiagonal() * R;
   if (solve_by_singleton_rows(scaled, Rs, X)) {

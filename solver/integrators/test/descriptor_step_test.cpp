@@ -82,10 +82,11 @@ std::string capacitor_tree(unsigned seed, int nodes) {
   return s;
 }
 
-CircuitModel build(const std::string& text) {
+CircuitModel build(const std::string& text, bool defer_elimination = true) {
   const Netlist netlist = parse_netlist_string(text, "generated.cir");
   ModelOptions mo;
   mo.t1 = netlist.tran->tstop;
+  mo.defer_elimination = defer_elimination;
   return CircuitModel::build(netlist, mo);
 }
 
@@ -215,6 +216,47 @@ TEST(DescriptorStep, ARunOnItNeverFormsTheDenseLcsAndWritesTheDensePathsWaveform
     const double range = (hi - lo).maxCoeff();
     EXPECT_GT(range, 100.0);  // the multiplier charged
     EXPECT_LT(diff, 1e-9 * range);
+  }
+}
+
+// A circuit that will step on its descriptor form is not eliminated to its LCS at formation
+// (a multiplier's holds O(n^2) entries: two thirds of a 1000-diode run's CPU); its output rows
+// are made from its loops and cutsets, and its LCS when something asks for it. Both are the ones
+// formation makes at once, to the last bit: every default probe's row and A, B, C, D, E, F, on
+// a multiplier and on capacitor trees with resistors and inductors (230 and 290 pairs).
+TEST(DeferredElimination, GivesTheOutputRowsAndTheLcsOfTheImmediateOne) {
+  for (const std::string& text : {multiplier(100, 1), capacitor_tree(2, 120), capacitor_tree(3, 150)}) {
+    const CircuitModel deferred = build(text), immediate = build(text, false);
+    SCOPED_TRACE(text.substr(0, text.find('\n')) + ", " + std::to_string(immediate.pair_count()) + " pairs");
+    ASSERT_NE(deferred.sparse_descriptor(), nullptr);
+    ASSERT_NE(immediate.sparse_descriptor(), nullptr);
+    EXPECT_GE(immediate.pair_count(), kDescriptorPairs);
+    EXPECT_FALSE(deferred.eliminated());
+    EXPECT_TRUE(immediate.eliminated());
+    EXPECT_EQ(deferred.state_count(), immediate.state_count());
+    EXPECT_EQ(deferred.pair_count(), immediate.pair_count());
+    EXPECT_EQ(deferred.input_count(), immediate.input_count());
+    EXPECT_EQ(deferred.sparse_descriptor()->nonzeros(), immediate.sparse_descriptor()->nonzeros());
+    const OutputMap rows = deferred.output_map(deferred.default_probes());
+    const OutputMap immediate_rows = immediate.output_map(immediate.default_probes());
+    EXPECT_FALSE(deferred.eliminated());  // the rows did not need the LCS
+    EXPECT_TRUE(Eigen::MatrixXd(rows.G) == Eigen::MatrixXd(immediate_rows.G));
+    EXPECT_TRUE(Eigen::MatrixXd(rows.H) == Eigen::MatrixXd(immediate_rows.H));
+    EXPECT_TRUE(rows.J == immediate_rows.J);
+    EXPECT_TRUE(rows.K == immediate_rows.K);
+    EXPECT_GT(rows.G.nonZeros(), 0);
+    const Lcs& a = deferred.lcs();
+    const Lcs& b = immediate.lcs();
+    EXPECT_TRUE(deferred.eliminated());
+    EXPECT_TRUE(a.A == b.A);
+    EXPECT_TRUE(a.B == b.B);
+    EXPECT_TRUE(a.C == b.C);
+    EXPECT_TRUE(a.D == b.D);
+    EXPECT_TRUE(a.E == b.E);
+    EXPECT_TRUE(a.F == b.F);
+    EXPECT_TRUE(a.Gamma == b.Gamma);
+    EXPECT_GT(a.B.cwiseAbs().sum(), 0);
+    EXPECT_TRUE(Eigen::MatrixXd(deferred.energy_xx()) == Eigen::MatrixXd(immediate.energy_xx()));
   }
 }
 
