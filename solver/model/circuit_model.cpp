@@ -581,8 +581,9 @@ CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& opt
   if (options.defer_elimination && mp >= kDescriptorPairs && flux.empty() && stamps.delayed.empty() &&
       stamps.dc_relations.empty() && Kdu.isZero(0) && positive_diagonal(MdynS) &&
       std::find(role.begin(), role.end(), Role::Forced) == role.end()) {
-    // The nonzeros of A and B are Rp's (P reads each primary unknown of a multiplier once), those
-    // of C and D the pairs' loop and cutset rows: an estimate for the rule, exact there.
+    // The LCS's nonzeros, estimated for the rule without forming it: Rp's entries stand for A
+    // and B's, the pairs' loop and cutset rows for C and D's (close where P reads most primary
+    // unknowns once, as on a multiplier, whose only other row is its load resistor's).
     double estimate = 0;
     for (const StateInfo& state : m.states_) {
       const int b = state.branch;
