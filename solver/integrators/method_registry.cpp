@@ -51,6 +51,7 @@ std::vector<MethodEntry> make_table() {
       "euler", "implicit Euler (theta = 1), fixed step, one LCP per step",
       [](const LcsProblem& m, const MethodOptions& o) { return std::make_unique<ThetaMethod>(m, 1.0, o.sparse); });
   euler.is_fixed_step_default = true;
+  euler.large_circuit_steps = true;
   table.push_back(euler);
 
   auto make_event = [](const LcsProblem& m, const MethodOptions& o) {
@@ -129,6 +130,7 @@ std::vector<MethodEntry> make_table() {
       "theta", "theta-method (--theta, default 0.5: trapezoidal), fixed step, one LCP per step",
       [](const LcsProblem& m, const MethodOptions& o) { return std::make_unique<ThetaMethod>(m, o.theta, o.sparse); });
   theta.uses_theta = true;
+  theta.large_circuit_steps = true;
   table.push_back(theta);
 
   return table;

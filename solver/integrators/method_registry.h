@@ -40,6 +40,9 @@ struct MethodEntry {
   bool smooth_model = false;     // integrates the smoothed circuit (Shockley diodes, smooth_netlist)
                                  // instead of the ideal complementarity law
   bool uses_theta = false;       // reads MethodOptions::theta (`--theta`, `.options theta=`)
+  // Steps large circuits on the sparse system or the descriptor form (theta_method.h); the
+  // others keep the dense LCS at every size.
+  bool large_circuit_steps = false;
   BenchSweep bench_sweep = BenchSweep::StepSize;
   bool exact_reference = false;  // bench's reference for the ideal circuit (exact: event)
   bool smooth_reference = false; // bench's reference for the smoothed circuit

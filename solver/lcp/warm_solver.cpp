@@ -119,9 +119,9 @@ void LcpWarmSolver::prefer(const Eigen::VectorXd& z, bool always) {
 // Where pairs reach zero together, which of them leaves first is a heuristic outside
 // P-matrices: the TTL adders' runs equal Lemke's to 6.7e-10 V.) With no previous state at all
 // (a start without .ic/.nodeset choosing) the solutions are told apart by their index
-// sign(det M_JJ) (J = {z > 0}; the indices of a nondegenerate LCP's solutions sum to 1): an index -1 solution is a saddle of the fast
-// dynamics any small charge storage adds (a flip-flop's balanced state); a single index +1
-// solution is taken, several are the run's exit 3.
+// sign(det M_JJ) (J = {z > 0}; the indices of a nondegenerate LCP's solutions sum to 1): an
+// index -1 solution is a saddle of the fast dynamics any small charge storage adds (a
+// flip-flop's balanced state); a single index +1 solution is taken, several are the run's exit 3.
 const LcpSolution& LcpWarmSolver::solve(const Eigen::VectorXd& q) {
   constexpr int kMaxCountedOnWarmHit = 8, kMaxCounted = 16;
   const int n = static_cast<int>(M_.rows());

@@ -16,7 +16,6 @@
 #include "solver/model/netlist_options.h"
 #include "solver/model/inductance_check.h"
 #include "solver/model/perfect_coupling.h"
-#include "solver/model/row_product.h"
 #include "solver/model/sparse_descriptor.h"
 #include "solver/model/sparse_lcs.h"
 #include "solver/model/sparse_solve.h"
@@ -266,7 +265,6 @@ bool positive_diagonal(const SparseMatrixD& M) {
 
 struct CircuitModel::PrimaryRows {
   RowSparse Vmap, Imap, P_rows;  // P_rows: P by rows
-  SparseMatrixD P;
   std::vector<BranchClass> cls;                          // per branch
   std::map<int, std::vector<LoopTerm>> inductor_loops;  // per link inductor state's branch
 };
@@ -606,7 +604,6 @@ CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& opt
       m.lcs_.Gamma = Eigen::MatrixXd::Zero(n, nu);
       auto rows = std::make_shared<PrimaryRows>();
       rows->P_rows = P;
-      rows->P = std::move(P);
       rows->Vmap = std::move(Vmap);
       rows->Imap = std::move(Imap);
       for (const Branch& br : g.branches) rows->cls.push_back(br.cls);
@@ -621,7 +618,7 @@ CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& opt
           return r.inductor_loops.at(b);
         });
         SparseMatrixD Xdot(n, ncol);
-        if (n > 0 && !solve_state_derivatives(MdynS, SparseMatrixD(Rp * r.P), Xdot))
+        if (n > 0 && !solve_state_derivatives(MdynS, SparseMatrixD(Rp * SparseMatrixD(r.P_rows)), Xdot))
           throw std::logic_error("circuit model: a positive diagonal Mdyn was singular");
         RowSparse pair_v(mp, nb), pair_i(mp, nb);
         for (int k = 0; k < mp; ++k) {
@@ -634,7 +631,7 @@ CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& opt
         pair_i.finalize();
         std::vector<int> own_row(mp);
         for (int k = 0; k < mp; ++k) own_row[k] = k;
-        const SparseMatrixD W = pair_output_rows(pairs, row_product(pair_v, r.P_rows), row_product(pair_i, r.P_rows),
+        const SparseMatrixD W = pair_output_rows(pairs, RowSparse(pair_v * r.P_rows), RowSparse(pair_i * r.P_rows),
                                                  own_row, n + mp);  // column of u_0
         auto lcs = std::make_shared<SparseLcs>();
         lcs->A = Xdot.leftCols(n);
@@ -743,8 +740,8 @@ CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& opt
   }
   {  // by rows throughout: a multiplier's link voltages hold O(n^2) entries, converted never
     const RowSparse Prows = P;
-    m.branch_v_ = row_product(Vmap, Prows);
-    m.branch_i_ = row_product(Imap, Prows);
+    m.branch_v_ = Vmap * Prows;
+    m.branch_i_ = Imap * Prows;
   }
   release(Vmap);
   release(Imap);

@@ -24,7 +24,8 @@ constexpr size_t kMaxInputBytes = 4096;
 constexpr size_t kMaxElements = 300;
 // The adaptive methods on such circuits are seconds to minutes of work per deck in the
 // instrumented build (a 64-stage multiplier: event 22 s, smooth 41 s in Release), not hangs to
-// find: they keep the former bound, and so does radau (transient_fuzz.cpp).
+// find: they keep the former bound, and so does every method without large-circuit steps
+// (radau; transient_fuzz.cpp).
 constexpr size_t kMaxElementsAdaptive = 60;
 
 template <class F>

@@ -54,6 +54,7 @@ TEST(MethodRegistry, TraitsOfEachMethod) {
     EXPECT_EQ(e->exact_reference, x.exact_reference) << x.name;
     EXPECT_EQ(e->smooth_reference, x.smooth_reference) << x.name;
     EXPECT_EQ(e->is_default, x.is_default) << x.name;
+    EXPECT_EQ(e->large_circuit_steps, x.name == "euler" || x.name == "theta") << x.name;
     EXPECT_EQ(e->bench_sweep, x.adaptive ? BenchSweep::Tolerance : BenchSweep::StepSize) << x.name;
   }
 }
