@@ -12,6 +12,7 @@
 
 #include "solver/integrators/dyadic_time.h"
 #include "solver/integrators/exponential_cache.h"
+#include "solver/integrators/taylor_segment.h"
 #include "solver/integrators/mode_dynamics.h"
 #include "solver/integrators/pairs_at_zero_lcp.h"
 #include "solver/integrators/source_system.h"
@@ -88,6 +89,7 @@ struct Mode {
   // holding the whole mode to 1e-10 s steps for it cost 25 million steps on a 2 ms astable.
   int level = 0, settled_level = 0;
   double settle_time = 0;
+  double norm1 = -1;  // ||M||_1, when a segment of this mode is first recorded
   // Switch guards (SwitchGuards) as rows over [x; σ]: guard = Guard [x; σ] - guard_offset.
   Eigen::MatrixXd Guard, GuardM, Guardabs;
   Eigen::VectorXd guard_offset, Guardnorm;
@@ -920,13 +922,16 @@ std::optional<GuardCrossing> EventDriven::RunSegment(const SegmentStart& start, 
   };
   // X(s) = exp(M (s - t0)) X(t0) as the product of the mode's cached exp(M h0 / 2^j) over the
   // binary digits of (s - t0) / h0 (to 2^-52 of a step: the rounding of s itself); a segment is
-  // at most one step h0 long.
+  // at most one step h0 long. The history reads the waves of a segment as Taylor series about
+  // anchors taken from that product (taylor_segment.h), or from the product itself where the
+  // series would need too many pieces.
   Impl* impl = &r;
   auto record_segment = [&, impl](double t0, const Eigen::VectorXd& X0, Mode* mode, double t1) {
+    if (!(t1 > t0)) return;
     const Eigen::MatrixXd* L = &wave_row(mode);
-    history->record_segment(t0, t1, [impl, mode, L, X0, t0](double s, std::vector<double>& a, std::vector<double>& da) {
+    auto state_at = [impl, mode, X0](double r_seconds) {
       Eigen::VectorXd X = X0, tmp;
-      const DyadicTime d = DyadicTime::from(std::max(0.0, s - t0), impl->h0);
+      const DyadicTime d = DyadicTime::from(std::max(0.0, r_seconds), impl->h0);
       for (std::int64_t k = 0; k < d.k; ++k) {
         tmp.noalias() = impl->exponential(*mode, 0) * X;
         X.swap(tmp);
@@ -936,10 +941,24 @@ std::optional<GuardCrossing> EventDriven::RunSegment(const SegmentStart& start, 
           tmp.noalias() = impl->exponential(*mode, j) * X;
           X.swap(tmp);
         }
+      return X;
+    };
+    if (mode->norm1 < 0) mode->norm1 = mode->q > 0 ? mode->M.cwiseAbs().colwise().sum().maxCoeff() : 0.0;
+    if (std::optional<TaylorSegment> taylor = TaylorSegment::build(mode->M, mode->norm1, *L, X0, t1 - t0, state_at)) {
+      auto seg = std::make_shared<const TaylorSegment>(std::move(*taylor));
+      history->record_segment(t0, t1, [seg, t0](double s, std::vector<double>& a, std::vector<double>& da) {
+        seg->eval(s - t0, a, da);
+      });
+      ++r.stats.taylor_segments;
+      return;
+    }
+    history->record_segment(t0, t1, [state_at, mode, L, t0](double s, std::vector<double>& a, std::vector<double>& da) {
+      const Eigen::VectorXd X = state_at(s - t0);
       const Eigen::VectorXd av = *L * X, dv = *L * (mode->M * X);
       a.assign(av.data(), av.data() + av.size());
       da.assign(dv.data(), dv.data() + dv.size());
     });
+    ++r.stats.exact_segments;
   };
   auto next_at_level = [&](int level) {
     DyadicTime c = r.pos;

@@ -86,6 +86,8 @@ void run_switched_adaptive(SwitchFamily& family, const SwitchConfig& start_confi
       total.cache_budget_bytes = std::max(total.cache_budget_bytes, s.cache_budget_bytes);
       total.cache_peak_bytes += s.cache_peak_bytes;
       total.cache_evictions += s.cache_evictions;
+      total.taylor_segments += s.taylor_segments;
+      total.exact_segments += s.exact_segments;
     }
     total.mode_switches += changes;  // a configuration change is a mode change
     summary.stepper = total;

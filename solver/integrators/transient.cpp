@@ -99,6 +99,11 @@ std::string TransientSummary::BriefReport() const {
                   stepper.cache_evictions);
     out += buf;
   }
+  if (stepper.taylor_segments + stepper.exact_segments > 0) {
+    std::snprintf(buf, sizeof buf, "\nline history: %ld segments read as Taylor series, %ld through the exact product",
+                  stepper.taylor_segments, stepper.exact_segments);
+    out += buf;
+  }
   if (stepper.residual_evals > 0) {
     std::snprintf(buf, sizeof buf,
                   "\nresidual evaluations %ld, Jacobians %ld, Newton iterations %ld, rejected steps %ld",
