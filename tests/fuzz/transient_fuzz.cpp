@@ -14,11 +14,12 @@
 
 namespace {
 constexpr double kMaxSteps = 400;
-// The event method on a line deck reads its own exact history at every fit (README, "Known
-// limits": 0.2-2.4 s per circuits/tline_*.cir in Release): in this build 1.3-1.4 s per line
-// delay over 6 of them, 97 s for tline_diode_termination's 24. Its runs are cut to this many
-// delays of the shortest line, which keeps the seeds under 8.4 s, a third of the 25 s hang limit
-// (scripts/fuzz.sh), with their wavefronts, reflections and switchings still fuzzed.
+// The event method on a line deck reads its own exact history at every fit. Before those reads
+// became Taylor series (taylor_segment.h) they took 1.3-1.4 s per line delay in this build, 97 s
+// for tline_diode_termination's 24 delays (a CI timeout); with them, and its runs cut to this many
+// delays of the shortest line, the circuits/tline_*.cir seeds take 0.2-3.2 s, an eighth of the
+// 25 s hang limit (scripts/fuzz.sh), with their wavefronts, reflections and switchings fuzzed. A
+// stiff mode's segments are still read through the exact product (ltra4_1_line.sp).
 constexpr double kEventLineDelays = 6;
 }
 
