@@ -18,6 +18,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -362,6 +363,28 @@ TEST(TlineDiodeTermination, EventMatchesTheCharacteristicsEverywhere) {
     EXPECT_EQ(seen[k].on, s.switches[k].on) << k;
     EXPECT_NEAR(seen[k].t, s.switches[k].t, 1e-3 * s.td) << k;
   }
+}
+
+// The waves each segment sends into the line are read back as Taylor series (taylor_segment.h):
+// this circuit has no states, so every mode's ||M|| is the sources' and the fitted inputs', and no
+// segment needs the exact product. A regression to per-read products keeps the rows (the test
+// above) but costs 30 times the run (README, "Transmission lines").
+TEST(TlineDiodeTermination, EventReadsEverySegmentOfItsHistoryAsATaylorSeries) {
+  const fs::path dir = scratch_dir("tline_taylor_history");
+  const Result r = run_lcspice("run '" + circuit("tline_diode_termination").string() +
+                                   "' --method event --stats -o '" + (dir / "out.csv").string() + "'",
+                               dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const size_t at = r.err.find("line history: ");
+  ASSERT_NE(at, std::string::npos) << r.err;
+  long taylor = -1, exact = -1;
+  ASSERT_EQ(std::sscanf(r.err.c_str() + at,
+                        "line history: %ld segments read as Taylor series, %ld through the exact product", &taylor,
+                        &exact),
+            2)
+      << r.err;
+  EXPECT_GT(taylor, 2000);
+  EXPECT_EQ(exact, 0);
 }
 
 TEST(TlineDiodeTermination, EulerAndRadau5AtAStepDividingTdMatchThePlateausAndSwitchWithinAStep) {
