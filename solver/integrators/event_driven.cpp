@@ -944,7 +944,9 @@ std::optional<GuardCrossing> EventDriven::RunSegment(const SegmentStart& start, 
       return X;
     };
     if (mode->norm1 < 0) mode->norm1 = mode->q > 0 ? mode->M.cwiseAbs().colwise().sum().maxCoeff() : 0.0;
-    if (std::optional<TaylorSegment> taylor = TaylorSegment::build(mode->M, mode->norm1, *L, X0, t1 - t0, state_at)) {
+    std::optional<TaylorSegment> taylor;
+    if (r.options.history_series) taylor = TaylorSegment::build(mode->M, mode->norm1, *L, X0, t1 - t0, state_at);
+    if (taylor) {
       auto seg = std::make_shared<const TaylorSegment>(std::move(*taylor));
       history->record_segment(t0, t1, [seg, t0](double s, std::vector<double>& a, std::vector<double>& da) {
         seg->eval(s - t0, a, da);

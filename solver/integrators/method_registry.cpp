@@ -57,6 +57,7 @@ std::vector<MethodEntry> make_table() {
   auto make_event = [](const LcsProblem& m, const MethodOptions& o) {
     EventOptions e;
     if (o.rtol > 0) e.rtol = o.rtol;
+    e.history_series = o.history_series;
     return std::make_unique<EventDriven>(m, e);
   };
   MethodEntry event = adaptive(

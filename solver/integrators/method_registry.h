@@ -22,6 +22,9 @@ struct MethodOptions {
   // Large circuits step on the sparse system (theta_method.h); false keeps the dense LCP, to
   // compare the two.
   bool sparse = true;
+  // The event method reads its line history as Taylor series (taylor_segment.h); false keeps the
+  // exact product for every read, to compare the two.
+  bool history_series = true;
 };
 
 // What `bench` varies for a method: the fixed step h, or the tolerance --rtol.

@@ -31,10 +31,11 @@ std::optional<TaylorSegment> TaylorSegment::build(const Eigen::MatrixXd& M, doub
       scale = std::max(scale, waves.back().cwiseAbs().maxCoeff());
       if (l_max * S.lpNorm<1>() <= kTermTol * scale) break;
       if (k + 1 >= max_terms) return std::nullopt;
-      S = (M * S) * (rho / (k + 1));
+      S = M * (S * (rho / (k + 1)));  // scaled first: M S alone could overflow where S ρ does not
     }
     Eigen::MatrixXd W(L.rows(), static_cast<Eigen::Index>(waves.size()));
     for (size_t k = 0; k < waves.size(); ++k) W.col(static_cast<Eigen::Index>(k)) = waves[k];
+    if (!W.allFinite()) return std::nullopt;
     seg.terms_.push_back(std::move(W));
   }
   return seg;

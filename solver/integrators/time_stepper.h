@@ -32,8 +32,8 @@ struct StepperStats {
   long cache_budget_bytes = 0;  // event: the exponential cache's budget (0: no cache)
   long cache_peak_bytes = 0;    // and the most it held
   long cache_evictions = 0;     // exponentials dropped for the budget
-  long taylor_segments = 0;     // event with lines: history segments read as Taylor series
-  long exact_segments = 0;      // and those read through the exact product (taylor_segment.h)
+  long taylor_segments = 0;     // event with lines: history segments kept as Taylor series
+  long exact_segments = 0;      // and those kept as exact products (taylor_segment.h)
 };
 
 // Advances (x, z) of a circuit's LCS. Step() is the non-virtual entry point (Drake style).

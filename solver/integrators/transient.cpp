@@ -100,7 +100,7 @@ std::string TransientSummary::BriefReport() const {
     out += buf;
   }
   if (stepper.taylor_segments + stepper.exact_segments > 0) {
-    std::snprintf(buf, sizeof buf, "\nline history: %ld segments read as Taylor series, %ld through the exact product",
+    std::snprintf(buf, sizeof buf, "\nline history: %ld segments kept as Taylor series, %ld as exact products",
                   stepper.taylor_segments, stepper.exact_segments);
     out += buf;
   }

@@ -101,6 +101,46 @@ TEST(TaylorSegment, KeepsAShortStepsHugeInputCoefficients) {
   expect_exact(make_case(h, 3), h, 1);
 }
 
+// The waves read only the end of a chain x0 -> x1 -> x2 that starts with x1 = x2 = 0: the first
+// two wave terms are zero, and only the state's own terms say the series is not done. A stop on
+// the newest wave term would read a(r) = 0.
+TEST(TaylorSegment, KeepsTermsOfStatesTheWavesDoNotSeeYet) {
+  ModeCase c;
+  c.M = Eigen::MatrixXd::Zero(3, 3);
+  c.M(0, 0) = -1e9;
+  c.M(1, 0) = 2e9;
+  c.M(2, 1) = 3e9;
+  c.X0 = Eigen::Vector3d(1, 0, 0);
+  c.L = Eigen::RowVector3d(0, 0, 1);
+  const double len = 1e-10;  // ||M||_1 len = 0.3: one piece
+  auto exact = [&](double r) { return reference_state(c, r); };
+  const std::optional<TaylorSegment> seg = TaylorSegment::build(c.M, norm1(c.M), c.L, c.X0, len, exact);
+  ASSERT_TRUE(seg.has_value());
+  std::vector<double> a, da;
+  seg->eval(len, a, da);
+  const double want = (c.L * reference_state(c, len))(0);
+  EXPECT_GT(want, 0.02);
+  EXPECT_NEAR(a[0], want, 1e-15 * want);
+}
+
+// Reads before the segment are read at its start (as the exact product reads them); reads a
+// nudge past its end continue the last piece's series.
+TEST(TaylorSegment, ReadsAtAndJustPastTheEnds) {
+  const double h = 4e-10;
+  const ModeCase c = make_case(h, 5);
+  auto exact = [&](double r) { return reference_state(c, r); };
+  const std::optional<TaylorSegment> seg = TaylorSegment::build(c.M, norm1(c.M), c.L, c.X0, h, exact);
+  ASSERT_TRUE(seg.has_value());
+  std::vector<double> a, da;
+  seg->eval(-1e-12, a, da);
+  const Eigen::VectorXd at0 = c.L * c.X0;
+  for (int k = 0; k < 2; ++k) EXPECT_NEAR(a[k], at0(k), 1e-13 * at0.cwiseAbs().maxCoeff());
+  const double past = h * (1 + 1e-9);
+  seg->eval(past, a, da);
+  const Eigen::VectorXd want = c.L * reference_state(c, past);
+  for (int k = 0; k < 2; ++k) EXPECT_NEAR(a[k], want(k), 1e-13 * want.cwiseAbs().maxCoeff());
+}
+
 TEST(TaylorSegment, LeavesAStiffSegmentToTheExactProduct) {
   const ModeCase c = make_case(1e-9, 4);  // ||M||_1 len = 6.2: 13 pieces, more than the 8 allowed
   int calls = 0;
