@@ -89,7 +89,6 @@ struct Mode {
   // holding the whole mode to 1e-10 s steps for it cost 25 million steps on a 2 ms astable.
   int level = 0, settled_level = 0;
   double settle_time = 0;
-  double norm1 = -1;  // ||M||_1, when a segment of this mode is first recorded
   // Switch guards (SwitchGuards) as rows over [x; σ]: guard = Guard [x; σ] - guard_offset.
   Eigen::MatrixXd Guard, GuardM, Guardabs;
   Eigen::VectorXd guard_offset, Guardnorm;
@@ -943,9 +942,8 @@ std::optional<GuardCrossing> EventDriven::RunSegment(const SegmentStart& start, 
         }
       return X;
     };
-    if (mode->norm1 < 0) mode->norm1 = mode->q > 0 ? mode->M.cwiseAbs().colwise().sum().maxCoeff() : 0.0;
     std::optional<TaylorSegment> taylor;
-    if (r.options.history_series) taylor = TaylorSegment::build(mode->M, mode->norm1, *L, X0, t1 - t0, state_at);
+    if (r.options.history_series) taylor = TaylorSegment::build(mode->M, *L, X0, t1 - t0, state_at);
     if (taylor) {
       auto seg = std::make_shared<const TaylorSegment>(std::move(*taylor));
       history->record_segment(t0, t1, [seg, t0](double s, std::vector<double>& a, std::vector<double>& da) {

@@ -5,9 +5,10 @@
 
 namespace lcs {
 
-std::optional<TaylorSegment> TaylorSegment::build(const Eigen::MatrixXd& M, double norm1, const Eigen::MatrixXd& L,
+std::optional<TaylorSegment> TaylorSegment::build(const Eigen::MatrixXd& M, const Eigen::MatrixXd& L,
                                                   const Eigen::VectorXd& X0, double len,
                                                   const std::function<Eigen::VectorXd(double)>& exact_state) {
+  const double norm1 = M.size() > 0 ? M.cwiseAbs().colwise().sum().maxCoeff() : 0.0;  // ||M||_1
   if (!(len > 0) || !std::isfinite(norm1)) return std::nullopt;
   const double pieces = std::max(1.0, std::ceil(2 * norm1 * len));
   if (pieces > kMaxPieces) return std::nullopt;

@@ -26,10 +26,9 @@ class TaylorSegment {
   // The last term kept is below kTermTol of the largest wave term (or of the waves' size).
   static constexpr double kTermTol = 1e-17;
 
-  // norm1 = ||M||_1; exact_state(r): X(r) by the method's own exact product. Empty when len is
-  // not positive, the segment needs more than kMaxPieces pieces or the series does not settle
-  // within q + 60 terms.
-  static std::optional<TaylorSegment> build(const Eigen::MatrixXd& M, double norm1, const Eigen::MatrixXd& L,
+  // exact_state(r): X(r) by the method's own exact product. Empty when len is not positive, the
+  // segment needs more than kMaxPieces pieces or the series does not settle within q + 60 terms.
+  static std::optional<TaylorSegment> build(const Eigen::MatrixXd& M, const Eigen::MatrixXd& L,
                                             const Eigen::VectorXd& X0, double len,
                                             const std::function<Eigen::VectorXd(double)>& exact_state);
 
