@@ -147,8 +147,9 @@ TEST(BadNetlists, NumericalFailureKeepsTheStatistics) {
       << event.err;
   EXPECT_EQ(event.err_line(k + 1).rfind("events 0, mode switches 0, distinct modes 1", 0), 0u) << event.err;
   EXPECT_EQ(event.err_line(k + 2).rfind("exponential cache: peak ", 0), 0u) << event.err;
-  EXPECT_EQ(event.err_line(k + 3).rfind("CPU time: setup ", 0), 0u) << event.err;
-  EXPECT_EQ(event.err_line(k + 4).rfind("lcspice: error: numerical failure at t = 0.001 s: no next mode", 0), 0u)
+  EXPECT_EQ(event.err_line(k + 3).rfind("mode cache: peak ", 0), 0u) << event.err;
+  EXPECT_EQ(event.err_line(k + 4).rfind("CPU time: setup ", 0), 0u) << event.err;
+  EXPECT_EQ(event.err_line(k + 5).rfind("lcspice: error: numerical failure at t = 0.001 s: no next mode", 0), 0u)
       << event.err;
   // Without --stats: only the error.
   Result quiet = run_lcspice("run '" + source_path("tests/bad_netlists/97-current-into-reverse-diode.cir").string() +

@@ -7,6 +7,7 @@
 #include <complex>
 #include <map>
 #include <string>
+#include <unordered_set>
 
 #include <unsupported/Eigen/MatrixFunctions>
 
@@ -92,7 +93,25 @@ struct Mode {
   // Switch guards (SwitchGuards) as rows over [x; σ]: guard = Guard [x; σ] - guard_offset.
   Eigen::MatrixXd Guard, GuardM, Guardabs;
   Eigen::VectorXd guard_offset, Guardnorm;
+  std::size_t bytes = 0;        // what the matrices above hold (the mode budget counts it)
+  std::uint64_t last_used = 0;  // Impl::use_clock when last asked for
 };
+
+namespace {
+
+std::size_t mode_bytes(const Mode& md) {
+  std::size_t entries = 0;
+  for (const Eigen::MatrixXd* A : {&md.M, &md.G, &md.GM, &md.GMM, &md.Gabs, &md.GMabs, &md.GMMabs, &md.Z, &md.Pc,
+                                   &md.Guard, &md.GuardM, &md.Guardabs, &md.dyn.Kx, &md.dyn.Ku, &md.dyn.Kd,
+                                   &md.dyn.Ax, &md.dyn.Eu, &md.dyn.Ed, &md.dyn.Wx, &md.dyn.Wu, &md.dyn.Wd,
+                                   &md.dyn.Cc, &md.dyn.Fc, &md.dyn.project})
+    entries += static_cast<std::size_t>(A->size());
+  for (const Eigen::VectorXd* v : {&md.Gnorm, &md.GMnorm, &md.GMMnorm, &md.Pcnorm, &md.guard_offset, &md.Guardnorm})
+    entries += static_cast<std::size_t>(v->size());
+  return entries * sizeof(double) + md.active.size() + 2 * md.signature.size();
+}
+
+}  // namespace
 
 struct EventDriven::Impl {
   const LcsProblem& model;
@@ -100,6 +119,13 @@ struct EventDriven::Impl {
   StepperStats stats;
   std::map<std::string, std::unique_ptr<Mode>> modes;
   ExponentialCache exponentials;  // exp(M h0 / 2^j) per mode and j, computed on first use
+  // The modes are dense (the matrices of Mode, O((n + m) q) each: 3.5 MB at 200 states and 200
+  // pairs) and a large circuit visits hundreds: past options.mode_cache_bytes the least recently
+  // used are dropped at the next restart (trim_modes) and built again when needed.
+  std::size_t mode_bytes_held = 0, mode_bytes_peak = 0;
+  long mode_evictions = 0, mode_rebuilds = 0;
+  std::uint64_t use_clock = 0;
+  std::unordered_set<std::string> seen_modes;  // keys built once: stats.modes counts them
   std::unique_ptr<SourceSystem> sources;
   double h0 = 0;
   int stop_level = 43;
@@ -109,6 +135,9 @@ struct EventDriven::Impl {
   int n = 0, m = 0;
   bool step_levels = true;  // modes get their step level (an eigenvalue problem); not to select one
   double prepared_h0 = 0, prepared_tstop = -1;  // prepare()'s grid: segments on it keep the modes
+  // Lines' history segments read their modes (and the wave rows kept per mode) until the run
+  // ends: there no mode is dropped.
+  bool evict_modes = true;
 
   // Switch guards: their values and slopes at X, and scratch at a step's end.
   SwitchGuards guards;
@@ -144,6 +173,7 @@ struct EventDriven::Impl {
       : model(mdl), options(o), exponentials(o.exponential_cache_bytes) {}
 
   Mode& mode(const std::vector<bool>& active, const std::string& signature);
+  void trim_modes();
   const Eigen::MatrixXd& exponential(Mode& md, int j);
   void prepare(double tstep, double tstop);
   bool consistent(Mode& md, const Eigen::VectorXd& X, std::vector<int>* near_zero,
@@ -192,7 +222,10 @@ Mode& EventDriven::Impl::mode(const std::vector<bool>& active, const std::string
   for (bool a : active) key.push_back(a ? '1' : '0');
   key += '|' + signature;
   auto it = modes.find(key);
-  if (it != modes.end()) return *it->second;
+  if (it != modes.end()) {
+    it->second->last_used = ++use_clock;
+    return *it->second;
+  }
   auto md = std::make_unique<Mode>();
   md->active = active;
   md->signature = signature;
@@ -265,8 +298,31 @@ Mode& EventDriven::Impl::mode(const std::vector<bool>& active, const std::string
     while (md->settled_level < 40 && h0 / std::ldexp(1.0, md->settled_level) * omega_settled > 0.5)
       ++md->settled_level;
   }
-  ++stats.modes;
+  md->bytes = mode_bytes(*md);
+  md->last_used = ++use_clock;
+  mode_bytes_held += md->bytes;
+  mode_bytes_peak = std::max(mode_bytes_peak, mode_bytes_held);
+  if (seen_modes.insert(key).second)
+    ++stats.modes;
+  else
+    ++mode_rebuilds;
   return *modes.emplace(key, std::move(md)).first->second;
+}
+
+// Called where no reference to a mode is held but `cur`, which stays (so does one mode alone
+// above the budget). The modes one selection builds stay until the next restart: the peak can
+// pass the budget by them.
+void EventDriven::Impl::trim_modes() {
+  while (mode_bytes_held > options.mode_cache_bytes && modes.size() > 1) {
+    auto victim = modes.end();
+    for (auto it = modes.begin(); it != modes.end(); ++it)
+      if (it->second.get() != cur && (victim == modes.end() || it->second->last_used < victim->second->last_used))
+        victim = it;
+    exponentials.drop(victim->second.get());  // keyed by the mode's address, which may be reused
+    mode_bytes_held -= victim->second->bytes;
+    modes.erase(victim);
+    ++mode_evictions;
+  }
 }
 
 const Eigen::MatrixXd& EventDriven::Impl::exponential(Mode& md, int j) {
@@ -283,6 +339,8 @@ void EventDriven::Impl::prepare(double tstep, double tstop) {
   h0 = tstep;
   exponentials.clear();
   modes.clear();
+  mode_bytes_held = 0;
+  seen_modes.clear();
   sources = std::make_unique<SourceSystem>(model, tstop);
   stop_level = 1;
   while (stop_level < 62 && std::ldexp(1.0, -stop_level) > options.rtol) ++stop_level;
@@ -775,6 +833,10 @@ StepperStats EventDriven::stats() const {
   s.cache_budget_bytes = static_cast<long>(impl_->exponentials.budget());
   s.cache_peak_bytes = static_cast<long>(impl_->exponentials.peak_bytes());
   s.cache_evictions = impl_->exponentials.evictions();
+  s.mode_cache_budget_bytes = impl_->evict_modes ? static_cast<long>(impl_->options.mode_cache_bytes) : 0;
+  s.mode_cache_peak_bytes = static_cast<long>(impl_->mode_bytes_peak);
+  s.mode_evictions = impl_->mode_evictions;
+  s.mode_rebuilds = impl_->mode_rebuilds;
   return s;
 }
 
@@ -799,6 +861,7 @@ std::optional<GuardCrossing> EventDriven::RunSegment(const SegmentStart& start, 
     r.prepared_h0 = grid.tstep;
     r.prepared_tstop = grid.tstop;
   }
+  r.evict_modes = !r.sources->has_history();
   const double h0 = r.h0;
   const int n = r.n;
 
@@ -848,6 +911,7 @@ std::optional<GuardCrossing> EventDriven::RunSegment(const SegmentStart& start, 
   // A segment's start takes the sources' state its predecessor propagated (`from_signature`).
   auto restart = [&](double t, Eigen::VectorXd x, const Eigen::VectorXd* propagated,
                      const std::string* from_signature = nullptr) {
+    if (r.evict_modes) r.trim_modes();
     const std::string sig = r.sources->signature(t);
     Mode* before = r.cur;
     const std::string* had = before ? &before->signature : from_signature;

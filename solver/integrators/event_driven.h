@@ -33,6 +33,9 @@ struct EventOptions {
   // Bytes of exponentials exp(M h0 / 2^j) kept (exponential_cache.h); the least recently used
   // are recomputed past it.
   std::size_t exponential_cache_bytes = std::size_t(256) << 20;
+  // Bytes of modes (their dense matrices) kept; past it the least recently used are built again
+  // when needed. Not applied with lines (their history reads every mode of the run).
+  std::size_t mode_cache_bytes = std::size_t(256) << 20;
   // Line history: each segment's waves as Taylor series (taylor_segment.h) where they converge
   // in a few pieces; false reads every segment through the product of exponentials.
   bool history_series = true;

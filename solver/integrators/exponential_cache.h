@@ -42,6 +42,20 @@ class ExponentialCache {
     return entries_.emplace(key, Entry{std::move(matrix), order_.begin()}).first->second.matrix;
   }
 
+  // Drops every matrix of `owner` (a mode that is itself dropped: its address may be reused).
+  void drop(const void* owner) {
+    for (auto it = order_.begin(); it != order_.end();) {
+      if (it->owner != owner) {
+        ++it;
+        continue;
+      }
+      auto entry = entries_.find(*it);
+      held_ -= bytes(entry->second.matrix);
+      entries_.erase(entry);
+      it = order_.erase(it);
+    }
+  }
+
   void clear() {
     entries_.clear();
     order_.clear();

@@ -58,6 +58,7 @@ std::vector<MethodEntry> make_table() {
     EventOptions e;
     if (o.rtol > 0) e.rtol = o.rtol;
     e.history_series = o.history_series;
+    if (o.event_mode_cache_bytes > 0) e.mode_cache_bytes = o.event_mode_cache_bytes;
     return std::make_unique<EventDriven>(m, e);
   };
   MethodEntry event = adaptive(

@@ -25,6 +25,8 @@ struct MethodOptions {
   // The event method reads its line history as Taylor series (taylor_segment.h); false keeps the
   // exact product for every read, to compare the two.
   bool history_series = true;
+  // The event method's budget for its modes, in bytes (event_driven.h); 0 keeps its default.
+  std::size_t event_mode_cache_bytes = 0;
 };
 
 // What `bench` varies for a method: the fixed step h, or the tolerance --rtol.

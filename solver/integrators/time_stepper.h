@@ -32,6 +32,10 @@ struct StepperStats {
   long cache_budget_bytes = 0;  // event: the exponential cache's budget (0: no cache)
   long cache_peak_bytes = 0;    // and the most it held
   long cache_evictions = 0;     // exponentials dropped for the budget
+  long mode_cache_budget_bytes = 0;  // event: the modes' budget (0: not bounded, lines)
+  long mode_cache_peak_bytes = 0;    // and the most they held
+  long mode_evictions = 0;           // modes dropped for the budget
+  long mode_rebuilds = 0;            // and built again
   long taylor_segments = 0;     // event with lines: history segments kept as Taylor series
   long exact_segments = 0;      // and those kept as exact products (taylor_segment.h)
 };

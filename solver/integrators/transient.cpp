@@ -99,6 +99,16 @@ std::string TransientSummary::BriefReport() const {
                   stepper.cache_evictions);
     out += buf;
   }
+  if (stepper.mode_cache_peak_bytes > 0) {
+    if (stepper.mode_cache_budget_bytes > 0)
+      std::snprintf(buf, sizeof buf, "\nmode cache: peak %.1f MB of a %.1f MB budget, %ld evictions, %ld modes built again",
+                    stepper.mode_cache_peak_bytes / 1048576.0, stepper.mode_cache_budget_bytes / 1048576.0,
+                    stepper.mode_evictions, stepper.mode_rebuilds);
+    else
+      std::snprintf(buf, sizeof buf, "\nmode cache: peak %.1f MB, no budget (the line history reads every mode)",
+                    stepper.mode_cache_peak_bytes / 1048576.0);
+    out += buf;
+  }
   if (stepper.taylor_segments + stepper.exact_segments > 0) {
     std::snprintf(buf, sizeof buf, "\nline history: %ld segments kept as Taylor series, %ld as exact products",
                   stepper.taylor_segments, stepper.exact_segments);

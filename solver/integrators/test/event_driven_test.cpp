@@ -21,13 +21,14 @@ struct EventRun {
 };
 
 EventRun run_event(const Netlist& netlist, const std::vector<Probe>& probes, double tstep,
-                   double tstop, bool uic, double rtol = 0) {
+                   double tstop, bool uic, double rtol = 0, std::size_t mode_cache_bytes = 0) {
   ModelOptions mo;
   mo.t1 = tstop;
   CircuitModel model = CircuitModel::build(netlist, mo);
   TransientOptions o;
   o.method = "event";
   o.method_options.rtol = rtol;
+  o.method_options.event_mode_cache_bytes = mode_cache_bytes;
   o.step = tstep;
   o.tstop = tstop;
   o.uic = uic;
@@ -595,6 +596,31 @@ TEST(EventDriven, PeriodicCircuitPaysSetupOncePerMode) {
   EXPECT_EQ(three.summary.stepper.factorisations, six.summary.stepper.factorisations);
   EXPECT_EQ(three.summary.stepper.modes, six.summary.stepper.modes);
   EXPECT_EQ(six.summary.stepper.events, 2 * three.summary.stepper.events + 1);
+}
+
+// The modes' budget (Impl::trim_modes): a run that keeps one mode at a time builds the others
+// again when it comes back to them, to the same matrices, so the rows are the same to the bit.
+TEST(EventDriven, ModesDroppedForTheBudgetAreBuiltAgainToTheSameRows) {
+  NetlistBuilder b;
+  b.tran(2e-5, 60e-3, false);
+  b.v("v1", "a", "0", NetlistBuilder::sin(0, 10, 50));
+  b.d("d1", "a", "p", 0.7, 0.05).d("d2", "n", "a", 0.7, 0.05);
+  b.d("d3", "0", "p", 0.7, 0.05).d("d4", "n", "0", 0.7, 0.05);
+  b.c("cl", "p", "n", 100e-6).r("rl", "p", "n", 100);
+  const Netlist bridge = b.build();
+  const EventRun kept = run_event(bridge, {v("p"), i("d1")}, 2e-5, 60e-3, false);
+  const EventRun dropped = run_event(bridge, {v("p"), i("d1")}, 2e-5, 60e-3, false, 0, /*mode_cache_bytes=*/1);
+  EXPECT_EQ(kept.summary.stepper.mode_evictions, 0);
+  EXPECT_EQ(kept.summary.stepper.mode_rebuilds, 0);
+  EXPECT_GT(kept.summary.stepper.mode_cache_budget_bytes, 1L << 20);
+  EXPECT_EQ(dropped.summary.stepper.mode_cache_budget_bytes, 1);
+  // Every switching leaves the last mode behind; each later visit builds it again.
+  EXPECT_GE(dropped.summary.stepper.mode_evictions, dropped.summary.stepper.mode_switches - 1);
+  EXPECT_GT(dropped.summary.stepper.mode_rebuilds, 0);
+  EXPECT_EQ(dropped.summary.stepper.modes, kept.summary.stepper.modes);  // distinct modes
+  EXPECT_LT(dropped.summary.stepper.mode_cache_peak_bytes, kept.summary.stepper.mode_cache_peak_bytes);
+  ASSERT_EQ(dropped.sink.times, kept.sink.times);
+  for (size_t k = 0; k < kept.sink.rows.size(); ++k) ASSERT_EQ(dropped.sink.rows[k], kept.sink.rows[k]) << k;
 }
 
 }  // namespace

@@ -41,5 +41,27 @@ TEST(ExponentialCache, KeepsOneMatrixLargerThanTheBudget) {
   EXPECT_EQ(cache.evictions(), 1);
 }
 
+TEST(ExponentialCache, DropsEveryMatrixOfOneOwner) {
+  const std::size_t one = 4 * 4 * sizeof(double);
+  ExponentialCache cache(10 * one);
+  const int a = 0, b = 0;
+  int computed = 0;
+  auto identity = [&computed] {
+    ++computed;
+    return Eigen::MatrixXd::Identity(4, 4);
+  };
+  cache.get(&a, 0, identity);
+  cache.get(&b, 0, identity);
+  cache.get(&a, 1, identity);
+  cache.drop(&a);
+  EXPECT_EQ(cache.evictions(), 0);  // dropped with their owner, not for the budget
+  cache.get(&b, 0, identity);       // still held
+  EXPECT_EQ(computed, 3);
+  cache.get(&a, 0, identity);  // computed again
+  cache.get(&a, 1, identity);
+  EXPECT_EQ(computed, 5);
+  EXPECT_EQ(cache.peak_bytes(), 3 * one);
+}
+
 }  // namespace
 }  // namespace lcs
