@@ -7,6 +7,14 @@
 
 namespace lcs {
 
+namespace {
+
+// The mode with the pairs at z = w = 0 held on counts as regular above this reciprocal condition
+// number (rows scaled to unit size; a floating node's diode makes it singular, 0).
+constexpr double kRegularMode = 1e-13;
+
+}  // namespace
+
 bool descriptor_start_z(const LcsProblem& model, const SparseDescriptor& d, double t0,
                         const Eigen::VectorXd& x, StepperStats& stats, Eigen::VectorXd& z) {
   using Sparse = SparseActiveSetLcp::Sparse;
@@ -32,11 +40,18 @@ bool descriptor_start_z(const LcsProblem& model, const SparseDescriptor& d, doub
   stats.sparse += own;
   ++stats.factorisations;
   if (!solved) return false;
-  // Strict complementarity, relative to the sizes that meet in z and in each w_i.
+  // Strict complementarity, relative to the sizes that meet in z and in each w_i; the pairs
+  // at z = w = 0 are held on together with the conducting ones for the regularity test.
   const double z_size = m > 0 ? zs.cwiseAbs().maxCoeff() : 0.0;
   const Eigen::VectorXd w_terms = (d.P.cwiseAbs() * y.cwiseAbs()) + (d.Fw.cwiseAbs() * u.cwiseAbs());
-  for (int i = 0; i < m; ++i)
-    if (!(zs(i) > 1e-9 * z_size) && !(w(i) > 1e-9 * w_terms(i))) return false;
+  std::vector<char> held(m, 0);
+  bool strict = true;
+  for (int i = 0; i < m; ++i) {
+    const bool on = zs(i) > 1e-9 * z_size, off = w(i) > 1e-9 * w_terms(i);
+    held[i] = on || !off;
+    strict = strict && (on || off);
+  }
+  if (!strict && !(lcp.mode_reciprocal_condition(held) > kRegularMode)) return false;
   z = zs;
   return true;
 }

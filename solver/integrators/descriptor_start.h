@@ -9,9 +9,13 @@
 // Where that solution is strictly complementary (every pair has z or w above 1e-9 of its sizes)
 // and its mode's matrix is regular, the step's LCP for small h has the nearby solution of the
 // same mode (the implicit function theorem), so both give the same z to O(h) (the dense start's
-// h is 1e-8 of the run's step or less). Otherwise (a pair at z = w = 0, a singular mode: what the
-// dense start hands to the event method's mode selection) the answer is refused and the dense
-// start decides.
+// h is 1e-8 of the run's step or less). Pairs at z = w = 0 (degenerate: what the dense start
+// hands to the event method's mode selection) are accepted when the mode that holds them on
+// with the conducting pairs is regular: then the solution is isolated (the pairs' rows and
+// columns are independent), the step's LCP for small h has solutions within O(h) of it whichever
+// way those pairs go, and their z, zero at t0, is continuous. Where that mode is singular (a
+// diode to a node nothing else reaches: its potential is free, z not determined) the answer
+// is refused and the dense start decides.
 #pragma once
 
 #include <Eigen/Dense>

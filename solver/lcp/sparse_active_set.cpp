@@ -119,7 +119,8 @@ void SparseActiveSetLcp::prefer(const Eigen::VectorXd& z) {
   for (int i = 0; i < m_; ++i) mode_[i] = z(i) > 0.0;
 }
 
-std::unique_ptr<SparseActiveSetLcp::Factorisation> SparseActiveSetLcp::factorise(const std::vector<char>& mode) {
+// Rows of pairs outside the mode are unit rows (z_i = 0), kept in the common pattern.
+SparseActiveSetLcp::Sparse SparseActiveSetLcp::mode_matrix(const std::vector<char>& mode) const {
   Sparse M = pattern_;
   double* values = M.valuePtr();
   for (int i = 0; i < m_; ++i) {
@@ -127,6 +128,11 @@ std::unique_ptr<SparseActiveSetLcp::Factorisation> SparseActiveSetLcp::factorise
     for (const auto& [column, slot] : pair_entries_[i]) values[slot] = 0.0;
     values[diagonal_slot_[i]] = 1.0;
   }
+  return M;
+}
+
+std::unique_ptr<SparseActiveSetLcp::Factorisation> SparseActiveSetLcp::factorise(const std::vector<char>& mode) {
+  Sparse M = mode_matrix(mode);
   auto f = std::make_unique<Factorisation>();
   f->symbolic = symbolic_.get();
   if (symbolic_->symbolic)
@@ -135,6 +141,16 @@ std::unique_ptr<SparseActiveSetLcp::Factorisation> SparseActiveSetLcp::factorise
   f->usable = f->numeric != nullptr;
   ++stats_.factorisations;
   return f;
+}
+
+double SparseActiveSetLcp::mode_reciprocal_condition(const std::vector<char>& on) {
+  const std::unique_ptr<Factorisation> f = factorise(on);
+  if (!f->usable) return 0.0;
+  Sparse M = mode_matrix(on);  // klu_condest reads the matrix's values as well as its factors
+  if (!klu_condest(M.outerIndexPtr(), M.valuePtr(), symbolic_->symbolic, f->numeric, &symbolic_->common))
+    return 0.0;
+  const double condest = symbolic_->common.condest;
+  return condest > 0 && std::isfinite(condest) ? 1.0 / condest : 0.0;
 }
 
 double SparseActiveSetLcp::pair_row_dot(int i, bool on, const Eigen::VectorXd& v) const {

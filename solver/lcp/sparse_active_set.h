@@ -105,12 +105,17 @@ class SparseActiveSetLcp {
   bool solve(const Eigen::VectorXd& a, const Eigen::VectorXd& b, Eigen::VectorXd& y,
              Eigen::VectorXd& z, Eigen::VectorXd& w);
   const SparseActiveSetStats& stats() const { return stats_; }
+  // The reciprocal of the 1-norm condition number of a mode's matrix (KLU's condest, Hager's
+  // estimate), 0 when it is singular; the mode is the pairs `on` that are nonzero. Factorised
+  // for this and not cached.
+  double mode_reciprocal_condition(const std::vector<char>& on);
   int states() const { return n_; }
   int pairs() const { return m_; }
 
  private:
   struct Symbolic;
   struct Factorisation;
+  Sparse mode_matrix(const std::vector<char>& mode) const;
   std::unique_ptr<Factorisation> factorise(const std::vector<char>& mode);  // not cached
   bool lu_solve(const Factorisation& f, Eigen::VectorXd& x) const;           // in place
   Factorisation* factorisation(const std::vector<char>& mode);               // cached
