@@ -42,6 +42,15 @@ class ExponentialCache {
     return entries_.emplace(key, Entry{std::move(matrix), order_.begin()}).first->second.matrix;
   }
 
+  // The matrix for (owner, level) if it is held (then it becomes the most recently used), else
+  // null. The pointer is valid until the next get or drop.
+  const Eigen::MatrixXd* find(const void* owner, int level) {
+    auto it = entries_.find(Key{owner, level});
+    if (it == entries_.end()) return nullptr;
+    order_.splice(order_.begin(), order_, it->second.position);
+    return &it->second.matrix;
+  }
+
   // Drops every matrix of `owner` (a mode that is itself dropped: its address may be reused).
   void drop(const void* owner) {
     for (auto it = order_.begin(); it != order_.end();) {

@@ -86,6 +86,8 @@ void run_switched_adaptive(SwitchFamily& family, const SwitchConfig& start_confi
       total.cache_budget_bytes = std::max(total.cache_budget_bytes, s.cache_budget_bytes);
       total.cache_peak_bytes += s.cache_peak_bytes;
       total.cache_evictions += s.cache_evictions;
+      total.exponential_actions += s.exponential_actions;
+      total.action_products += s.action_products;
       total.mode_cache_budget_bytes = std::max(total.mode_cache_budget_bytes, s.mode_cache_budget_bytes);
       total.mode_cache_peak_bytes += s.mode_cache_peak_bytes;
       total.mode_evictions += s.mode_evictions;

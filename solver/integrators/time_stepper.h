@@ -32,6 +32,8 @@ struct StepperStats {
   long cache_budget_bytes = 0;  // event: the exponential cache's budget (0: no cache)
   long cache_peak_bytes = 0;    // and the most it held
   long cache_evictions = 0;     // exponentials dropped for the budget
+  long exponential_actions = 0;  // event: steps taken by the exponential's action instead
+  long action_products = 0;      // and the matrix-vector products they took
   long mode_cache_budget_bytes = 0;  // event: the modes' budget (0: not bounded, lines)
   long mode_cache_peak_bytes = 0;    // and the most they held
   long mode_evictions = 0;           // modes dropped for the budget

@@ -98,6 +98,11 @@ std::string TransientSummary::BriefReport() const {
                   stepper.cache_peak_bytes / 1048576.0, stepper.cache_budget_bytes / 1048576.0,
                   stepper.cache_evictions);
     out += buf;
+    if (stepper.exponential_actions > 0) {
+      std::snprintf(buf, sizeof buf, "; %ld steps by the exponential's action (%ld products)",
+                    stepper.exponential_actions, stepper.action_products);
+      out += buf;
+    }
   }
   if (stepper.mode_cache_peak_bytes > 0) {
     if (stepper.mode_cache_budget_bytes > 0)
