@@ -165,7 +165,7 @@ void print_text(const Report& r) {
   std::printf("\nlinks and their fundamental loops (5.34), %zu:\n", t.links.size());
   for (size_t j = 0; j < t.links.size(); ++j)
     std::printf("  %-10s %s  loop: %s\n", g.branches[t.links[j]].name.c_str(),
-                branch_class_name(g.branches[t.links[j]].cls), loop_text(g, t.loops[j]).c_str());
+                branch_class_name(g.branches[t.links[j]].cls), loop_text(g, fundamental_loop(g, t, t.links[j])).c_str());
 
   std::printf("\nH (circuit without diodes and current sources): %d component%s\n", r.h.count,
               r.h.count == 1 ? "" : "s");
@@ -246,9 +246,10 @@ void print_json(const Report& r) {
   o << "],\n  \"links\": [";
   for (size_t j = 0; j < t.links.size(); ++j) {
     o << (j ? ",\n" : "\n") << "    {\"name\": " << json_string(g.branches[t.links[j]].name) << ", \"loop\": [";
-    for (size_t k = 0; k < t.loops[j].size(); ++k)
-      o << (k ? ", " : "") << "{\"branch\": " << json_string(g.branches[t.loops[j][k].branch].name)
-        << ", \"sign\": " << t.loops[j][k].sign << "}";
+    const std::vector<LoopTerm> loop = fundamental_loop(g, t, t.links[j]);
+    for (size_t k = 0; k < loop.size(); ++k)
+      o << (k ? ", " : "") << "{\"branch\": " << json_string(g.branches[loop[k].branch].name)
+        << ", \"sign\": " << loop[k].sign << "}";
     o << "]}";
   }
   o << "\n  ],\n  \"h_components\": " << r.h.count << ",\n  \"diodes\": [";

@@ -3,6 +3,7 @@
 #include <deque>
 #include <iterator>
 #include <stdexcept>
+#include <utility>
 
 #include <boost/graph/adjacency_list.hpp>
 #include <boost/graph/kruskal_min_spanning_tree.hpp>
@@ -77,38 +78,74 @@ SpanningTree build_normal_tree(const CircuitGraph& graph) {
   t.to_parent.assign(n_nodes, {});
   for (int c = 1; c < n_nodes; ++c) t.to_parent[c] = {parent_branch[c], graph.branches[parent_branch[c]].from == c ? +1 : -1};
   t.parent = parent;
+  t.depth = depth;
 
-  // Fundamental loop of link e (a = n+, b = n-): a -e-> b, then back from b to a in the tree.
-  t.loops.resize(t.links.size());
-  for (int j = 0; j < static_cast<int>(t.links.size()); ++j) {
-    const int e = t.links[j];
-    const Branch& link = graph.branches[e];
-    std::vector<LoopTerm> up_from_b, up_from_a;
-    int x = link.to, y = link.from;
-    while (x != y) {
-      if (depth[x] >= depth[y]) {  // climb from the b side: traversed child -> parent
-        up_from_b.push_back({parent_branch[x], traversal_sign(graph.branches[parent_branch[x]], x)});
-        x = parent[x];
-      } else {  // climb from the a side; later traversed parent -> child, so flip the sign
-        up_from_a.push_back(
-            {parent_branch[y], -traversal_sign(graph.branches[parent_branch[y]], y)});
-        y = parent[y];
-      }
+  // Preorder intervals (an iterative depth-first walk: a multiplier's tree is a chain).
+  t.enter.assign(n_nodes, 0);
+  t.leave.assign(n_nodes, 0);
+  std::vector<std::vector<int>> children(n_nodes);
+  for (int c = 1; c < n_nodes; ++c) children[parent[c]].push_back(c);
+  std::vector<std::pair<int, size_t>> stack{{0, 0}};
+  int clock = 0;
+  t.enter[0] = clock++;
+  while (!stack.empty()) {
+    auto& [u, next] = stack.back();
+    if (next < children[u].size()) {
+      const int c = children[u][next++];
+      t.enter[c] = clock++;
+      stack.push_back({c, 0});
+    } else {
+      t.leave[u] = clock;
+      stack.pop_back();
     }
-    std::vector<LoopTerm>& loop = t.loops[j];
-    loop.reserve(1 + up_from_b.size() + up_from_a.size());
-    loop.push_back({e, +1});
-    loop.insert(loop.end(), up_from_b.begin(), up_from_b.end());
-    loop.insert(loop.end(), up_from_a.rbegin(), up_from_a.rend());
   }
   return t;
 }
 
-std::vector<LoopTerm> fundamental_cutset(const SpanningTree& tree, int tree_branch) {
+std::vector<LoopTerm> fundamental_loop(const CircuitGraph& graph, const SpanningTree& t, int e) {
+  // a = n+, b = n-: a -e-> b, then back from b to a in the tree.
+  const Branch& link = graph.branches[e];
+  std::vector<LoopTerm> up_from_b, up_from_a;
+  int x = link.to, y = link.from;
+  while (x != y) {
+    if (t.depth[x] >= t.depth[y]) {  // climb from the b side: traversed child -> parent
+      const int fb = t.to_parent[x].branch;
+      up_from_b.push_back({fb, traversal_sign(graph.branches[fb], x)});
+      x = t.parent[x];
+    } else {  // climb from the a side; later traversed parent -> child, so flip the sign
+      const int fb = t.to_parent[y].branch;
+      up_from_a.push_back({fb, -traversal_sign(graph.branches[fb], y)});
+      y = t.parent[y];
+    }
+  }
+  std::vector<LoopTerm> loop;
+  loop.reserve(1 + up_from_b.size() + up_from_a.size());
+  loop.push_back({e, +1});
+  loop.insert(loop.end(), up_from_b.begin(), up_from_b.end());
+  loop.insert(loop.end(), up_from_a.rbegin(), up_from_a.rend());
+  return loop;
+}
+
+std::vector<std::vector<LoopTerm>> fundamental_loops(const CircuitGraph& graph, const SpanningTree& tree) {
+  std::vector<std::vector<LoopTerm>> loops;
+  loops.reserve(tree.links.size());
+  for (int e : tree.links) loops.push_back(fundamental_loop(graph, tree, e));
+  return loops;
+}
+
+std::vector<LoopTerm> fundamental_cutset(const CircuitGraph& graph, const SpanningTree& t, int tree_branch) {
+  // The tree branch joins node c to its parent. A link's loop climbs from its n- to its n+: it
+  // passes c -> parent (child to parent, the sign of walking from c) when its n- is below c, and
+  // parent -> c when its n+ is.
+  const Branch& f = graph.branches[tree_branch];
+  const int c = t.to_parent[f.from].branch == tree_branch ? f.from : f.to;
+  auto below = [&](int node) { return t.enter[c] <= t.enter[node] && t.enter[node] < t.leave[c]; };
+  const int up = traversal_sign(f, c);
   std::vector<LoopTerm> cutset;
-  for (size_t j = 0; j < tree.links.size(); ++j)
-    for (size_t k = 1; k < tree.loops[j].size(); ++k)
-      if (tree.loops[j][k].branch == tree_branch) cutset.push_back({tree.links[j], tree.loops[j][k].sign});
+  for (int l : t.links) {
+    const bool a = below(graph.branches[l].from), b = below(graph.branches[l].to);
+    if (a != b) cutset.push_back({l, b ? up : -up});
+  }
   return cutset;
 }
 

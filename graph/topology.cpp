@@ -65,7 +65,7 @@ void check_source_loops_and_cutsets(const Netlist& netlist, const CircuitGraph& 
     const Branch& link = graph.branches[tree.links[j]];
     if (link.cls != BranchClass::VoltageSource) continue;
     std::vector<int> elements;
-    for (const LoopTerm& t : tree.loops[j]) elements.push_back(graph.branches[t.branch].element);
+    for (const LoopTerm& t : fundamental_loop(graph, tree, tree.links[j])) elements.push_back(graph.branches[t.branch].element);
     throw TopologyError("voltage sources form a loop: " + join_names(names_of(netlist, elements)) +
                             " (KVL cannot hold for arbitrary source values)",
                         elements);
@@ -75,7 +75,7 @@ void check_source_loops_and_cutsets(const Netlist& netlist, const CircuitGraph& 
     const Branch& tb = graph.branches[tree.tree[i]];
     if (tb.cls != BranchClass::CurrentSource) continue;
     std::vector<int> elements{tb.element};
-    for (const LoopTerm& l : fundamental_cutset(tree, tree.tree[i])) elements.push_back(graph.branches[l.branch].element);
+    for (const LoopTerm& l : fundamental_cutset(graph, tree, tree.tree[i])) elements.push_back(graph.branches[l.branch].element);
     throw TopologyError("current sources form a cutset: " + join_names(names_of(netlist, elements)) +
                             " (KCL cannot hold for arbitrary source values)",
                         elements);

@@ -7,50 +7,22 @@
 #include "graph/diode_classes.h"
 #include "solver/devices/device_registry.h"
 #include "tests/support/netlist_builder.h"
+#include "tests/support/random_graph_circuit.h"
 
 namespace lcs {
 namespace {
 
 using testing::NetlistBuilder;
+using testing::random_graph_circuit;
 
 // The graph of a netlist's devices (the graph stays two-terminal; devices say their branches).
 CircuitGraph graph_of(const Netlist& netlist) { return graph_of_devices(make_devices(netlist, {})); }
-
-// Random connected circuits of every branch class (a spanning chain first, then extra branches).
-
-Netlist random_circuit(std::mt19937& rng, int nodes, int extra) {
-  NetlistBuilder b;
-  std::uniform_int_distribution<int> kind(0, 5), node(0, nodes - 1);
-  auto name = [](int k) { return std::to_string(k); };
-  auto add = [&](int id, int a, int c) {
-    const std::string na = name(a), nc = name(c);
-    switch (kind(rng)) {
-      case 0: b.v("v" + name(id), na, nc, NetlistBuilder::dc(1)); break;
-      case 1: b.c("c" + name(id), na, nc, 1e-6); break;
-      case 2: b.r("r" + name(id), na, nc, 1e3); break;
-      case 3: b.d("d" + name(id), na, nc, 0.5, 1); break;
-      case 4: b.l("l" + name(id), na, nc, 1e-3); break;
-      default: b.i("i" + name(id), na, nc, NetlistBuilder::dc(1)); break;
-    }
-  };
-  int id = 0;
-  for (int n = 1; n < nodes; ++n) {
-    std::uniform_int_distribution<int> earlier(0, n - 1);
-    add(id++, earlier(rng), n);
-  }
-  for (int k = 0; k < extra; ++k) {
-    int a = node(rng), c = node(rng);
-    if (a == c) c = (c + 1) % nodes;
-    add(id++, a, c);
-  }
-  return b.build();
-}
 
 TEST(SpanningTree, LoopsSatisfyKvlCutsetsSatisfyKclAndNodePathsGivePotentials) {
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> potential(-5, 5);
   for (int trial = 0; trial < 300; ++trial) {
-    Netlist net = random_circuit(rng, 2 + trial % 9, trial % 13);
+    Netlist net = random_graph_circuit(rng, 2 + trial % 9, trial % 13);
     CircuitGraph g = graph_of(net);
     SpanningTree t = build_normal_tree(g);
     ASSERT_EQ(t.tree.size(), g.nodes.size() - 1);
@@ -60,7 +32,7 @@ TEST(SpanningTree, LoopsSatisfyKvlCutsetsSatisfyKclAndNodePathsGivePotentials) {
     auto v = [&](int b) { return phi[g.branches[b].from] - phi[g.branches[b].to]; };
     for (size_t j = 0; j < t.links.size(); ++j) {
       double kvl = 0;
-      for (const LoopTerm& term : t.loops[j]) {
+      for (const LoopTerm& term : fundamental_loop(g, t, t.links[j])) {
         kvl += term.sign * v(term.branch);
         // Cycle property of the minimum spanning tree: the loop of a link holds no branch of
         // a heavier class (the model builder relies on it).
@@ -74,7 +46,7 @@ TEST(SpanningTree, LoopsSatisfyKvlCutsetsSatisfyKclAndNodePathsGivePotentials) {
     std::vector<double> current(g.branches.size(), 0.0);
     for (int l : t.links) current[l] = potential(rng);
     for (int f : t.tree)
-      for (const LoopTerm& l : fundamental_cutset(t, f)) current[f] += l.sign * current[l.branch];
+      for (const LoopTerm& l : fundamental_cutset(g, t, f)) current[f] += l.sign * current[l.branch];
     std::vector<double> leaving(g.nodes.size(), 0.0);
     for (size_t b = 0; b < g.branches.size(); ++b) {
       leaving[g.branches[b].from] += current[b];

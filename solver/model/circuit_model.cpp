@@ -10,12 +10,14 @@
 #include <stdexcept>
 #include <unordered_map>
 
+#include "graph/cutset_sums.h"
 #include "graph/topology.h"
 #include "solver/devices/device_registry.h"
 #include "solver/model/line_dc_loops.h"
 #include "solver/model/netlist_options.h"
 #include "solver/model/inductance_check.h"
 #include "solver/model/perfect_coupling.h"
+#include "solver/model/primary_maps.h"
 #include "solver/model/sparse_descriptor.h"
 #include "solver/model/sparse_lcs.h"
 #include "solver/model/sparse_solve.h"
@@ -144,10 +146,10 @@ TopologyError storage_loop_with_controlled_source(const Netlist& netlist, const 
                                                   const SpanningTree& t, int b, bool capacitor) {
   std::vector<int> branches{b};
   if (capacitor) {
-    const std::vector<LoopTerm>& loop = t.loops[t.position[b]];
+    const std::vector<LoopTerm> loop = fundamental_loop(g, t, b);
     for (size_t j = 1; j < loop.size(); ++j) branches.push_back(loop[j].branch);
   } else {
-    for (const LoopTerm& l : fundamental_cutset(t, b)) branches.push_back(l.branch);
+    for (const LoopTerm& l : fundamental_cutset(g, t, b)) branches.push_back(l.branch);
   }
   std::sort(branches.begin() + 1, branches.end());
   branches.erase(std::unique(branches.begin() + 1, branches.end()), branches.end());
@@ -183,23 +185,24 @@ using RowSparse = Eigen::SparseMatrix<double, Eigen::RowMajor>;
 // cutset that are not capacitors (a tree capacitor, KCL) or the tree branches of its loop that
 // are not inductors (a link inductor, KVL), each with its sign. By rows, straight into compressed
 // storage: a multiplier's cutsets hold O(n^2) entries.
-SparseMatrixD state_equation_rows(const std::vector<StateInfo>& states, const std::vector<BranchClass>& cls,
-                                  const RowSparse& Imap,
-                                  const std::function<const std::vector<LoopTerm>&(int branch)>& loop_of) {
-  const int n = static_cast<int>(states.size()), nb = static_cast<int>(cls.size());
+SparseMatrixD state_equation_rows(const std::vector<StateInfo>& states, const PrimaryMaps& maps) {
+  const CircuitGraph& g = maps.graph();
+  const int n = static_cast<int>(states.size()), nb = static_cast<int>(g.branches.size());
+  auto cls = [&](int b) { return g.branches[b].cls; };
   RowSparse rows(n, nb);
   std::vector<LoopTerm> path;
   for (int j = 0; j < n; ++j) {
     const int b = states[j].branch;
     rows.startVec(j);
-    if (cls[b] == BranchClass::Capacitor) {  // its cutset: the links through it
-      for (RowSparse::InnerIterator it(Imap, b); it; ++it)
-        if (cls[it.col()] != BranchClass::Capacitor) rows.insertBack(j, it.col()) = it.value();
+    if (cls(b) == BranchClass::Capacitor) {  // its cutset: the links through it
+      maps.visit_row(false, b, [&](int l, double value) {
+        if (cls(l) != BranchClass::Capacitor) rows.insertBack(j, l) = value;
+      });
     } else {  // its loop: the tree path
-      const std::vector<LoopTerm>& loop = loop_of(b);
+      const std::vector<LoopTerm> loop = fundamental_loop(g, maps.tree(), b);
       path.clear();
       for (size_t k = 1; k < loop.size(); ++k)
-        if (cls[loop[k].branch] != BranchClass::Inductor) path.push_back(loop[k]);
+        if (cls(loop[k].branch) != BranchClass::Inductor) path.push_back(loop[k]);
       std::sort(path.begin(), path.end(), [](const LoopTerm& x, const LoopTerm& y) { return x.branch < y.branch; });
       for (const LoopTerm& f : path) rows.insertBack(j, f.branch) = -f.sign;
     }
@@ -270,9 +273,8 @@ bool positive_diagonal(const SparseMatrixD& M) {
 }  // namespace
 
 struct CircuitModel::PrimaryRows {
-  RowSparse Vmap, Imap, P_rows;  // P_rows: P by rows
-  std::vector<BranchClass> cls;                          // per branch
-  std::map<int, std::vector<LoopTerm>> inductor_loops;  // per link inductor state's branch
+  PrimaryMaps maps;  // rows read from the tree, not materialised
+  RowSparse P_rows;  // P by rows
 };
 
 CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& options) {
@@ -396,40 +398,14 @@ CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& opt
   // Sparse throughout (issue 12): a row holds one fundamental loop or cutset, not nb entries,
   // and the products below cost O(nnz * columns), not O(nb^2 * columns).
   using Triplets = std::vector<Eigen::Triplet<double>>;
-  // Both are written straight into compressed storage from the loops (no triplets: a
-  // multiplier's loops hold O(N^2) entries): Vmap by rows, Imap by columns, then one transpose.
-  RowSparse Vmap(nb, nb), Imap(nb, nb);
-  {
-    Eigen::Index entries = nb;
-    for (const std::vector<LoopTerm>& loop : t.loops) entries += static_cast<Eigen::Index>(loop.size()) - 1;
-    Vmap.reserve(entries);
-    Eigen::SparseMatrix<double> Icols(nb, nb);  // column l: Imap(f, l) = b_{f,l}, and Imap(l, l) = 1
-    Icols.reserve(entries);
-    std::vector<LoopTerm> sorted;
-    for (int b = 0; b < nb; ++b) {
-      Vmap.startVec(b);
-      Icols.startVec(b);
-      if (t.in_tree[b]) {
-        Vmap.insertBack(b, b) = 1.0;
-        continue;
-      }
-      const std::vector<LoopTerm>& loop = t.loops[t.position[b]];
-      sorted.assign(loop.begin() + 1, loop.end());
-      sorted.push_back({b, 0});  // the link's own place in its column of Imap
-      std::sort(sorted.begin(), sorted.end(), [](const LoopTerm& x, const LoopTerm& y) { return x.branch < y.branch; });
-      for (const LoopTerm& f : sorted) {
-        if (f.branch == b) {
-          Icols.insertBack(b, b) = 1.0;
-          continue;
-        }
-        Vmap.insertBack(b, f.branch) = -f.sign;  // Vmap(l, f) = -b_{f,l}
-        Icols.insertBack(f.branch, b) = f.sign;
-      }
-    }
-    Vmap.finalize();
-    Icols.finalize();
-    Imap = Icols;
-  }
+  // Vmap and Imap (primary_maps.h) hold O(N^2) entries on a multiplier. A circuit that may step
+  // on its descriptor form with its elimination deferred (below) reads a few of their rows, from
+  // the tree; every other one forms them.
+  const bool forced = std::find(role.begin(), role.end(), Role::Forced) != role.end();
+  const bool may_defer = options.defer_elimination && mp >= kDescriptorPairs && stamps.delayed.empty() &&
+                         stamps.dc_relations.empty() && stamps.couplings.empty() && !forced;
+  auto maps = std::make_shared<PrimaryMaps>(g, t);
+  if (!may_defer) maps->materialise();
 
   // Static (resistive, source and diode) equations, one per Static branch:
   //   EqP p + EqR [x z u du] = 0   (EqR holds the z and u coefficients).
@@ -444,16 +420,16 @@ CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& opt
   Triplets eqr;  // EqR, then the state columns of EqP: the right-hand side
   {
     Triplets eq;
-    auto add_row = [&](int r, const RowSparse& map, int b, double coeff) {
+    auto add_row = [&](int r, bool voltage, int b, double coeff) {
       if (coeff == 0) return;
-      for (RowSparse::InnerIterator it(map, b); it; ++it) eq.emplace_back(r, it.col(), coeff * it.value());
+      maps->visit_row(voltage, b, [&](int column, double value) { eq.emplace_back(r, column, coeff * value); });
     };
     for (int r = 0; r < ns; ++r) {
       const int b = statics[r];
       if (pair_of[b] >= 0) {               // the swap of 5.4.4
         if (t.in_tree[b]) {                // v - RON i + z - VON = 0
-          add_row(r, Vmap, b, 1.0);
-          add_row(r, Imap, b, -law[b].ron);
+          add_row(r, true, b, 1.0);
+          add_row(r, false, b, -law[b].ron);
           eqr.emplace_back(r, col_z(pair_of[b]), 1.0);
           if (law[b].von != 0) eqr.emplace_back(r, col_u(0), -law[b].von);
         } else {                           // i - z = 0
@@ -464,8 +440,8 @@ CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& opt
       }
       for (const Term& term : relation_of[b]->terms) {  // the device's relation, sum = 0
         switch (term.of) {
-          case Term::Of::Voltage: add_row(r, Vmap, term.index, term.coeff); break;
-          case Term::Of::Current: add_row(r, Imap, term.index, term.coeff); break;
+          case Term::Of::Voltage: add_row(r, true, term.index, term.coeff); break;
+          case Term::Of::Current: add_row(r, false, term.index, term.coeff); break;
           case Term::Of::Input: eqr.emplace_back(r, col_u(term.index), term.coeff); break;
         }
       }
@@ -524,7 +500,7 @@ CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& opt
       if (role[b] == Role::State) {
         tc.emplace_back(k, state_of[b], 1.0);
       } else {  // link capacitor: its loop holds only tree capacitors and voltage sources
-        const std::vector<LoopTerm>& loop = t.loops[t.position[b]];
+        const std::vector<LoopTerm> loop = fundamental_loop(g, t, b);
         for (size_t j = 1; j < loop.size(); ++j) {
           const int f = loop[j].branch;
           const double s = loop[j].sign;  // b_{f,b}
@@ -540,13 +516,11 @@ CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& opt
       if (role[b] == Role::State) {
         tl.emplace_back(k, state_of[b], 1.0);
       } else {  // tree inductor: its cutset holds only link inductors and current sources
-        for (RowSparse::InnerIterator it(Imap, b); it; ++it) {
-          const int l = static_cast<int>(it.col());
-          const double s = it.value();  // b_{b,l}
+        maps->visit_row(false, b, [&](int l, double s) {  // s = b_{b,l}
           if (state_of[l] >= 0) tl.emplace_back(k, state_of[l], s);
           else if (input_of[l] >= 0) Tlu(k, input_of[l]) += s;
           else throw storage_loop_with_controlled_source(netlist, g, t, b, false);
-        }
+        });
       }
     }
     for (const Stamps::Coupling& k : stamps.couplings) {  // mutual inductance M = k sqrt(L1 L2)
@@ -582,23 +556,34 @@ CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& opt
   // to the same numbers. Only where nothing below would change the states or add rows: no perfect
   // couplings (flux), dependent storage (Kdu, forced roles), lines or transistor junctions, and a
   // diagonal Mdyn (uncoupled capacitors and inductors: invertible, no error left to raise later).
-  if (options.defer_elimination && mp >= kDescriptorPairs && flux.empty() && stamps.delayed.empty() &&
-      stamps.dc_relations.empty() && Kdu.isZero(0) && positive_diagonal(MdynS) &&
-      std::find(role.begin(), role.end(), Role::Forced) == role.end()) {
+  if (may_defer && flux.empty() && Kdu.isZero(0) && positive_diagonal(MdynS)) {
     // The LCS's nonzeros, estimated for the rule without forming it: Rp's entries stand for A
     // and B's, the pairs' loop and cutset rows for C and D's (close where P reads most primary
-    // unknowns once, as on a multiplier, whose only other row is its load resistor's).
-    double estimate = 0;
-    for (const StateInfo& state : m.states_) {
-      const int b = state.branch;
-      if (g.branches[b].cls == BranchClass::Capacitor) {
-        for (RowSparse::InnerIterator it(Imap, b); it; ++it) estimate += g.branches[it.col()].cls != BranchClass::Capacitor;
-      } else {
-        for (const LoopTerm& f : t.loops[t.position[b]]) estimate += g.branches[f.branch].cls != BranchClass::Inductor;
-      }
-    }
+    // unknowns once, as on a multiplier, whose only other row is its load resistor's). Counted
+    // from cutset sums (cutset_sums.h), O(N log N): a tree capacitor's state row holds the links
+    // of its cutset that are not capacitors; a link inductor's the tree branches of its loop that
+    // are not inductors (the tree branches f not inductors whose cutsets hold it); a link pair's
+    // voltage row its loop's tree branches and its current row itself; a tree pair's voltage row
+    // itself and its current row its cutset.
+    const int nb_all = static_cast<int>(g.branches.size());
+    std::vector<double> not_capacitor(nb_all, 0.0), inductor_state(nb_all, 0.0), pair_link(nb_all, 0.0),
+        every_link(nb_all, 1.0);
+    for (int b = 0; b < nb_all; ++b) not_capacitor[b] = g.branches[b].cls != BranchClass::Capacitor;
+    for (const StateInfo& state : m.states_)
+      if (!state.capacitor) inductor_state[state.branch] = 1.0;
     for (const PairInfo& pr : m.pairs_)
-      estimate += static_cast<double>(Vmap.row(pr.branch).nonZeros() + Imap.row(pr.branch).nonZeros());
+      if (!t.in_tree[pr.branch]) pair_link[pr.branch] = 1.0;
+    const CutsetSums cutsets(g, t);
+    const std::vector<double> through_capacitors = cutsets.sums(not_capacitor), through_trees = cutsets.sums(inductor_state),
+                              through_pairs = cutsets.sums(pair_link), through_any = cutsets.sums(every_link);
+    double estimate = 0;
+    for (const StateInfo& state : m.states_)
+      if (state.capacitor) estimate += through_capacitors[state.branch];
+    for (int f : t.tree) {
+      estimate += through_pairs[f];
+      if (g.branches[f].cls != BranchClass::Inductor) estimate += through_trees[f];
+    }
+    for (const PairInfo& pr : m.pairs_) estimate += 1.0 + (t.in_tree[pr.branch] ? through_any[pr.branch] : 0.0);
     const double dense = kSparseDensity * static_cast<double>(n + mp) * static_cast<double>(n + mp);
     std::unique_ptr<SparseDescriptor> descriptor;
     if (estimate > dense)
@@ -608,30 +593,22 @@ CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& opt
       m.energy_xx_ = MdynS;
       m.energy_xu_ = -Kdu;
       m.lcs_.Gamma = Eigen::MatrixXd::Zero(n, nu);
-      auto rows = std::make_shared<PrimaryRows>();
-      rows->P_rows = P;
-      rows->Vmap = std::move(Vmap);
-      rows->Imap = std::move(Imap);
-      for (const Branch& br : g.branches) rows->cls.push_back(br.cls);
-      for (const StateInfo& state : m.states_)
-        if (!state.capacitor) rows->inductor_loops[state.branch] = t.loops[t.position[state.branch]];
+      auto rows = std::make_shared<PrimaryRows>(PrimaryRows{std::move(*maps), P});
       m.primary_rows_ = rows;
       m.defer_elimination([rows, states = m.states_, pairs = m.pairs_, MdynS, n, mp, nu, ncol, nb] {
         // What the formation below does for such a circuit: R = Rp P, Mdyn x' = R, the pairs'
         // branch rows and their outputs W.
         const PrimaryRows& r = *rows;
-        const SparseMatrixD Rp = state_equation_rows(states, r.cls, r.Imap, [&](int b) -> const std::vector<LoopTerm>& {
-          return r.inductor_loops.at(b);
-        });
+        const SparseMatrixD Rp = state_equation_rows(states, r.maps);
         SparseMatrixD Xdot(n, ncol);
         if (n > 0 && !solve_state_derivatives(MdynS, SparseMatrixD(Rp * SparseMatrixD(r.P_rows)), Xdot))
           throw std::logic_error("circuit model: a positive diagonal Mdyn was singular");
         RowSparse pair_v(mp, nb), pair_i(mp, nb);
         for (int k = 0; k < mp; ++k) {
           pair_v.startVec(k);
-          for (RowSparse::InnerIterator it(r.Vmap, pairs[k].branch); it; ++it) pair_v.insertBack(k, it.col()) = it.value();
+          r.maps.visit_row(true, pairs[k].branch, [&](int column, double value) { pair_v.insertBack(k, column) = value; });
           pair_i.startVec(k);
-          for (RowSparse::InnerIterator it(r.Imap, pairs[k].branch); it; ++it) pair_i.insertBack(k, it.col()) = it.value();
+          r.maps.visit_row(false, pairs[k].branch, [&](int column, double value) { pair_i.insertBack(k, column) = value; });
         }
         pair_v.finalize();
         pair_i.finalize();
@@ -651,11 +628,8 @@ CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& opt
       return m;
     }
   }
-  std::vector<BranchClass> branch_class;
-  for (const Branch& br : g.branches) branch_class.push_back(br.cls);
-  SparseMatrixD Rp = state_equation_rows(m.states_, branch_class, Imap, [&](int b) -> const std::vector<LoopTerm>& {
-    return t.loops[t.position[b]];
-  });
+  maps->materialise();
+  SparseMatrixD Rp = state_equation_rows(m.states_, *maps);
   SparseMatrixD Rfull = Rp * P;  // forced rows of P are still zero and Rp never uses them
   release(Rp);
 
@@ -746,11 +720,10 @@ CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& opt
   }
   {  // by rows throughout: a multiplier's link voltages hold O(n^2) entries, converted never
     const RowSparse Prows = P;
-    m.branch_v_ = Vmap * Prows;
-    m.branch_i_ = Imap * Prows;
+    m.branch_v_ = maps->voltage_map() * Prows;
+    m.branch_i_ = maps->current_map() * Prows;
   }
-  release(Vmap);
-  release(Imap);
+  maps.reset();
 
   // Complementarity outputs w, sparse like the branch rows.
   std::vector<int> pair_branch(mp);
@@ -826,8 +799,9 @@ Eigen::RowVectorXd CircuitModel::branch_row(int branch, bool voltage) const {
   if (!primary_rows_) return Eigen::RowVectorXd((voltage ? branch_v_ : branch_i_).row(branch));
   const PrimaryRows& r = *primary_rows_;  // the row of the product (Vmap or Imap) P, summed as there
   Eigen::RowVectorXd out = Eigen::RowVectorXd::Zero(r.P_rows.cols());
-  for (RowSparse::InnerIterator it(voltage ? r.Vmap : r.Imap, branch); it; ++it)
-    for (RowSparse::InnerIterator p(r.P_rows, it.col()); p; ++p) out(p.col()) += it.value() * p.value();
+  r.maps.visit_row(voltage, branch, [&](int column, double value) {
+    for (RowSparse::InnerIterator p(r.P_rows, column); p; ++p) out(p.col()) += value * p.value();
+  });
   return out;
 }
 
