@@ -1,5 +1,6 @@
 #include "graph/spanning_tree.h"
 
+#include <algorithm>
 #include <deque>
 #include <iterator>
 #include <stdexcept>
@@ -87,17 +88,25 @@ SpanningTree build_normal_tree(const CircuitGraph& graph) {
   for (int c = 1; c < n_nodes; ++c) children[parent[c]].push_back(c);
   std::vector<std::pair<int, size_t>> stack{{0, 0}};
   int clock = 0;
+  t.preorder.assign(n_nodes, 0);
+  t.preorder[clock] = 0;
   t.enter[0] = clock++;
   while (!stack.empty()) {
     auto& [u, next] = stack.back();
     if (next < children[u].size()) {
       const int c = children[u][next++];
+      t.preorder[clock] = c;
       t.enter[c] = clock++;
       stack.push_back({c, 0});
     } else {
       t.leave[u] = clock;
       stack.pop_back();
     }
+  }
+  t.node_links.assign(n_nodes, {});
+  for (int l : t.links) {
+    t.node_links[graph.branches[l].from].push_back(l);
+    if (graph.branches[l].to != graph.branches[l].from) t.node_links[graph.branches[l].to].push_back(l);
   }
   return t;
 }
@@ -141,11 +150,25 @@ std::vector<LoopTerm> fundamental_cutset(const CircuitGraph& graph, const Spanni
   const int c = t.to_parent[f.from].branch == tree_branch ? f.from : f.to;
   auto below = [&](int node) { return t.enter[c] <= t.enter[node] && t.enter[node] < t.leave[c]; };
   const int up = traversal_sign(f, c);
-  std::vector<LoopTerm> cutset;
-  for (int l : t.links) {
-    const bool a = below(graph.branches[l].from), b = below(graph.branches[l].to);
-    if (a != b) cutset.push_back({l, b ? up : -up});
+  // The links with exactly one end below c, read from the links at the nodes of the smaller
+  // side: the subtree (preorder [enter, leave)) or the rest.
+  const int n_nodes = static_cast<int>(t.preorder.size()), inside = t.leave[c] - t.enter[c];
+  std::vector<int> crossing;
+  auto scan = [&](int from, int to) {
+    for (int k = from; k < to; ++k)
+      for (int l : t.node_links[t.preorder[k]])
+        if (below(graph.branches[l].from) != below(graph.branches[l].to)) crossing.push_back(l);
+  };
+  if (2 * inside <= n_nodes) {
+    scan(t.enter[c], t.leave[c]);
+  } else {
+    scan(0, t.enter[c]);
+    scan(t.leave[c], n_nodes);
   }
+  std::sort(crossing.begin(), crossing.end());  // link order is branch order
+  std::vector<LoopTerm> cutset;
+  cutset.reserve(crossing.size());
+  for (int l : crossing) cutset.push_back({l, below(graph.branches[l].to) ? up : -up});
   return cutset;
 }
 

@@ -23,8 +23,10 @@ struct SpanningTree {
   std::vector<LoopTerm> to_parent;
   std::vector<int> parent;  // per node; -1 for ground
   std::vector<int> depth;   // per node; ground 0
-  // Per node: its subtree is the nodes whose `enter` lies in [enter, leave) (a preorder).
-  std::vector<int> enter, leave;
+  // Per node: its subtree is the nodes whose `enter` lies in [enter, leave) (a preorder), and
+  // preorder[k] is the node entered k-th.
+  std::vector<int> enter, leave, preorder;
+  std::vector<std::vector<int>> node_links;  // per node: the links at it, in branch order
   // The fundamental loops (B's columns) are not kept: a multiplier's hold O(N^2) entries, and a
   // formation that needs a few of them reads them below.
 };
@@ -46,7 +48,8 @@ std::vector<std::vector<LoopTerm>> fundamental_loops(const CircuitGraph& graph, 
 
 // The fundamental cutset of tree branch `tree_branch`: the links whose loops pass through it
 // (one end in the subtree below it), each with b_{f,l} (i_f = sum of b_{f,l} i_l), in link
-// order. O(links).
+// order. Found from the smaller side of the cut: O(its nodes and their links), O(1) for a
+// branch with one node below it.
 std::vector<LoopTerm> fundamental_cutset(const CircuitGraph& graph, const SpanningTree& tree, int tree_branch);
 
 }  // namespace lcs

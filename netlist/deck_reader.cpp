@@ -89,6 +89,7 @@ class Reader {
   // and leaving out `.lib SECTION` ... `.endl` blocks (a library's sections are read on request).
   void splice(const SourceFilePtr& file, std::vector<Card>& cards, std::size_t begin, std::size_t end,
               std::vector<Card>& out) {
+    out.reserve(out.size() + (end - begin));
     for (std::size_t k = begin; k < end; ++k) {
       Card& card = cards[k];
       if (is_endl(card)) throw NetlistError(card.at(0), "'.endl' without '.lib'");

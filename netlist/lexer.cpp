@@ -51,6 +51,7 @@ void tokenize(Card& card) {
   const std::string& s = card.chars;
   const int n = static_cast<int>(s.size());
   int i = 0;
+  card.tokens.reserve(8);  // an element card's usual count: one allocation, not four
   auto push = [&](Token::Kind kind, int begin, int end, std::string text) {
     Token t;
     t.kind = kind;
@@ -208,6 +209,7 @@ std::vector<Card> split_cards(const SourceFilePtr& file, bool has_title, std::ve
                               std::vector<ControlBlock>* controls) {
   std::vector<Card> cards;
   const auto& lines = file->lines;
+  cards.reserve(lines.size());  // at most one card a line
   Card current;
   bool open = false;
   auto flush = [&] {
@@ -218,6 +220,8 @@ std::vector<Card> split_cards(const SourceFilePtr& file, bool has_title, std::ve
     open = false;
   };
   auto append = [&](const std::string& line, std::size_t from, std::size_t to, int line_no) {
+    current.chars.reserve(current.chars.size() + (to - from));
+    current.pos.reserve(current.pos.size() + (to - from));
     for (std::size_t i = from; i < to; ++i) {
       current.chars += line[i];
       current.pos.emplace_back(line_no, static_cast<int>(i) + 1);
