@@ -86,7 +86,7 @@ std::string run_lcspice(const std::string& text, const std::string& file, const 
       steps = s.stepper.steps;
     }
     return total;
-  });
+  }, settings.min_repeats);
   return ok_report(cpu, best_formation, steps);
 }
 
@@ -110,7 +110,7 @@ std::string run_ngspice(const std::string& text, const std::string& file, const 
       const NgspiceResult r = run_ngspice_transient(run);
       steps = static_cast<long>(r.time.size());
       return r.analysis_cpu_seconds;
-    });
+    }, settings.min_repeats);
     return ok_report(cpu, kNaN, steps);
   } catch (const NgspiceError& e) {
     return std::string("error: ngspice ") + to_string(e.kind()) + ": " + e.what();

@@ -30,6 +30,7 @@ struct ScaleSettings {
   int fit_min_diodes = 100;                      // the exponents are fitted over runs this large
   double tstop = 0;                              // 0: the family's five periods
   double min_timing_seconds = 0.05;              // repeat short runs until this much CPU
+  int min_repeats = 3;                           // and every run under 2 s at least this often (repeat_for_timing.h)
 
   bool IsValid(std::string* why) const;
 };
