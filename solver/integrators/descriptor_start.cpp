@@ -13,6 +13,33 @@ namespace {
 // number (rows scaled to unit size; a floating node's diode makes it singular, 0).
 constexpr double kRegularMode = 1e-13;
 
+// A singular held mode's free directions at most this many (a floating node per direction), found
+// from the solution's own mode at most this many pairs away (the pairs at z = w = 0).
+constexpr int kMaxFreeDirections = 16;
+constexpr int kMaxDegenerate = 64;
+
+// True when every direction in which the instant's solution is not determined (the null space of
+// the held mode's matrix) leaves what a step reads of y unchanged: the storage rows' explicit part
+// Sy y (θ < 1; the states themselves are fixed at the instant). Then the solution found is as good
+// as any other, the dense start's included (its tiny-step LCP has the same free directions: no
+// storage meets them), and only unknowns no step reads — the potential of a node reached through
+// off diodes alone, such a diode's margin z — are left at the value found.
+bool free_directions_unread(SparseActiveSetLcp& lcp, const std::vector<char>& held, const std::vector<char>& found,
+                            const SparseDescriptor& d) {
+  Eigen::MatrixXd basis;
+  if (!lcp.mode_null_space(held, found, kMaxDegenerate, kMaxFreeDirections, basis)) return false;
+  const int ny = d.unknowns();
+  double sy_largest = 0;
+  for (int c = 0; c < d.Sy.outerSize(); ++c)
+    for (SparseActiveSetLcp::Sparse::InnerIterator it(d.Sy, c); it; ++it) sy_largest = std::max(sy_largest, std::abs(it.value()));
+  for (int k = 0; k < basis.cols(); ++k) {  // unit columns: rounding leaves ~1e-16 on the others
+    const Eigen::VectorXd dy = basis.col(k).head(ny);
+    const Eigen::VectorXd moved = d.Sy * dy;
+    if (moved.size() > 0 && moved.cwiseAbs().maxCoeff() > 1e-9 * sy_largest) return false;
+  }
+  return true;
+}
+
 }  // namespace
 
 bool descriptor_start_z(const LcsProblem& model, const SparseDescriptor& d, double t0,
@@ -44,14 +71,17 @@ bool descriptor_start_z(const LcsProblem& model, const SparseDescriptor& d, doub
   // at z = w = 0 are held on together with the conducting ones for the regularity test.
   const double z_size = m > 0 ? zs.cwiseAbs().maxCoeff() : 0.0;
   const Eigen::VectorXd w_terms = (d.P.cwiseAbs() * y.cwiseAbs()) + (d.Fw.cwiseAbs() * u.cwiseAbs());
-  std::vector<char> held(m, 0);
+  std::vector<char> held(m, 0), conducting(m, 0);
   bool strict = true;
   for (int i = 0; i < m; ++i) {
     const bool on = zs(i) > 1e-9 * z_size, off = w(i) > 1e-9 * w_terms(i);
     held[i] = on || !off;
+    conducting[i] = on;
     strict = strict && (on || off);
   }
-  if (!strict && !(lcp.mode_reciprocal_condition(held) > kRegularMode)) return false;
+  if (!strict && !(lcp.mode_reciprocal_condition(held) > kRegularMode) &&
+      !free_directions_unread(lcp, held, conducting, d))
+    return false;
   z = zs;
   return true;
 }

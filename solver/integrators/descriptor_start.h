@@ -14,8 +14,13 @@
 // with the conducting pairs is regular: then the solution is isolated (the pairs' rows and
 // columns are independent), the step's LCP for small h has solutions within O(h) of it whichever
 // way those pairs go, and their z, zero at t0, is continuous. Where that mode is singular (a
-// diode to a node nothing else reaches: its potential is free, z not determined) the answer
-// is refused and the dense start decides.
+// diode to a node nothing else reaches: its potential is free, z not determined) the answer is
+// taken when no free direction (the mode's null space, found from the solution's own mode by a
+// k x k problem, SparseActiveSetLcp::mode_null_space) moves what a step reads of the instant's
+// unknowns (the storage rows' Sy y; the states are given): the dense start's tiny-step LCP is as
+// undetermined along it, and only unknowns no step reads keep the value found. Otherwise (an
+// ideal diode across a capacitor at its threshold: the current is free at the instant, and the
+// capacitor's row reads it) the answer is refused and the dense start decides.
 #pragma once
 
 #include <Eigen/Dense>

@@ -153,6 +153,45 @@ double SparseActiveSetLcp::mode_reciprocal_condition(const std::vector<char>& on
   return condest > 0 && std::isfinite(condest) ? 1.0 / condest : 0.0;
 }
 
+bool SparseActiveSetLcp::mode_null_space(const std::vector<char>& on, const std::vector<char>& regular,
+                                         int max_changed, int max_dimension, Eigen::MatrixXd& basis) {
+  std::vector<int> changed;
+  for (int i = 0; i < m_; ++i)
+    if (on[i] != regular[i]) changed.push_back(i);
+  const int k = static_cast<int>(changed.size());
+  if (k > max_changed) return false;
+  const std::unique_ptr<Factorisation> f = factorise(regular);
+  if (!f->usable) return false;
+  const int size = n_ + m_;
+  Eigen::MatrixXd G(size, k);  // M_reg^-1 E_S
+  for (int a = 0; a < k; ++a) {
+    Eigen::VectorXd column = Eigen::VectorXd::Unit(size, n_ + changed[a]);
+    if (!lu_solve(*f, column)) return false;
+    G.col(a) = column;
+  }
+  Eigen::MatrixXd small = Eigen::MatrixXd::Identity(k, k);  // I + D_S G_S
+  for (int a = 0; a < k; ++a) {
+    const int i = changed[a];
+    for (int b = 0; b < k; ++b) {
+      const Eigen::VectorXd g = G.col(b);
+      small(a, b) += pair_row_dot(i, on[i], g) - pair_row_dot(i, regular[i], g);
+    }
+  }
+  basis.resize(size, 0);
+  if (k == 0) return true;
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(small, Eigen::ComputeFullV);
+  const Eigen::VectorXd& sigma = svd.singularValues();  // decreasing
+  int nullity = 0;
+  for (int j = 0; j < k; ++j)
+    if (!(sigma(j) > 1e-10 * sigma(0))) ++nullity;
+  if (nullity > max_dimension) return false;
+  if (nullity == 0) return true;
+  const Eigen::MatrixXd V = -G * svd.matrixV().rightCols(nullity);
+  const Eigen::HouseholderQR<Eigen::MatrixXd> qr(V);
+  basis = qr.householderQ() * Eigen::MatrixXd::Identity(size, nullity);
+  return true;
+}
+
 double SparseActiveSetLcp::pair_row_dot(int i, bool on, const Eigen::VectorXd& v) const {
   if (!on) return v(n_ + i);
   double sum = 0;

@@ -109,6 +109,14 @@ class SparseActiveSetLcp {
   // estimate), 0 when it is singular; the mode is the pairs `on` that are nonzero. Factorised
   // for this and not cached.
   double mode_reciprocal_condition(const std::vector<char>& on);
+  // An orthonormal basis (columns over [y | z]) of the null space of mode `on`'s matrix, from a
+  // regular mode `regular` a few pairs away (at most `max_changed`): with M_on = M_reg + E_S D_S
+  // (the rows of the pairs S that differ), M_on v = 0 exactly when v = -G_S c, G_S = M_reg^-1 E_S,
+  // and (I + D_S G_S) c = 0, a k x k problem (k = |S|) solved by SVD (singular values below 1e-10
+  // of the largest count as zero). False when `regular` is singular, too far, or the null space
+  // has more than `max_dimension` vectors.
+  bool mode_null_space(const std::vector<char>& on, const std::vector<char>& regular, int max_changed,
+                       int max_dimension, Eigen::MatrixXd& basis);
   int states() const { return n_; }
   int pairs() const { return m_; }
 

@@ -1,6 +1,6 @@
 // The θ-method's start on the descriptor form (descriptor_start.h): on a charged multiplier the
 // same z as the dense start (start_complementarity.h), without its dense LCP; refused where a
-// pair at z = w = 0 leaves the answer undetermined.
+// pair at z = w = 0 leaves undetermined something a step reads.
 #include <algorithm>
 #include <string>
 
@@ -120,16 +120,63 @@ TEST(DescriptorStart, GivesTheDenseStartsZWithPairsAtZeroBesideConductingOnes) {
   EXPECT_LT((zd - zdense).cwiseAbs().maxCoeff(), 1e-9 * zdense.cwiseAbs().maxCoeff());
 }
 
-// A diode to a node nothing else reaches: held on, its mode is singular (the node's potential
-// is free), so the answer may not be the continuation and the dense start decides.
-TEST(DescriptorStart, RefusesADiodeToAFloatingNode) {
+// A diode to a node nothing else reaches: held on, its mode is singular (the node's potential and
+// the diode's margin z are free at the instant), but that direction moves nothing a step reads,
+// so the answer is taken (the dense start's tiny-step LCP is as undetermined there). The run
+// from it follows the dense path's run: states after 150 steps of 100 us (the multiplier
+// charging, the floating diode off) within 1e-9 of their size, and the other pairs' z at the
+// start the dense start's.
+TEST(DescriptorStart, TakesADiodeToAFloatingNodeWhoseFreePotentialNoStepReads) {
   const CircuitModel model = multiplier(70, "0.7", "DF b70 fl dcw\n");
   ASSERT_NE(model.sparse_descriptor(), nullptr);
+  const int n = model.state_count(), m = model.pair_count();
+  StepperStats stats, dense_stats;
+  Eigen::VectorXd z = Eigen::VectorXd::Zero(m);
+  ASSERT_TRUE(descriptor_start_z(model, *model.sparse_descriptor(), 0.0, Eigen::VectorXd::Zero(n), stats, z));
+  const Eigen::VectorXd zdense = consistent_start_z(model, 0.0, 1e-4, Eigen::VectorXd::Zero(n), dense_stats,
+                                                    Eigen::VectorXd::Zero(m));
+  int floating = -1;
+  for (int k = 0; k < m; ++k)
+    if (model.graph().branches[model.pairs()[k].branch].name == "df") floating = k;
+  ASSERT_GE(floating, 0);
+  for (int k = 0; k < m; ++k)
+    if (k != floating) EXPECT_NEAR(z(k), zdense(k), 1e-12) << "pair " << k;
+
+  const double h = 1e-4;
+  ThetaMethod sparse(model, 1.0), dense(model, 1.0, true, m + 1);  // the second never steps on the descriptor
+  Eigen::VectorXd xs = Eigen::VectorXd::Zero(n), zs = Eigen::VectorXd::Zero(m), xd = xs, zd = zs;
+  sparse.Start(0.0, h, xs, zs);
+  dense.Start(0.0, h, xd, zd);
+  for (int k = 0; k < 150; ++k) {
+    sparse.Step(k * h, h, xs, zs);
+    dense.Step(k * h, h, xd, zd);
+  }
+  ASSERT_GT(xd.cwiseAbs().maxCoeff(), 1.0);  // charged
+  EXPECT_LT((xs - xd).cwiseAbs().maxCoeff(), 1e-9 * xd.cwiseAbs().maxCoeff());
+}
+
+// An ideal diode (RON = 0) across a capacitor charged to exactly its threshold: held on, the
+// diode's voltage is the capacitor's whatever its current, so at the instant that current is
+// free, and a step reads it (the capacitor's row): the answer is refused and the dense start
+// decides (its tiny step would discharge the capacitor below the threshold: the current is 0).
+TEST(DescriptorStart, RefusesAFreeCurrentThatAStepReads) {
+  const CircuitModel model = multiplier(70, "0.7", "CQ p 0 1u\nDQ p 0 dq\n.model dq D(VON=0.7 RON=0)\n");
+  ASSERT_NE(model.sparse_descriptor(), nullptr);
+  const int n = model.state_count(), m = model.pair_count();
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(n);
+  for (int j = 0; j < n; ++j)
+    if (model.states()[j].label == "v(cq)") x(j) = 0.7;
+  ASSERT_EQ(x.sum(), 0.7);
+  // The search is started with DQ off, where its mode is regular and the solution (z = w = 0)
+  // is found; held on, its current is free.
+  Eigen::VectorXd preferred = Eigen::VectorXd::Constant(m, 7.0);
+  for (int k = 0; k < m; ++k)
+    if (model.graph().branches[model.pairs()[k].branch].name == "dq") preferred(k) = 0.0;
+  ASSERT_EQ(preferred.sum(), 7.0 * (m - 1));
   StepperStats stats;
-  Eigen::VectorXd z = Eigen::VectorXd::Constant(model.pair_count(), 7.0);
-  EXPECT_FALSE(descriptor_start_z(model, *model.sparse_descriptor(), 0.0,
-                                  Eigen::VectorXd::Zero(model.state_count()), stats, z));
-  EXPECT_EQ(z, Eigen::VectorXd::Constant(model.pair_count(), 7.0));  // untouched
+  Eigen::VectorXd z = preferred;
+  EXPECT_FALSE(descriptor_start_z(model, *model.sparse_descriptor(), 0.0, x, stats, z));
+  EXPECT_EQ(z, preferred);  // untouched
 }
 
 }  // namespace

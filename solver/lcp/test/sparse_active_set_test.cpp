@@ -2,6 +2,8 @@
 //   M = Q - P K^-1 L,  q = b + P K^-1 a   (y = K^-1 (a - L z)).
 #include <random>
 
+#include <cmath>
+
 #include <gtest/gtest.h>
 
 #include "solver/lcp/lcp.h"
@@ -175,6 +177,33 @@ TEST(SparseActiveSet, LowRankUpdatesGiveTheFactorisedAnswers) {
     updates += updated.stats().updates;
   }
   EXPECT_GT(updates, 50);
+}
+
+// The null space of a mode from a regular one a pair away: [K L; P Q] with K = I, L = (1, 0),
+// P = (1, 0) and Q = q. With the pair on and q = 1 the first and last rows are equal: the null
+// space is (1, 0, -1)/sqrt(2); with q = -1 the mode is regular: no null vector.
+TEST(SparseActiveSetLcp, NullSpaceOfAModeFromARegularOne) {
+  using Sparse = SparseActiveSetLcp::Sparse;
+  const Eigen::MatrixXd K = Eigen::MatrixXd::Identity(2, 2), L = (Eigen::MatrixXd(2, 1) << 1, 0).finished(),
+                        P = (Eigen::MatrixXd(1, 2) << 1, 0).finished();
+  for (double q : {1.0, -1.0}) {
+    const Eigen::MatrixXd Q = Eigen::MatrixXd::Constant(1, 1, q);
+    SparseActiveSetLcp lcp(K.sparseView(), L.sparseView(), P.sparseView(), Sparse(Q.sparseView()));
+    Eigen::MatrixXd basis;
+    ASSERT_TRUE(lcp.mode_null_space({1}, {0}, 4, 4, basis));
+    if (q < 0) {
+      EXPECT_EQ(basis.cols(), 0);
+      continue;
+    }
+    ASSERT_EQ(basis.cols(), 1);
+    const Eigen::Vector3d v = basis.col(0) * (basis(0, 0) > 0 ? 1.0 : -1.0);
+    EXPECT_NEAR(v(0), 1 / std::sqrt(2.0), 1e-14);
+    EXPECT_NEAR(v(1), 0.0, 1e-14);
+    EXPECT_NEAR(v(2), -1 / std::sqrt(2.0), 1e-14);
+    // Too far from the regular mode, or too many free directions asked for: refused.
+    EXPECT_FALSE(lcp.mode_null_space({1}, {0}, 0, 4, basis));
+    EXPECT_FALSE(lcp.mode_null_space({1}, {0}, 4, 0, basis));
+  }
 }
 
 }  // namespace
