@@ -119,7 +119,9 @@ LcsIndex lcs_index(const Lcs& s) {
       const auto& sv = svd.singularValues();
       if (sv(0) > 0 && sv(m - 1) > 1e-10 * sv(0)) r.index = k;
     }
-    if (r.index >= 0 && unresolved == 0 && k >= 2) break;
+    // Three are printed for small systems; a large one stops as soon as nothing is left to find
+    // (a multiplier's 1000 pairs: G_1 and G_2 were two products of 1e9 multiply-adds each).
+    if (r.index >= 0 && unresolved == 0 && (k >= 2 || m > kPrintedMarkovPairs)) break;
   }
   return r;
 }
