@@ -170,10 +170,10 @@ bool SparseActiveSetLcp::mode_null_space(const std::vector<char>& on, const std:
     G.col(a) = column;
   }
   Eigen::MatrixXd small = Eigen::MatrixXd::Identity(k, k);  // I + D_S G_S
-  for (int a = 0; a < k; ++a) {
-    const int i = changed[a];
-    for (int b = 0; b < k; ++b) {
-      const Eigen::VectorXd g = G.col(b);
+  for (int b = 0; b < k; ++b) {
+    const Eigen::VectorXd g = G.col(b);
+    for (int a = 0; a < k; ++a) {
+      const int i = changed[a];
       small(a, b) += pair_row_dot(i, on[i], g) - pair_row_dot(i, regular[i], g);
     }
   }

@@ -404,7 +404,7 @@ CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& opt
   const bool forced = std::find(role.begin(), role.end(), Role::Forced) != role.end();
   const bool may_defer = options.defer_elimination && mp >= kDescriptorPairs && stamps.delayed.empty() &&
                          stamps.dc_relations.empty() && stamps.couplings.empty() && !forced;
-  auto maps = std::make_shared<PrimaryMaps>(g, t);
+  auto maps = std::make_unique<PrimaryMaps>(g, t);  // freed once the branch rows are formed
   if (!may_defer) maps->materialise();
 
   // Static (resistive, source and diode) equations, one per Static branch:

@@ -46,12 +46,6 @@ void PrimaryMaps::materialise() {
   materialised_ = true;
 }
 
-void PrimaryMaps::release() {
-  vmap_ = RowSparse();
-  imap_ = RowSparse();
-  materialised_ = false;
-}
-
 std::vector<std::pair<int, double>> PrimaryMaps::voltage_row(int b) const {
   if (tree_.in_tree[b]) return {{b, 1.0}};
   std::vector<LoopTerm> loop = fundamental_loop(graph_, tree_, b);

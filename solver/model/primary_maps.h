@@ -27,8 +27,6 @@ class PrimaryMaps {
   bool materialised() const { return materialised_; }
   const RowSparse& voltage_map() const { return vmap_; }  // materialised only
   const RowSparse& current_map() const { return imap_; }
-  // Frees the matrices (rows are then read from the tree again).
-  void release();
 
   // Calls visit(column, value) for each entry of row b of Vmap (voltage) or Imap, in increasing
   // column order.
