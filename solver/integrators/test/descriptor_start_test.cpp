@@ -139,8 +139,9 @@ TEST(DescriptorStart, TakesADiodeToAFloatingNodeWhoseFreePotentialNoStepReads) {
   for (int k = 0; k < m; ++k)
     if (model.graph().branches[model.pairs()[k].branch].name == "df") floating = k;
   ASSERT_GE(floating, 0);
-  for (int k = 0; k < m; ++k)
+  for (int k = 0; k < m; ++k) {
     if (k != floating) EXPECT_NEAR(z(k), zdense(k), 1e-12) << "pair " << k;
+  }
 
   const double h = 1e-4;
   ThetaMethod sparse(model, 1.0), dense(model, 1.0, true, m + 1);  // the second never steps on the descriptor
