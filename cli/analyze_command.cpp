@@ -72,9 +72,22 @@ std::optional<TransientOptions> deck_transient(const Netlist& netlist) {
   return o;
 }
 
+// A loop of more than kLoopTermsShown branches is shown by its ends (the text report of a
+// 2500-stage multiplier, whose loops run down its capacitor chains, was 83 MB in full; --json
+// keeps every term).
+constexpr size_t kLoopTermsShown = 24;
+
 std::string loop_text(const CircuitGraph& g, const std::vector<LoopTerm>& loop) {
   std::string s;
-  for (const LoopTerm& t : loop) s += (s.empty() ? "" : " ") + std::string(t.sign > 0 ? "+" : "-") + g.branches[t.branch].name;
+  const size_t end = kLoopTermsShown / 2;
+  for (size_t k = 0; k < loop.size(); ++k) {
+    if (loop.size() > kLoopTermsShown && k == end) {
+      s += " ... (" + std::to_string(loop.size()) + " branches in all) ...";
+      k = loop.size() - end;
+    }
+    const LoopTerm& t = loop[k];
+    s += (s.empty() ? "" : " ") + std::string(t.sign > 0 ? "+" : "-") + g.branches[t.branch].name;
+  }
   return s;
 }
 
@@ -221,7 +234,8 @@ void print_text(const Report& r) {
     os << r.index.markov[k].format(Eigen::IOFormat(6, 0, " ", "\n", "    [", "]"));
     std::printf("  Markov parameter %s:\n%s\n", names[k], os.str().c_str());
   }
-  if (r.index.index >= 0) std::printf("  index: %d\n", r.index.index);
+  if (!r.index.not_computed.empty()) std::printf("  index: not computed (%s)\n", r.index.not_computed.c_str());
+  else if (r.index.index >= 0) std::printf("  index: %d\n", r.index.index);
   else std::printf("  index: undefined (G(s) singular for large s)\n");
   std::printf("\nuniqueness (LCP(q, M) has one solution for every q iff M is a P-matrix, 2.2):\n");
   for (const UniquenessEntry& e : r.uniqueness)
@@ -269,7 +283,9 @@ void print_json(const Report& r) {
   o << "\n  ],\n  \"lcs\": {\"states\": " << m.state_count() << ", \"pairs\": " << m.pair_count()
     << ", \"inputs\": " << m.input_count() << ", \"index\": " << r.index.index << ", \"state_labels\": [";
   for (size_t k = 0; k < m.states().size(); ++k) o << (k ? ", " : "") << json_string(m.states()[k].label);
-  o << "]},\n  \"uniqueness\": [";
+  o << "]";
+  if (!r.index.not_computed.empty()) o << ", \"index_not_computed\": " << json_string(r.index.not_computed);
+  o << "},\n  \"uniqueness\": [";
   for (size_t k = 0; k < r.uniqueness.size(); ++k) {
     const UniquenessEntry& e = r.uniqueness[k];
     o << (k ? ",\n" : "\n") << "    {\"matrix\": " << json_string(e.what) << ", \"verdict\": "

@@ -7,6 +7,7 @@
 #include "cli/commands.h"
 #include "cli/exit_codes.h"
 #include "netlist/number.h"
+#include "solver/model/dense_budget.h"
 #include "solver/integrators/method_registry.h"
 
 namespace lcs {
@@ -155,6 +156,9 @@ int run_cli(int argc, char** argv) {
   } catch (const CliError& e) {
     std::cerr << e.what() << "\n";
     return e.code();
+  } catch (const DenseBudgetExceeded& e) {
+    std::cerr << "lcspice: error: " << e.what() << " (methods euler and theta step on the sparse circuit)\n";
+    return kExitNumerical;
   } catch (const std::exception& e) {
     std::cerr << "lcspice: internal error: " << e.what() << "\n";
     return kExitNumerical;

@@ -8,6 +8,7 @@
 #include "solver/model/empty_safe.h"
 #include "solver/model/operating_point.h"
 #include "solver/model/pair_blocks.h"
+#include "solver/model/dense_budget.h"
 #include "solver/model/sparse_lcs.h"
 
 namespace lcs {
@@ -18,6 +19,7 @@ std::string UniquenessEntry::verdict() const {
     case PMatrixReport::Verdict::P:
       return size == 0 ? "no pairs" : "a P-matrix: one solution for every q";
     case PMatrixReport::Verdict::Unchecked:
+      if (!not_formed.empty()) return "not checked (" + not_formed + ")";
       if (report.symmetric_psd) return "symmetric positive semidefinite (a diode network): w is unique";
       if (unchecked_block > 0)
         return "not checked (a block of " + std::to_string(unchecked_block) + " coupled pairs, more than " +
@@ -110,6 +112,24 @@ std::vector<UniquenessEntry> uniqueness_report(const CircuitModel& model, double
   const std::string op_what = "operating point (D - C A^-1 B)";
   std::optional<UniquenessEntry> op;
   if (sparse) op = sparse_entry(model, op_what, sparse->A, sparse->B, sparse->C, sparse->D);
+  const int n = model.state_count(), m = model.pair_count();
+  if (!op && !dense_within_budget(n, m, 1, kAnalyzeDenseBytes)) {
+    // A dense M of a large circuit: forming it is O((n + m)^3); each step's LCP is still solved
+    // and checked on the sparse circuit.
+    char step_what[96];
+    std::snprintf(step_what, sizeof step_what, "implicit Euler step, h = TSTEP = %.6g s (D + h C (I - h A)^-1 B)", tstep);
+    for (const std::string& what : {op_what, std::string(step_what)}) {
+      if (what != op_what && tstep <= 0) break;
+      UniquenessEntry e;
+      e.what = what;
+      e.size = m;
+      e.report.verdict = PMatrixReport::Verdict::Unchecked;
+      e.report.symmetric_psd = false;
+      e.not_formed = dense_budget_reason(n, m, 1, kAnalyzeDenseBytes);
+      out.push_back(e);
+    }
+    return out;
+  }
   out.push_back(op ? *op : entry(model, op_what, static_lcp_matrix(model)));
   if (tstep > 0 && sparse) {
     char buf[96];

@@ -27,6 +27,8 @@ struct UniquenessEntry {
   // unchecked verdict names the size of its largest unchecked block (0: M was one block).
   int blocks = 0;
   int unchecked_block = 0;
+  // Why M was not formed (its dense LCS over analyze's budget, dense_budget.h); empty when it was.
+  std::string not_formed;
   std::string verdict() const;  // one line of text
   std::string json_verdict() const;  // "P", "not P", "semidefinite", "unchecked", "empty"
 };

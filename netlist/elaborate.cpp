@@ -22,10 +22,11 @@ std::string short_number(double x) {
 }
 
 // Bounds that keep hostile input from exhausting memory or the stack.
-// Elements plus instances after expansion. Dense model formation is cubic in the branches: a
-// 1000-section RC-diode ladder (3000 elements) runs in about 16 s, so 5000 is the most that
-// still finishes in about a minute; issue 12 (large circuits) is what raises it.
-constexpr std::size_t kMaxElements = 5'000;
+// Elements plus instances after expansion. Formation and the sparse steps are linear in the
+// circuit since issue 12 (`lcspice run` of 25000 half-wave rectifiers, 100,001 elements, 1000
+// steps: 2.1 s, 275 MB), and methods that need the dense LCS refuse a circuit too large for it
+// (solver/model/dense_budget.h); the bound keeps a hostile deck's expansion within about 1 GB.
+constexpr std::size_t kMaxElements = 200'000;
 constexpr int kMaxInstanceDepth = 100;
 // The model of diodes written without one (a name no `.model` card can clash with: it has a space).
 const char* const kDefaultDiode = "ideal default";

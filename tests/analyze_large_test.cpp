@@ -52,6 +52,20 @@ std::string flip_flops(int n) {
   return s + ".model qn npn(bf=100 von=0.7)\n.tran 1u 10u\n.end\n";
 }
 
+// As `bench --scale cw`: an n-stage Cockcroft-Walton multiplier (2n diodes, 2n capacitors).
+std::string multiplier(int n) {
+  std::string s = "multiplier\nV1 in 0 SIN(0 100 50)\n";
+  for (int k = 1; k <= n; ++k) {
+    const std::string ap = k == 1 ? "in" : "a" + std::to_string(k - 1), bp = k == 1 ? "0" : "b" + std::to_string(k - 1);
+    const std::string a = "a" + std::to_string(k), b = "b" + std::to_string(k);
+    s += "C" + std::to_string(2 * k - 1) + " " + ap + " " + a + " 10u\n";
+    s += "D" + std::to_string(2 * k - 1) + " " + bp + " " + a + " dcw\n";
+    s += "D" + std::to_string(2 * k) + " " + a + " " + b + " dcw\n";
+    s += "C" + std::to_string(2 * k) + " " + bp + " " + b + " 10u\n";
+  }
+  return s + "RL b" + std::to_string(n) + " 0 1g\n.model dcw D(VON=0.7 RON=1)\n.tran 0.1m 20m UIC\n.end\n";
+}
+
 Result analyze(const std::string& name, const std::string& text) {
   const fs::path f = write(name, text);
   return run_lcspice("analyze '" + f.string() + "'", f.parent_path());
@@ -112,6 +126,46 @@ TEST(AnalyzeLarge, FlipFlopsAreFoundNotPInTheirOwnBlock) {
             std::string::npos)
       << r.out;
   EXPECT_NE(r.out.find("(transistors qa1 and qb1): several solutions are possible\n"), std::string::npos) << r.out;
+}
+
+// A multiplier's LCS is dense (its loops run down the capacitor chains). At 1100 stages, n + m =
+// 4400, a dense matrix is 148 MB, over analyze's 128 MB for its O((n + m)^3) reports
+// (dense_budget.h): the index and both uniqueness entries say why they were not computed (before,
+// 2500 stages took more than 200 s and 3.1 GB), and a loop is shown by its ends (the text was 83 MB).
+TEST(AnalyzeLarge, DenseMultiplierOverTheBudgetSaysWhatItDidNotCompute) {
+  const Result r = analyze("multiplier", multiplier(1100));
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::string why = "the dense LCS of 2200 states and 2200 pairs (148 MB a matrix) is over the 128 MB "
+                          "budget for dense matrices";
+  EXPECT_NE(r.out.find("\n  index: not computed (" + why + ")\n"), std::string::npos) << r.out.substr(0, 2000);
+  EXPECT_NE(r.out.find("\n  operating point (D - C A^-1 B), m = 2200: not checked (" + why + ")\n"), std::string::npos);
+  EXPECT_NE(r.out.find("\n  implicit Euler step, h = TSTEP = 0.0001 s (D + h C (I - h A)^-1 B), m = 2200: not "
+                       "checked (" + why + ")\n"),
+            std::string::npos);
+  // d7 closes through c7, c5, c3, c1 down one chain, v1, and c2, c4, c6 up the other; d2200 through
+  // all 1100 odd and 1100 even capacitors and v1: 2202 branches.
+  EXPECT_NE(r.out.find("\n  d7         D  loop: +d7 -c7 -c5 -c3 -c1 +v1 +c2 +c4 +c6\n"), std::string::npos);
+  EXPECT_NE(r.out.find("\n  d2200      D  loop: +d2200 -c2200 -c2198 -c2196 -c2194 -c2192 -c2190 -c2188 -c2186 "
+                       "-c2184 -c2182 -c2180 ... (2202 branches in all) ... +c2177 +c2179 +c2181 +c2183 +c2185 "
+                       "+c2187 +c2189 +c2191 +c2193 +c2195 +c2197 +c2199\n"),
+            std::string::npos);
+  EXPECT_LT(r.out.size(), std::size_t{4} << 20);
+}
+
+// The methods that work on the dense LCS refuse a circuit whose working set is over the 1 GB
+// budget (usage error, exit 1, as any method that does not apply); euler steps on the sparse circuit.
+TEST(AnalyzeLarge, DenseMethodsRefuseAMultiplierTooLargeForThem) {
+  const fs::path f = write("multiplier_run", multiplier(2500));
+  const Result event = run_lcspice("run '" + f.string() + "' --method event -o out.csv", f.parent_path());
+  EXPECT_EQ(event.code, 1);
+  EXPECT_EQ(event.err, "error: method event: the dense LCS of 5000 states and 5000 pairs (763 MB a matrix, 3 of "
+                       "them: 2.2 GB) is over the 1.0 GB budget for dense matrices; methods euler and theta step "
+                       "on the sparse circuit\n");
+  const Result radau = run_lcspice("run '" + f.string() + "' --method radau5 -o out.csv", f.parent_path());
+  EXPECT_EQ(radau.code, 1);
+  EXPECT_NE(radau.err.find("(763 MB a matrix, 10 of them: 7.5 GB)"), std::string::npos) << radau.err;
+  const Result euler = run_lcspice("run '" + f.string() + "' --method euler -o out.csv", f.parent_path());
+  EXPECT_EQ(euler.code, 0) << euler.err;
 }
 
 }  // namespace

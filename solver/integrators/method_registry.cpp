@@ -7,6 +7,7 @@
 #include "solver/integrators/radau_iia.h"
 #include "solver/integrators/smooth_method.h"
 #include "solver/integrators/theta_method.h"
+#include "solver/model/dense_budget.h"
 #include "solver/model/switch_family.h"
 
 namespace lcs {
@@ -42,6 +43,23 @@ MethodEntry adaptive(const std::string& name, const std::string& description, Co
   e.make_continuous = std::move(make);
   e.bench_sweep = BenchSweep::Tolerance;
   return e;
+}
+
+// Methods that work on the dense LCS (dense_budget.h) refuse a circuit whose dense working set,
+// `copies` matrices of (n + m)^2 numbers, is over the budget; the sparse-capable ones (euler,
+// theta) only when the circuit has neither a sparse LCS nor a descriptor form to step on.
+void limit_dense(MethodEntry& e, int copies, bool steps_sparse) {
+  auto inner = std::move(e.applies);
+  const std::string name = e.name;
+  e.applies = [inner, copies, steps_sparse, name](const LcsProblem& m, std::string* why) {
+    if (inner && !inner(m, why)) return false;
+    if (steps_sparse && (m.sparse_lcs() || m.sparse_descriptor())) return true;
+    if (dense_within_budget(m.state_count(), m.pair_count(), copies)) return true;
+    if (why)
+      *why = dense_budget_reason(m.state_count(), m.pair_count(), copies) +
+             (steps_sparse ? "" : "; methods euler and theta step on the sparse circuit");
+    return false;
+  };
 }
 
 std::vector<MethodEntry> make_table() {
@@ -135,6 +153,16 @@ std::vector<MethodEntry> make_table() {
   theta.large_circuit_steps = true;
   table.push_back(theta);
 
+  // Dense matrices of (n + m)^2 each a method holds at once, about: event the LCS, a mode's
+  // exponential and its dynamics; Radau IIA with s stages its s(n + m) stage system and factors;
+  // smooth the LCS, IDA's Jacobian and its LU; the θ-method's dense step the LCS, Phi, W^-1 B, C Phi.
+  for (MethodEntry& e : table) {
+    if (e.name == "event") limit_dense(e, 3, false);
+    else if (e.name == "radau3") limit_dense(e, 2 * 2 + 1, false);
+    else if (e.name == "radau5") limit_dense(e, 3 * 3 + 1, false);
+    else if (e.name == "smooth") limit_dense(e, 3, false);
+    else limit_dense(e, 4, true);
+  }
   return table;
 }
 

@@ -9,6 +9,7 @@
 #include "solver/integrators/event_driven.h"
 #include "solver/lcp/lcp.h"
 #include "solver/lcp/sparse_active_set.h"
+#include "solver/model/dense_budget.h"
 #include "solver/model/sparse_lcs.h"
 
 #include <Eigen/SparseLU>
@@ -123,6 +124,9 @@ Eigen::VectorXd consistent_start_z(const LcsProblem& model, double t0, double h_
     Eigen::VectorXd z;
     if (sparse_start_z(model, *sparse, t0, h_run, x, stats, prefer, z)) return z;
   }
+  if (!dense_within_budget(model.state_count(), model.pair_count(), 4))
+    throw NumericalFailure(t0, "no start from the sparse circuit, and the dense start LCP is not formed: " +
+                                   dense_budget_reason(model.state_count(), model.pair_count(), 4));
   const Lcs& s = model.lcs();
   const int n = s.states();
   const double h = start_step(s, h_run);

@@ -3,6 +3,7 @@
 
 #include "solver/integrators/descriptor_start.h"
 #include "solver/integrators/start_complementarity.h"
+#include "solver/model/dense_budget.h"
 #include "solver/model/sparse_lcs.h"
 #include "solver/model/numerical_failure.h"
 
@@ -109,6 +110,9 @@ void ThetaMethod::DoStep(double t, double h, Eigen::VectorXd& x, Eigen::VectorXd
     if (found->second->step(model_, t, x, z)) return;
     ++stats_.sparse_fallbacks;
   }
+  if (!cache_.count(h) && !dense_within_budget(model_.state_count(), model_.pair_count(), 4))
+    throw NumericalFailure(t + h, "the sparse step found no mode, and the dense step LCP that would decide it is "
+                                  "not formed: " + dense_budget_reason(model_.state_count(), model_.pair_count(), 4));
   StepFactors& f = factors(h);
   u1_ = model_.input_values(t + h);
   q_ = f.CPhi * x + f.CPu1F * u1_;

@@ -3,6 +3,7 @@
 #include <Eigen/SVD>
 
 #include "solver/model/klu_factor.h"
+#include "solver/model/dense_budget.h"
 #include "solver/model/sparse_lcs.h"
 
 namespace lcs {
@@ -74,6 +75,12 @@ LcsIndex lcs_index(const LcsProblem& model) {
     LcsIndex r;
     r.pair_index.assign(m, -1);
     if (sparse_index(*model.sparse_lcs(), m, r)) return r;
+  }
+  if (!dense_within_budget(model.state_count(), m, 1, kAnalyzeDenseBytes)) {
+    LcsIndex r;
+    r.pair_index.assign(m, -1);
+    r.not_computed = dense_budget_reason(model.state_count(), m, 1, kAnalyzeDenseBytes);
+    return r;
   }
   return lcs_index(model.lcs());
 }

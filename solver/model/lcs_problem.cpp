@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <limits>
 
+#include "solver/model/dense_budget.h"
 #include "solver/model/sparse_lcs.h"
 
 
@@ -51,6 +52,9 @@ int LcsProblem::pair_count() const {
 }
 
 void LcsProblem::form_dense() const {
+  // One copy: whoever asks holds at least the matrices themselves (dense_budget.h).
+  if (!dense_within_budget(state_count(), pair_count(), 1))
+    throw DenseBudgetExceeded(dense_budget_reason(state_count(), pair_count(), 1));
   Lcs& s = lcs_;
   if (!deferred_) {
     deferred_ = make_deferred_();

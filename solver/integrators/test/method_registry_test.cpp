@@ -6,6 +6,8 @@
 
 #include "solver/integrators/method_registry.h"
 #include "solver/integrators/transient.h"
+#include "solver/model/dense_budget.h"
+#include "solver/model/sparse_lcs.h"
 
 namespace lcs {
 namespace {
@@ -83,6 +85,50 @@ TEST(MethodRegistry, DefaultForACircuitFallsBackOnlyAboveThePairLimit) {
   EXPECT_EQ(default_method_for(Sized(129), &why).name, "euler");
   EXPECT_EQ(why, "129 complementarity pairs, more than the 128 up to which the event method's dense "
                  "exponentials stay cheap");
+}
+
+// dense_budget.h: a circuit whose dense LCS (n + m)^2 doubles would exceed the budget is never
+// formed dense. 6000 states and 6000 pairs: 1.07 GB a matrix, over the 1 GB budget itself; 4000
+// and 4000: 488 MB, within it for one matrix but not for event's three or Radau's five.
+TEST(MethodRegistry, DenseMethodsRefuseACircuitOverTheDenseBudget) {
+  struct Deferred : LcsProblem {
+    Deferred(int n, int m, bool stepping_sparse) {
+      auto s = std::make_shared<SparseLcs>();
+      s->A.resize(n, n);
+      s->B.resize(n, m);
+      s->C.resize(m, n);
+      s->D.resize(m, m);
+      s->E = Eigen::MatrixXd::Zero(n, 1);
+      s->F = Eigen::MatrixXd::Zero(m, 1);
+      if (stepping_sparse) sparse_lcs_ = s;
+      defer_dense(s);
+    }
+  };
+  const Deferred huge(6000, 6000, false);
+  EXPECT_EQ(huge.state_count(), 6000);
+  try {
+    (void)huge.lcs();
+    ADD_FAILURE() << "formed a 1.07 GB dense LCS";
+  } catch (const DenseBudgetExceeded& e) {
+    EXPECT_STREQ(e.what(), "the dense LCS of 6000 states and 6000 pairs (1.1 GB a matrix) is over the 1.0 GB "
+                           "budget for dense matrices");
+  }
+  const Deferred large(4000, 4000, false), large_sparse(4000, 4000, true);
+  std::string why;
+  EXPECT_FALSE(find_method("event")->applies(large, &why));
+  EXPECT_EQ(why, "the dense LCS of 4000 states and 4000 pairs (488 MB a matrix, 3 of them: 1.4 GB) is over the "
+                 "1.0 GB budget for dense matrices; methods euler and theta step on the sparse circuit");
+  EXPECT_FALSE(find_method("radau3")->applies(large, nullptr));
+  EXPECT_FALSE(find_method("smooth")->applies(large, nullptr));
+  EXPECT_FALSE(find_method("euler")->applies(large, &why));  // no sparse form: its dense step
+  EXPECT_EQ(why, "the dense LCS of 4000 states and 4000 pairs (488 MB a matrix, 4 of them: 1.9 GB) is over the "
+                 "1.0 GB budget for dense matrices");
+  EXPECT_TRUE(find_method("euler")->applies(large_sparse, nullptr));
+  EXPECT_TRUE(find_method("theta")->applies(large_sparse, nullptr));
+  EXPECT_FALSE(find_method("event")->applies(large_sparse, nullptr));
+  EXPECT_EQ(default_method_for(large_sparse, &why).name, "euler");
+  const Deferred within(1000, 1000, false);
+  for (const MethodEntry& e : method_registry()) EXPECT_TRUE(e.applies(within, nullptr)) << e.name;
 }
 
 TEST(MethodRegistry, UnknownNames) {
