@@ -1,5 +1,6 @@
 #include "solver/model/circuit_model.h"
 #include "solver/model/empty_safe.h"
+#include "solver/model/dense_budget.h"
 
 #include <algorithm>
 #include <cmath>
@@ -750,7 +751,8 @@ CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& opt
     m.sparse_descriptor_ = sparse_descriptor_if_worth(g, stamps, m.states_, m.pairs_, nu, lcs_nonzeros(formed),
                                                       s.Gamma.size() == 0 || s.Gamma.cwiseAbs().maxCoeff() == 0,
                                                       !stamps.delayed.empty());
-    if (m.sparse_descriptor_) {
+    if (m.sparse_descriptor_ || !dense_within_budget(n, mp, 1)) {
+      // Over the dense budget: lcs() refuses, and so do the methods that would ask (dense_budget.h).
       m.defer_dense(std::make_shared<const SparseLcs>(std::move(formed)));
     } else {
       s.A = formed.A;

@@ -23,10 +23,15 @@ struct SparseLcs {
 // start costs well under a microsecond per step (README, "Speed"); the dense step grows like
 // m^2 and the sparse one like the circuit.
 constexpr int kSparsePairs = 48;
+// States and pairs together from which a circuit with fewer pairs is kept sparse too: an RC line
+// of 3000 sections with one diode formed a dense 3000 x 3000 A and stepped on dense factors, and
+// one of 20000 sections asked for 3.2 GB before any method could refuse it.
+constexpr int kSparseUnknowns = 1024;
 // Nonzeros of A, B, C and D over (n + m)^2 above which the LCS counts as dense.
 constexpr double kSparseDensity = 0.05;
 
-// The sparse form of (A, B, C, D) when it pays (enough pairs, sparse enough), else null.
+// The sparse form of (A, B, C, D) when it pays (enough pairs or enough states and pairs, sparse
+// enough), else null.
 std::unique_ptr<SparseLcs> sparse_lcs_if_worth(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B,
                                                const Eigen::MatrixXd& C, const Eigen::MatrixXd& D,
                                                const Eigen::MatrixXd& E, const Eigen::MatrixXd& F);

@@ -85,6 +85,19 @@ TEST(MethodRegistry, DefaultForACircuitFallsBackOnlyAboveThePairLimit) {
   EXPECT_EQ(default_method_for(Sized(129), &why).name, "euler");
   EXPECT_EQ(why, "129 complementarity pairs, more than the 128 up to which the event method's dense "
                  "exponentials stay cheap");
+  // The exponentials are of the states too: an RC line of 3000 sections with one clamp.
+  struct WithStates : LcsProblem {
+    WithStates(int states, int pairs) {
+      lcs_.A = Eigen::MatrixXd::Zero(states, states);
+      lcs_.D = Eigen::MatrixXd::Zero(pairs, pairs);
+    }
+  };
+  why.clear();
+  EXPECT_EQ(default_method_for(WithStates(156, 100), &why).name, "event");
+  EXPECT_TRUE(why.empty()) << why;
+  EXPECT_EQ(default_method_for(WithStates(300, 1), &why).name, "euler");
+  EXPECT_EQ(why, "300 states and 1 pairs, more than the 256 up to which the event method's dense "
+                 "exponentials stay cheap");
 }
 
 // dense_budget.h: a circuit whose dense LCS (n + m)^2 doubles would exceed the budget is never

@@ -116,6 +116,32 @@ TEST(SparseStep, SameWaveformsAsTheDenseLcpToRounding) {
   }
 }
 
+// An RC line of `n` sections ending in one clamp diode to 2 V (none when `clamp` is false).
+std::string line_with_clamp(int n, bool clamp) {
+  std::string s = "rc line\nV1 in 0 SIN(0 5 1k)\nVCL clamp 0 DC 2\n";
+  for (int k = 1; k <= n; ++k) {
+    const std::string prev = k == 1 ? "in" : "n" + std::to_string(k - 1), node = "n" + std::to_string(k);
+    s += "R" + std::to_string(k) + " " + prev + " " + node + " 0.5\nC" + std::to_string(k) + " " + node + " 0 1n\n";
+  }
+  if (clamp) s += "D1 n" + std::to_string(n) + " clamp dd\n.model dd D(VON=0.6 RON=10)\n";
+  return s + ".tran 10u 3m\n.end\n";
+}
+
+// Many states and few pairs (kSparseUnknowns): the line of 1100 sections with one clamp, and
+// without it (no pair at all), steps on its sparse LCS, to the dense path's rows to rounding. Before,
+// it formed a dense 1100 x 1100 A, and a 3000-section line with its clamp ran for minutes (event,
+// the default for one pair; the default is euler now, above 256 states and pairs).
+TEST(SparseStep, ManyStatesAndFewPairsStepSparse) {
+  for (const bool clamp : {true, false}) {
+    const std::string text = line_with_clamp(1100, clamp);
+    const SimulatedRun sparse = simulate(text, 1.0, true), dense = simulate(text, 1.0, false);
+    EXPECT_GT(sparse.summary.stepper.sparse.solves, 0) << clamp;
+    EXPECT_EQ(sparse.summary.stepper.sparse_fallbacks, 0) << clamp;
+    EXPECT_LT(relative_difference(sparse.sink, dense.sink), 1e-10) << clamp;
+    if (clamp) EXPECT_GT(sparse.summary.stepper.sparse.flips, 0);  // the clamp switched
+  }
+}
+
 // DC 12 V on the bank: every diode conducts, i_k = (12 - 0.7) / (RS_k + 0.2 + R_k), and the
 // output is R_k i_k. Solved on the sparse system (no pivots: Lemke was not used).
 TEST(SparseStep, OperatingPointOfARectifierBankInClosedForm) {
