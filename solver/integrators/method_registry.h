@@ -19,8 +19,8 @@ struct MethodOptions {
   // `--rtol`, `--atol` of the adaptive methods; 0 means the method's default (event: rtol 1e-13
   // on event times; smooth: rtol 1e-6, atol 1e-9 as in SUNDIALS' weighted norm).
   double rtol = 0, atol = 0;
-  // Large circuits step on the sparse system (theta_method.h); false keeps the dense LCP, to
-  // compare the two.
+  // Large circuits step on the sparse system (theta_method.h) and the smooth method's IDA on a
+  // sparse Jacobian with KLU (shockley_dae.h); false keeps the dense LCP and Jacobian, to compare.
   bool sparse = true;
   // The event method reads its line history as Taylor series (taylor_segment.h); false keeps the
   // exact product for every read, to compare the two.

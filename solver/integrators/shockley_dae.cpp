@@ -1,11 +1,33 @@
 #include "solver/integrators/shockley_dae.h"
 
+#include "solver/model/klu_factor.h"
+#include "solver/model/sparse_lcs.h"
+
+#include <memory>
+
 #include <algorithm>
 
 
 namespace lcs {
 
 namespace {
+
+// One LU of a Newton matrix, dense or (on a sparse LCS) KLU's; solve() is not finite when the
+// matrix is singular.
+class NewtonFactor {
+ public:
+  explicit NewtonFactor(const Eigen::MatrixXd& dense) : dense_(dense) {}
+  explicit NewtonFactor(const Eigen::SparseMatrix<double>& sparse) : sparse_(std::make_unique<KluFactor>(sparse)) {}
+  Eigen::VectorXd solve(const Eigen::VectorXd& rhs) const {
+    if (!sparse_) return dense_.solve(rhs);
+    if (!sparse_->ok()) return Eigen::VectorXd::Constant(rhs.size(), std::nan(""));
+    return sparse_->solve(rhs);
+  }
+
+ private:
+  Eigen::PartialPivLU<Eigen::MatrixXd> dense_;
+  std::unique_ptr<KluFactor> sparse_;
+};
 
 // The forward branch solves IS (e^x - 1) + GMIN N Vt x = i for x = -m / N Vt > 0. Beyond this
 // ratio i / IS (e^x would pass 1e300) the GMIN term is below rounding and x = ln(i / IS): no
@@ -50,10 +72,16 @@ ShockleyCurve::Point ShockleyCurve::at(double s) const {
   return p;
 }
 
-ShockleyDae::ShockleyDae(const LcsProblem& model) : model_(model) {
-  const Lcs& lcs = model.lcs();
-  n_ = lcs.states();
-  m_ = lcs.pairs();
+ShockleyDae::ShockleyDae(const LcsProblem& model, bool sparse) : model_(model) {
+  if (sparse && !model.has_history()) sparse_ = model.sparse_lcs().get();
+  if (sparse_) {
+    n_ = static_cast<int>(sparse_->A.rows());
+    m_ = static_cast<int>(sparse_->D.rows());
+  } else {
+    const Lcs& lcs = model.lcs();
+    n_ = lcs.states();
+    m_ = lcs.pairs();
+  }
   for (const PairInfo& p : model.pairs()) {
     curves_.push_back({p.smooth.is, p.smooth.n * kThermalVoltage});
     voltage_type_.push_back(p.voltage_type);
@@ -89,8 +117,13 @@ Eigen::VectorXd ShockleyDae::complementarity_variables(const Eigen::VectorXd& s)
 
 Eigen::VectorXd ShockleyDae::parameters_from_ideal(double t, const Eigen::VectorXd& x,
                                                    const Eigen::VectorXd& z_ideal) const {
-  const Lcs& lcs = model_.lcs();
-  const Eigen::VectorXd w = lcs.C * x + lcs.D * z_ideal + lcs.F * inputs(t);
+  Eigen::VectorXd w;
+  if (sparse_) {
+    w = sparse_->C * x + sparse_->D * z_ideal + sparse_->F * inputs(t);
+  } else {
+    const Lcs& lcs = model_.lcs();
+    w = lcs.C * x + lcs.D * z_ideal + lcs.F * inputs(t);
+  }
   Eigen::VectorXd s(m_);
   for (int k = 0; k < m_; ++k) {
     const double current = voltage_type_[k] ? w(k) : z_ideal(k);
@@ -103,10 +136,16 @@ Eigen::VectorXd ShockleyDae::parameters_from_ideal(double t, const Eigen::Vector
 bool ShockleyDae::residual(double t, const Eigen::Ref<const Eigen::VectorXd>& y,
                            const Eigen::Ref<const Eigen::VectorXd>& yp,
                            Eigen::Ref<Eigen::VectorXd> r) const {
-  const Lcs& lcs = model_.lcs();
   const Eigen::VectorXd u = inputs(t);
   const auto x = y.head(n_);
   on_curves(y.tail(m_), z_, w_, nullptr, nullptr);
+  if (sparse_) {
+    const SparseLcs& s = *sparse_;
+    r.head(n_) = yp.head(n_) - s.A * x - s.B * z_ - s.E * u;
+    r.tail(m_) = w_ - s.C * x - s.D * z_ - s.F * u;
+    return r.allFinite();
+  }
+  const Lcs& lcs = model_.lcs();
   r.head(n_).noalias() = yp.head(n_) - lcs.A * x - lcs.B * z_ - lcs.E * u;
   r.tail(m_).noalias() = w_ - lcs.C * x - lcs.D * z_ - lcs.F * u;
   return r.allFinite();
@@ -122,10 +161,38 @@ void ShockleyDae::jacobian(double t, const Eigen::Ref<const Eigen::VectorXd>& y,
   J.bottomRightCorner(m_, m_) = Eigen::MatrixXd(dw_.asDiagonal()) - lcs.D * dz_.asDiagonal();
 }
 
+Eigen::SparseMatrix<double> ShockleyDae::pair_matrix(const Eigen::VectorXd& dz, const Eigen::VectorXd& dw) const {
+  Eigen::SparseMatrix<double> M = -sparse_->D * dz.asDiagonal();
+  for (int k = 0; k < m_; ++k) M.coeffRef(k, k) += dw(k);
+  return M;
+}
+
+const Eigen::SparseMatrix<double>& ShockleyDae::sparse_jacobian(const Eigen::Ref<const Eigen::VectorXd>& y,
+                                                               double cj) const {
+  const SparseLcs& s = *sparse_;
+  on_curves(y.tail(m_), z_, w_, &dz_, &dw_);
+  triplets_.clear();
+  for (int k = 0; k < n_; ++k) triplets_.emplace_back(k, k, cj);
+  for (int k = 0; k < m_; ++k) triplets_.emplace_back(n_ + k, n_ + k, dw_(k));
+  using It = Eigen::SparseMatrix<double>::InnerIterator;
+  for (int j = 0; j < s.A.outerSize(); ++j)
+    for (It it(s.A, j); it; ++it) triplets_.emplace_back(it.row(), j, -it.value());
+  for (int j = 0; j < s.B.outerSize(); ++j)
+    for (It it(s.B, j); it; ++it) triplets_.emplace_back(it.row(), n_ + j, -it.value() * dz_(j));
+  for (int j = 0; j < s.C.outerSize(); ++j)
+    for (It it(s.C, j); it; ++it) triplets_.emplace_back(n_ + it.row(), j, -it.value());
+  for (int j = 0; j < s.D.outerSize(); ++j)
+    for (It it(s.D, j); it; ++it) triplets_.emplace_back(n_ + it.row(), n_ + j, -it.value() * dz_(j));
+  sparse_jacobian_.resize(n_ + m_, n_ + m_);
+  sparse_jacobian_.setFromTriplets(triplets_.begin(), triplets_.end());  // sums, keeps zeros
+  return sparse_jacobian_;
+}
+
 Eigen::VectorXd ShockleyDae::derivative(double t, const Eigen::VectorXd& x,
                                         const Eigen::VectorXd& s) const {
-  const Lcs& lcs = model_.lcs();
   on_curves(s, z_, w_, nullptr, nullptr);
+  if (sparse_) return sparse_->A * x + sparse_->B * z_ + sparse_->E * inputs(t);
+  const Lcs& lcs = model_.lcs();
   return lcs.A * x + lcs.B * z_ + lcs.E * inputs(t);
 }
 
@@ -133,11 +200,16 @@ Eigen::VectorXd ShockleyDae::parameter_rates(double t, const Eigen::VectorXd& x,
                                              const Eigen::VectorXd& s,
                                              const Eigen::VectorXd& xdot) const {
   if (m_ == 0) return Eigen::VectorXd(0);
-  const Lcs& lcs = model_.lcs();
   on_curves(s, z_, w_, &dz_, &dw_);
   // The source slopes: the right derivative, as the integration goes forward from t.
-  const Eigen::MatrixXd Js = Eigen::MatrixXd(dw_.asDiagonal()) - lcs.D * dz_.asDiagonal();
-  Eigen::VectorXd sdot = Js.partialPivLu().solve(lcs.C * xdot + lcs.F * model_.input_derivatives(t));
+  Eigen::VectorXd sdot;
+  if (sparse_) {
+    sdot = NewtonFactor(pair_matrix(dz_, dw_)).solve(sparse_->C * xdot + sparse_->F * model_.input_derivatives(t));
+  } else {
+    const Lcs& lcs = model_.lcs();
+    const Eigen::MatrixXd Js = Eigen::MatrixXd(dw_.asDiagonal()) - lcs.D * dz_.asDiagonal();
+    sdot = Js.partialPivLu().solve(lcs.C * xdot + lcs.F * model_.input_derivatives(t));
+  }
   if (!sdot.allFinite()) sdot.setZero();
   return sdot;
 }
@@ -179,12 +251,14 @@ void ShockleyDae::pair_weights(const Eigen::Ref<const Eigen::VectorXd>& x,
 bool ShockleyDae::solve_pairs(double t, const Eigen::VectorXd& x, Eigen::VectorXd& s,
                               long* iterations) const {
   if (m_ == 0) return true;
-  const Lcs& lcs = model_.lcs();
-  const Eigen::VectorXd q = lcs.C * x + lcs.F * inputs(t);
+  const Lcs* lcs = sparse_ ? nullptr : &model_.lcs();
+  const Eigen::VectorXd q = sparse_ ? Eigen::VectorXd(sparse_->C * x + sparse_->F * inputs(t))
+                                    : Eigen::VectorXd(lcs->C * x + lcs->F * inputs(t));
   Eigen::VectorXd z(m_), w(m_), dz(m_), dw(m_), r(m_);
   auto evaluate = [&](const Eigen::VectorXd& ss, bool derivatives) {
     on_curves(ss, z, w, derivatives ? &dz : nullptr, derivatives ? &dw : nullptr);
-    r = w - lcs.D * z - q;
+    if (sparse_) r = w - sparse_->D * z - q;
+    else r = w - lcs->D * z - q;
     return r.allFinite();
   };
   // The weighted RMS norm of a change d of s at s = at, as IDA measures it.
@@ -197,8 +271,8 @@ bool ShockleyDae::solve_pairs(double t, const Eigen::VectorXd& x, Eigen::VectorX
   for (int it = 0; it < 100; ++it) {
     if (!evaluate(sk, true)) return false;
     if (iterations) ++*iterations;
-    const Eigen::PartialPivLU<Eigen::MatrixXd> lu(Eigen::MatrixXd(dw.asDiagonal()) -
-                                                  lcs.D * dz.asDiagonal());
+    const NewtonFactor lu = sparse_ ? NewtonFactor(pair_matrix(dz, dw))
+                                    : NewtonFactor(Eigen::MatrixXd(Eigen::MatrixXd(dw.asDiagonal()) - lcs->D * dz.asDiagonal()));
     const Eigen::VectorXd ds = lu.solve(-r);
     if (!ds.allFinite()) return false;
     const double ds_norm = norm(ds, sk);
@@ -223,12 +297,17 @@ bool ShockleyDae::solve_pairs(double t, const Eigen::VectorXd& x, Eigen::VectorX
 
 bool ShockleyDae::solve_rest_point(double t, Eigen::VectorXd& y, const std::vector<bool>& held,
                                    long* iterations) const {
-  const Lcs& lcs = model_.lcs();
   const int size = n_ + m_;
   const Eigen::VectorXd y0 = y, zero = Eigen::VectorXd::Zero(size);
-  const double pull = 1e-9 * std::max(lcs.A.cwiseAbs().maxCoeff(), 1e-300);
+  double a_max = 0;
+  if (sparse_) {
+    for (int k = 0; k < sparse_->A.nonZeros(); ++k) a_max = std::max(a_max, std::abs(sparse_->A.valuePtr()[k]));
+  } else {
+    a_max = model_.lcs().A.size() > 0 ? model_.lcs().A.cwiseAbs().maxCoeff() : 0.0;
+  }
+  const double pull = 1e-9 * std::max(a_max, 1e-300);
   Eigen::VectorXd r(size), weights(size);
-  Eigen::MatrixXd J(size, size);
+  Eigen::MatrixXd J(sparse_ ? 0 : size, sparse_ ? 0 : size);
   auto evaluate = [&](const Eigen::VectorXd& at) {
     if (!residual(t, at, zero, r)) return false;
     r.head(n_) += pull * (at.head(n_) - y0.head(n_));  // residual() has x' - f: here -f
@@ -244,14 +323,32 @@ bool ShockleyDae::solve_rest_point(double t, Eigen::VectorXd& y, const std::vect
   for (int it = 0; it < 200; ++it) {
     if (!evaluate(yk)) return false;
     if (iterations) ++*iterations;
-    jacobian(t, yk, 0.0, J);
-    J.topLeftCorner(n_, n_).diagonal().array() += pull;
-    for (int k = 0; k < n_; ++k)
-      if (k < static_cast<int>(held.size()) && held[k]) {
-        J.row(k).setZero();
-        J(k, k) = 1.0;
-      }
-    const Eigen::PartialPivLU<Eigen::MatrixXd> lu(J);
+    auto is_held = [&](int k) { return k < n_ && k < static_cast<int>(held.size()) && held[k]; };
+    std::unique_ptr<NewtonFactor> factor;
+    if (sparse_) {
+      // The sparse Jacobian at cj = pull is dF/dy + pull on the states' diagonal; a held state's row is e_k.
+      const Eigen::SparseMatrix<double>& S = sparse_jacobian(yk, pull);
+      std::vector<Eigen::Triplet<double>> entries;
+      entries.reserve(S.nonZeros());
+      for (int c = 0; c < S.outerSize(); ++c)
+        for (Eigen::SparseMatrix<double>::InnerIterator it(S, c); it; ++it)
+          if (!is_held(static_cast<int>(it.row()))) entries.emplace_back(it.row(), c, it.value());
+      for (int k = 0; k < n_; ++k)
+        if (is_held(k)) entries.emplace_back(k, k, 1.0);
+      Eigen::SparseMatrix<double> M(size, size);
+      M.setFromTriplets(entries.begin(), entries.end());
+      factor = std::make_unique<NewtonFactor>(M);
+    } else {
+      jacobian(t, yk, 0.0, J);
+      J.topLeftCorner(n_, n_).diagonal().array() += pull;
+      for (int k = 0; k < n_; ++k)
+        if (is_held(k)) {
+          J.row(k).setZero();
+          J(k, k) = 1.0;
+        }
+      factor = std::make_unique<NewtonFactor>(J);
+    }
+    const NewtonFactor& lu = *factor;
     const Eigen::VectorXd dy = lu.solve(-r);
     if (!dy.allFinite()) return false;
     const double dy_norm = norm(dy, yk);

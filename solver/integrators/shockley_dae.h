@@ -27,6 +27,7 @@
 #include <vector>
 
 #include <Eigen/Dense>
+#include <Eigen/Sparse>
 
 #include "solver/model/lcs_problem.h"
 
@@ -54,7 +55,8 @@ struct ShockleyCurve {
 
 class ShockleyDae {
  public:
-  explicit ShockleyDae(const LcsProblem& model);
+  // `sparse` false keeps the dense residual and Jacobian for every circuit (to compare the two).
+  explicit ShockleyDae(const LcsProblem& model, bool sparse = true);
 
   int states() const { return n_; }
   double max_step() const { return model_.max_step(); }  // devices with history
@@ -76,6 +78,13 @@ class ShockleyDae {
   // dF/dy + cj dF/dy'.
   void jacobian(double t, const Eigen::Ref<const Eigen::VectorXd>& y, double cj,
                 Eigen::Ref<Eigen::MatrixXd> J) const;
+  // A circuit whose LCS is kept sparse (sparse_lcs.h): the residual reads the sparse A, B, C, D
+  // and the Jacobian is sparse, for KLU (smooth_method.cpp): O(nnz) a Jacobian and a residual
+  // where the dense ones cost O((n + m)^2) and IDA's dense LU O((n + m)^3).
+  bool sparse() const { return sparse_ != nullptr; }
+  // The same Jacobian in compressed columns; its pattern (every entry of A, B, C, D and both
+  // diagonals, explicit zeros kept) is the same at every call.
+  const Eigen::SparseMatrix<double>& sparse_jacobian(const Eigen::Ref<const Eigen::VectorXd>& y, double cj) const;
   Eigen::VectorXd derivative(double t, const Eigen::VectorXd& x, const Eigen::VectorXd& s) const;
   // ds/dt on the solution through (x, s) at t, from differentiating the algebraic rows: IDACalcIC
   // leaves it to the caller, and without it IDA's first step after a start predicts s constant
@@ -120,7 +129,13 @@ class ShockleyDae {
   void on_curves(const Eigen::Ref<const Eigen::VectorXd>& s, Eigen::VectorXd& z, Eigen::VectorXd& w,
                  Eigen::VectorXd* dz, Eigen::VectorXd* dw) const;
 
+  // diag(dw) - D diag(dz): the pairs' rows' Newton matrix on a sparse LCS.
+  Eigen::SparseMatrix<double> pair_matrix(const Eigen::VectorXd& dz, const Eigen::VectorXd& dw) const;
+
   const LcsProblem& model_;
+  const SparseLcs* sparse_ = nullptr;
+  mutable Eigen::SparseMatrix<double> sparse_jacobian_;
+  mutable std::vector<Eigen::Triplet<double>> triplets_;
   double segment_end_ = INFINITY;
   int n_ = 0, m_ = 0;
   std::vector<ShockleyCurve> curves_;

@@ -55,6 +55,21 @@ int jacobian_fn(realtype t, realtype cj, N_Vector yy, N_Vector, N_Vector, SUNMat
                 void* user_data, N_Vector, N_Vector, N_Vector) {
   const auto& dae = dae_of(user_data);
   const int n = dae.size();
+  if (dae.sparse()) {  // compressed columns, as Eigen's default SparseMatrix
+    const Eigen::SparseMatrix<double>& S =
+        dae.sparse_jacobian(Eigen::Map<const Eigen::VectorXd>(N_VGetArrayPointer(yy), n), cj);
+    const sunindextype nnz = S.nonZeros();
+    if (SUNSparseMatrix_NNZ(J) < nnz && SUNSparseMatrix_Reallocate(J, nnz) != SUNMAT_SUCCESS) return -1;
+    sunindextype* columns = SUNSparseMatrix_IndexPointers(J);
+    sunindextype* rows = SUNSparseMatrix_IndexValues(J);
+    double* values = SUNSparseMatrix_Data(J);
+    for (int c = 0; c <= n; ++c) columns[c] = S.outerIndexPtr()[c];
+    for (sunindextype k = 0; k < nnz; ++k) {
+      rows[k] = S.innerIndexPtr()[k];
+      values[k] = S.valuePtr()[k];
+    }
+    return Eigen::Map<const Eigen::VectorXd>(values, nnz).allFinite() ? 0 : 1;
+  }
   // SUNDIALS' dense matrix is column-major, like Eigen's default.
   Eigen::Map<Eigen::MatrixXd> jac(SUNDenseMatrix_Data(J), n, n);
   dae.jacobian(t, Eigen::Map<const Eigen::VectorXd>(N_VGetArrayPointer(yy), n), cj, jac);
@@ -104,8 +119,9 @@ class SmoothMethod::IdaRun {
         yp_(sundials::checked(N_VNew_Serial(dae.size(), ctx_.get()))),
         id_(sundials::checked(N_VNew_Serial(dae.size(), ctx_.get()))),
         sample_(sundials::checked(N_VNew_Serial(dae.size(), ctx_.get()))),
-        matrix_(sundials::checked(SUNDenseMatrix(dae.size(), dae.size(), ctx_.get()))),
-        solver_(sundials::checked(SUNLinSol_Dense(y_.get(), matrix_.get(), ctx_.get()))),
+        matrix_(make_matrix(dae, ctx_.get())),
+        solver_(sundials::checked(dae.sparse() ? SUNLinSol_KLU(y_.get(), matrix_.get(), ctx_.get())
+                                               : SUNLinSol_Dense(y_.get(), matrix_.get(), ctx_.get()))),
         newton_(sundials::make_full_newton(y_.get(), ctx_.get(), weights_fn, &dae)),
         mem_(sundials::checked(IDACreate(ctx_.get()))) {
     Eigen::Map<Eigen::VectorXd> id(N_VGetArrayPointer(id_.get()), dae.size());
@@ -116,6 +132,15 @@ class SmoothMethod::IdaRun {
     user_.dae = &dae;
     user_.guard_count = guard_count;
     user_.guards = std::move(guards);
+  }
+
+  // A circuit with a sparse LCS (ShockleyDae::sparse) gets a sparse Jacobian and KLU: on 200
+  // rectifiers IDA's dense LU and its matrix were 80 % of the run (one Jacobian per Newton
+  // iteration, full_newton.h).
+  static SUNMatrix make_matrix(const ShockleyDae& dae, SUNContext ctx) {
+    if (!dae.sparse()) return sundials::checked(SUNDenseMatrix(dae.size(), dae.size(), ctx));
+    const sunindextype nnz = dae.sparse_jacobian(Eigen::VectorXd::Zero(dae.size()), 1.0).nonZeros();
+    return sundials::checked(SUNSparseMatrix(dae.size(), dae.size(), nnz, CSC_MAT, ctx));
   }
 
   Eigen::Map<Eigen::VectorXd> y() { return {N_VGetArrayPointer(y_.get()), dae_.size()}; }
@@ -360,7 +385,7 @@ SmoothMethod::Schedule SmoothMethod::make_schedule(const LcsProblem& model,
 
 SmoothMethod::SmoothMethod(const LcsProblem& model, const MethodOptions& options)
     : ContinuousMethod(model),
-      dae_(model),
+      dae_(model, options.sparse),
       rtol_(options.rtol > 0 ? options.rtol : kDefaultRtol),
       atol_(options.atol > 0 ? options.atol : kDefaultAtol) {}
 
