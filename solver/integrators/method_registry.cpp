@@ -1,5 +1,6 @@
 #include "solver/integrators/method_registry.h"
 
+#include <functional>
 #include <stdexcept>
 
 #include "solver/integrators/event_driven.h"
@@ -46,14 +47,13 @@ MethodEntry adaptive(const std::string& name, const std::string& description, Co
 }
 
 // Methods that work on the dense LCS (dense_budget.h) refuse a circuit whose dense working set,
-// `copies` matrices of (n + m)^2 numbers, is over the budget; the sparse-capable ones (euler,
-// theta) only when the circuit has neither a sparse LCS nor a descriptor form to step on.
-void limit_dense(MethodEntry& e, int copies, bool steps_sparse) {
+// `copies` matrices of (n + m)^2 numbers, is over the budget, unless `steps_sparse` says they
+// work on this circuit's sparse form instead.
+void limit_dense(MethodEntry& e, int copies, std::function<bool(const LcsProblem&)> steps_sparse) {
   auto inner = std::move(e.applies);
-  const std::string name = e.name;
-  e.applies = [inner, copies, steps_sparse, name](const LcsProblem& m, std::string* why) {
+  e.applies = [inner, copies, steps_sparse](const LcsProblem& m, std::string* why) {
     if (inner && !inner(m, why)) return false;
-    if (steps_sparse && (m.sparse_lcs() || m.sparse_descriptor())) return true;
+    if (steps_sparse && steps_sparse(m)) return true;
     if (dense_within_budget(m.state_count(), m.pair_count(), copies)) return true;
     if (why)
       *why = dense_budget_reason(m.state_count(), m.pair_count(), copies) +
@@ -166,12 +166,16 @@ std::vector<MethodEntry> make_table() {
   // Dense matrices of (n + m)^2 each a method holds at once, about: event the LCS, a mode's
   // exponential and its dynamics; Radau IIA with s stages its s(n + m) stage system and factors;
   // smooth the LCS, IDA's Jacobian and its LU; the θ-method's dense step the LCS, Phi, W^-1 B, C Phi.
+  // The θ-method steps on a sparse LCS or a descriptor form (theta_method.h); smooth on a sparse
+  // LCS without lines (its sparse Jacobian and KLU, shockley_dae.h).
+  const auto theta_sparse = [](const LcsProblem& m) { return m.sparse_lcs() || m.sparse_descriptor(); };
+  const auto smooth_sparse = [](const LcsProblem& m) { return m.sparse_lcs() && !m.has_history(); };
   for (MethodEntry& e : table) {
-    if (e.name == "event") limit_dense(e, 3, false);
-    else if (e.name == "radau3") limit_dense(e, 2 * 2 + 1, false);
-    else if (e.name == "radau5") limit_dense(e, 3 * 3 + 1, false);
-    else if (e.name == "smooth") limit_dense(e, 3, false);
-    else limit_dense(e, 4, true);
+    if (e.name == "event") limit_dense(e, 3, nullptr);
+    else if (e.name == "radau3") limit_dense(e, 2 * 2 + 1, nullptr);
+    else if (e.name == "radau5") limit_dense(e, 3 * 3 + 1, nullptr);
+    else if (e.name == "smooth") limit_dense(e, 3, smooth_sparse);
+    else limit_dense(e, 4, theta_sparse);
   }
   return table;
 }

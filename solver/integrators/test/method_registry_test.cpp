@@ -139,6 +139,7 @@ TEST(MethodRegistry, DenseMethodsRefuseACircuitOverTheDenseBudget) {
   EXPECT_TRUE(find_method("euler")->applies(large_sparse, nullptr));
   EXPECT_TRUE(find_method("theta")->applies(large_sparse, nullptr));
   EXPECT_FALSE(find_method("event")->applies(large_sparse, nullptr));
+  EXPECT_TRUE(find_method("smooth")->applies(large_sparse, nullptr));  // IDA with KLU on the sparse LCS
   EXPECT_EQ(default_method_for(large_sparse, &why).name, "euler");
   const Deferred within(1000, 1000, false);
   for (const MethodEntry& e : method_registry()) EXPECT_TRUE(e.applies(within, nullptr)) << e.name;
