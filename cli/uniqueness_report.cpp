@@ -104,6 +104,12 @@ std::optional<UniquenessEntry> sparse_entry(const CircuitModel& model, const std
   return e;
 }
 
+std::string step_matrix_what(double tstep) {
+  char buf[96];
+  std::snprintf(buf, sizeof buf, "implicit Euler step, h = TSTEP = %.6g s (D + h C (I - h A)^-1 B)", tstep);
+  return buf;
+}
+
 }  // namespace
 
 std::vector<UniquenessEntry> uniqueness_report(const CircuitModel& model, double tstep) {
@@ -116,10 +122,7 @@ std::vector<UniquenessEntry> uniqueness_report(const CircuitModel& model, double
   if (!op && !dense_within_budget(n, m, 1, kAnalyzeDenseBytes)) {
     // A dense M of a large circuit: forming it is O((n + m)^3); each step's LCP is still solved
     // and checked on the sparse circuit.
-    char step_what[96];
-    std::snprintf(step_what, sizeof step_what, "implicit Euler step, h = TSTEP = %.6g s (D + h C (I - h A)^-1 B)", tstep);
-    for (const std::string& what : {op_what, std::string(step_what)}) {
-      if (what != op_what && tstep <= 0) break;
+    auto not_formed = [&](const std::string& what) {
       UniquenessEntry e;
       e.what = what;
       e.size = m;
@@ -127,13 +130,14 @@ std::vector<UniquenessEntry> uniqueness_report(const CircuitModel& model, double
       e.report.symmetric_psd = false;
       e.not_formed = dense_budget_reason(n, m, 1, kAnalyzeDenseBytes);
       out.push_back(e);
-    }
+    };
+    not_formed(op_what);
+    if (tstep > 0) not_formed(step_matrix_what(tstep));
     return out;
   }
   out.push_back(op ? *op : entry(model, op_what, static_lcp_matrix(model)));
   if (tstep > 0 && sparse) {
-    char buf[96];
-    std::snprintf(buf, sizeof buf, "implicit Euler step, h = TSTEP = %.6g s (D + h C (I - h A)^-1 B)", tstep);
+    const std::string buf = step_matrix_what(tstep);
     Sparse K(sparse->A.rows(), sparse->A.cols());
     K.setIdentity();
     K -= tstep * sparse->A;
@@ -151,9 +155,7 @@ std::vector<UniquenessEntry> uniqueness_report(const CircuitModel& model, double
       Eigen::PartialPivLU<Eigen::MatrixXd> W(Eigen::MatrixXd::Identity(n, n) - tstep * s.A);
       M += s.C * solve_or_empty(W, tstep * s.B);
     }
-    char buf[96];
-    std::snprintf(buf, sizeof buf, "implicit Euler step, h = TSTEP = %.6g s (D + h C (I - h A)^-1 B)", tstep);
-    out.push_back(entry(model, buf, M));
+    out.push_back(entry(model, step_matrix_what(tstep), M));
   }
   return out;
 }

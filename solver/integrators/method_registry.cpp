@@ -94,11 +94,10 @@ std::vector<MethodEntry> make_table() {
                "implicit Euler's time on circuits/tline_*.cir, 800 times on ngspice's ltra4_1_line.sp";
       return false;
     }
-    if (m.pair_count() <= kEventDefaultMaxPairs && m.state_count() + m.pair_count() <= 2 * kEventDefaultMaxPairs)
-      return true;
     if (m.pair_count() <= kEventDefaultMaxPairs) {
       // A dense exponential costs O(n^3) whatever the pairs: an RC line of 3000 sections with
       // one diode ran for minutes; 256 states and pairs are the 128 rectifiers measured above.
+      if (m.state_count() + m.pair_count() <= 2 * kEventDefaultMaxPairs) return true;
       if (why)
         *why = std::to_string(m.state_count()) + " states and " + std::to_string(m.pair_count()) +
                " pairs, more than the " + std::to_string(2 * kEventDefaultMaxPairs) +

@@ -29,6 +29,15 @@ class NewtonFactor {
   std::unique_ptr<KluFactor> sparse_;
 };
 
+// diag(dw) - D diag(dz): the Newton matrix of the pairs' rows, sparse when the LCS is.
+NewtonFactor pair_factor(const SparseLcs* sparse, const LcsProblem& model, const Eigen::VectorXd& dz,
+                         const Eigen::VectorXd& dw) {
+  if (!sparse) return NewtonFactor(Eigen::MatrixXd(Eigen::MatrixXd(dw.asDiagonal()) - model.lcs().D * dz.asDiagonal()));
+  Eigen::SparseMatrix<double> M = -sparse->D * dz.asDiagonal();
+  for (int k = 0; k < M.rows(); ++k) M.coeffRef(k, k) += dw(k);
+  return NewtonFactor(M);
+}
+
 // The forward branch solves IS (e^x - 1) + GMIN N Vt x = i for x = -m / N Vt > 0. Beyond this
 // ratio i / IS (e^x would pass 1e300) the GMIN term is below rounding and x = ln(i / IS): no
 // exponential is ever formed that could overflow, whatever s a Newton iterate tries.
@@ -93,6 +102,24 @@ ShockleyDae::ShockleyDae(const LcsProblem& model, bool sparse) : model_(model) {
   set_tolerances(rtol_, margin_atol_, voltage_scale_);
 }
 
+Eigen::VectorXd ShockleyDae::state_rate(const Eigen::Ref<const Eigen::VectorXd>& x, const Eigen::VectorXd& z,
+                                        const Eigen::VectorXd& u) const {
+  if (sparse_) return sparse_->A * x + sparse_->B * z + sparse_->E * u;
+  const Lcs& lcs = model_.lcs();
+  return lcs.A * x + lcs.B * z + lcs.E * u;
+}
+
+Eigen::VectorXd ShockleyDae::pair_rows(const Eigen::Ref<const Eigen::VectorXd>& x, const Eigen::VectorXd& u) const {
+  if (sparse_) return sparse_->C * x + sparse_->F * u;
+  const Lcs& lcs = model_.lcs();
+  return lcs.C * x + lcs.F * u;
+}
+
+Eigen::VectorXd ShockleyDae::d_times(const Eigen::VectorXd& z) const {
+  if (sparse_) return sparse_->D * z;
+  return model_.lcs().D * z;
+}
+
 Eigen::VectorXd ShockleyDae::inputs(double t) const {
   if (t < segment_end_) return model_.input_values(t);
   return model_.inputs().values_before(segment_end_);
@@ -117,13 +144,7 @@ Eigen::VectorXd ShockleyDae::complementarity_variables(const Eigen::VectorXd& s)
 
 Eigen::VectorXd ShockleyDae::parameters_from_ideal(double t, const Eigen::VectorXd& x,
                                                    const Eigen::VectorXd& z_ideal) const {
-  Eigen::VectorXd w;
-  if (sparse_) {
-    w = sparse_->C * x + sparse_->D * z_ideal + sparse_->F * inputs(t);
-  } else {
-    const Lcs& lcs = model_.lcs();
-    w = lcs.C * x + lcs.D * z_ideal + lcs.F * inputs(t);
-  }
+  const Eigen::VectorXd w = pair_rows(x, inputs(t)) + d_times(z_ideal);
   Eigen::VectorXd s(m_);
   for (int k = 0; k < m_; ++k) {
     const double current = voltage_type_[k] ? w(k) : z_ideal(k);
@@ -139,15 +160,8 @@ bool ShockleyDae::residual(double t, const Eigen::Ref<const Eigen::VectorXd>& y,
   const Eigen::VectorXd u = inputs(t);
   const auto x = y.head(n_);
   on_curves(y.tail(m_), z_, w_, nullptr, nullptr);
-  if (sparse_) {
-    const SparseLcs& s = *sparse_;
-    r.head(n_) = yp.head(n_) - s.A * x - s.B * z_ - s.E * u;
-    r.tail(m_) = w_ - s.C * x - s.D * z_ - s.F * u;
-    return r.allFinite();
-  }
-  const Lcs& lcs = model_.lcs();
-  r.head(n_).noalias() = yp.head(n_) - lcs.A * x - lcs.B * z_ - lcs.E * u;
-  r.tail(m_).noalias() = w_ - lcs.C * x - lcs.D * z_ - lcs.F * u;
+  r.head(n_) = yp.head(n_) - state_rate(x, z_, u);
+  r.tail(m_) = w_ - pair_rows(x, u) - d_times(z_);
   return r.allFinite();
 }
 
@@ -159,12 +173,6 @@ void ShockleyDae::jacobian(double t, const Eigen::Ref<const Eigen::VectorXd>& y,
   J.topRightCorner(n_, m_) = -lcs.B * dz_.asDiagonal();
   J.bottomLeftCorner(m_, n_) = -lcs.C;
   J.bottomRightCorner(m_, m_) = Eigen::MatrixXd(dw_.asDiagonal()) - lcs.D * dz_.asDiagonal();
-}
-
-Eigen::SparseMatrix<double> ShockleyDae::pair_matrix(const Eigen::VectorXd& dz, const Eigen::VectorXd& dw) const {
-  Eigen::SparseMatrix<double> M = -sparse_->D * dz.asDiagonal();
-  for (int k = 0; k < m_; ++k) M.coeffRef(k, k) += dw(k);
-  return M;
 }
 
 const Eigen::SparseMatrix<double>& ShockleyDae::sparse_jacobian(const Eigen::Ref<const Eigen::VectorXd>& y,
@@ -191,9 +199,7 @@ const Eigen::SparseMatrix<double>& ShockleyDae::sparse_jacobian(const Eigen::Ref
 Eigen::VectorXd ShockleyDae::derivative(double t, const Eigen::VectorXd& x,
                                         const Eigen::VectorXd& s) const {
   on_curves(s, z_, w_, nullptr, nullptr);
-  if (sparse_) return sparse_->A * x + sparse_->B * z_ + sparse_->E * inputs(t);
-  const Lcs& lcs = model_.lcs();
-  return lcs.A * x + lcs.B * z_ + lcs.E * inputs(t);
+  return state_rate(x, z_, inputs(t));
 }
 
 Eigen::VectorXd ShockleyDae::parameter_rates(double t, const Eigen::VectorXd& x,
@@ -202,14 +208,7 @@ Eigen::VectorXd ShockleyDae::parameter_rates(double t, const Eigen::VectorXd& x,
   if (m_ == 0) return Eigen::VectorXd(0);
   on_curves(s, z_, w_, &dz_, &dw_);
   // The source slopes: the right derivative, as the integration goes forward from t.
-  Eigen::VectorXd sdot;
-  if (sparse_) {
-    sdot = NewtonFactor(pair_matrix(dz_, dw_)).solve(sparse_->C * xdot + sparse_->F * model_.input_derivatives(t));
-  } else {
-    const Lcs& lcs = model_.lcs();
-    const Eigen::MatrixXd Js = Eigen::MatrixXd(dw_.asDiagonal()) - lcs.D * dz_.asDiagonal();
-    sdot = Js.partialPivLu().solve(lcs.C * xdot + lcs.F * model_.input_derivatives(t));
-  }
+  Eigen::VectorXd sdot = pair_factor(sparse_, model_, dz_, dw_).solve(pair_rows(xdot, model_.input_derivatives(t)));
   if (!sdot.allFinite()) sdot.setZero();
   return sdot;
 }
@@ -251,14 +250,11 @@ void ShockleyDae::pair_weights(const Eigen::Ref<const Eigen::VectorXd>& x,
 bool ShockleyDae::solve_pairs(double t, const Eigen::VectorXd& x, Eigen::VectorXd& s,
                               long* iterations) const {
   if (m_ == 0) return true;
-  const Lcs* lcs = sparse_ ? nullptr : &model_.lcs();
-  const Eigen::VectorXd q = sparse_ ? Eigen::VectorXd(sparse_->C * x + sparse_->F * inputs(t))
-                                    : Eigen::VectorXd(lcs->C * x + lcs->F * inputs(t));
+  const Eigen::VectorXd q = pair_rows(x, inputs(t));
   Eigen::VectorXd z(m_), w(m_), dz(m_), dw(m_), r(m_);
   auto evaluate = [&](const Eigen::VectorXd& ss, bool derivatives) {
     on_curves(ss, z, w, derivatives ? &dz : nullptr, derivatives ? &dw : nullptr);
-    if (sparse_) r = w - sparse_->D * z - q;
-    else r = w - lcs->D * z - q;
+    r = w - d_times(z) - q;
     return r.allFinite();
   };
   // The weighted RMS norm of a change d of s at s = at, as IDA measures it.
@@ -271,8 +267,7 @@ bool ShockleyDae::solve_pairs(double t, const Eigen::VectorXd& x, Eigen::VectorX
   for (int it = 0; it < 100; ++it) {
     if (!evaluate(sk, true)) return false;
     if (iterations) ++*iterations;
-    const NewtonFactor lu = sparse_ ? NewtonFactor(pair_matrix(dz, dw))
-                                    : NewtonFactor(Eigen::MatrixXd(Eigen::MatrixXd(dw.asDiagonal()) - lcs->D * dz.asDiagonal()));
+    const NewtonFactor lu = pair_factor(sparse_, model_, dz, dw);
     const Eigen::VectorXd ds = lu.solve(-r);
     if (!ds.allFinite()) return false;
     const double ds_norm = norm(ds, sk);
@@ -319,11 +314,11 @@ bool ShockleyDae::solve_rest_point(double t, Eigen::VectorXd& y, const std::vect
     error_weights(at, weights);
     return std::sqrt(d.cwiseProduct(weights).squaredNorm() / size);
   };
+  auto is_held = [&](int k) { return k < n_ && k < static_cast<int>(held.size()) && held[k]; };
   Eigen::VectorXd yk = y, y_try;
   for (int it = 0; it < 200; ++it) {
     if (!evaluate(yk)) return false;
     if (iterations) ++*iterations;
-    auto is_held = [&](int k) { return k < n_ && k < static_cast<int>(held.size()) && held[k]; };
     std::unique_ptr<NewtonFactor> factor;
     if (sparse_) {
       // The sparse Jacobian at cj = pull is dF/dy + pull on the states' diagonal; a held state's row is e_k.

@@ -129,8 +129,11 @@ class ShockleyDae {
   void on_curves(const Eigen::Ref<const Eigen::VectorXd>& s, Eigen::VectorXd& z, Eigen::VectorXd& w,
                  Eigen::VectorXd* dz, Eigen::VectorXd* dw) const;
 
-  // diag(dw) - D diag(dz): the pairs' rows' Newton matrix on a sparse LCS.
-  Eigen::SparseMatrix<double> pair_matrix(const Eigen::VectorXd& dz, const Eigen::VectorXd& dw) const;
+  // A x + B z + E u, C x + F u and D z, on the sparse LCS when there is one, else the dense.
+  Eigen::VectorXd state_rate(const Eigen::Ref<const Eigen::VectorXd>& x, const Eigen::VectorXd& z,
+                             const Eigen::VectorXd& u) const;
+  Eigen::VectorXd pair_rows(const Eigen::Ref<const Eigen::VectorXd>& x, const Eigen::VectorXd& u) const;
+  Eigen::VectorXd d_times(const Eigen::VectorXd& z) const;
 
   const LcsProblem& model_;
   const SparseLcs* sparse_ = nullptr;

@@ -140,7 +140,9 @@ TEST(DescriptorStart, TakesADiodeToAFloatingNodeWhoseFreePotentialNoStepReads) {
     if (model.graph().branches[model.pairs()[k].branch].name == "df") floating = k;
   ASSERT_GE(floating, 0);
   for (int k = 0; k < m; ++k) {
-    if (k != floating) EXPECT_NEAR(z(k), zdense(k), 1e-12) << "pair " << k;
+    if (k != floating) {
+      EXPECT_NEAR(z(k), zdense(k), 1e-12) << "pair " << k;
+    }
   }
 
   const double h = 1e-4;
