@@ -20,6 +20,7 @@ std::string UniquenessEntry::verdict() const {
       return size == 0 ? "no pairs" : "a P-matrix: one solution for every q";
     case PMatrixReport::Verdict::Unchecked:
       if (!not_formed.empty()) return "not checked (" + not_formed + ")";
+      if (!not_tested.empty()) return "not checked (" + not_tested + ")";
       if (report.symmetric_psd) return "symmetric positive semidefinite (a diode network): w is unique";
       if (unchecked_block > 0)
         return "not checked (a block of " + std::to_string(unchecked_block) + " coupled pairs, more than " +
@@ -79,7 +80,17 @@ std::optional<UniquenessEntry> sparse_entry(const CircuitModel& model, const std
   for (const std::vector<int>& block : blocks) {
     const int b = static_cast<int>(block.size());
     PMatrixReport r;
-    if (b > kMaxCheckedPairs && schur->symmetric_part_dominant(block)) {
+    const double work = b > kMaxCheckedPairs ? schur->dominance_work(block) : 0.0;
+    if (work > kDominanceWork) {
+      r.verdict = PMatrixReport::Verdict::Unchecked;
+      r.symmetric_psd = false;
+      char buf[200];
+      std::snprintf(buf, sizeof buf,
+                    "a block of %d coupled pairs: its diagonal-dominance test needs %d sparse solves, "
+                    "%.2g entry operations, over analyze's bound of %.2g",
+                    b, b, work, kDominanceWork);
+      if (e.not_tested.empty()) e.not_tested = buf;
+    } else if (b > kMaxCheckedPairs && schur->symmetric_part_dominant(block)) {
       r.verdict = PMatrixReport::Verdict::P;  // symmetric_psd: not examined (P says more)
     } else if (b <= kDenseBlockPairs) {
       r = p_matrix_report(schur->block(block), kMaxCheckedPairs);

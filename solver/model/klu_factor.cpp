@@ -35,4 +35,9 @@ Eigen::VectorXd KluFactor::solve(Eigen::VectorXd rhs) const {
   return rhs;
 }
 
+long KluFactor::factor_entries() const {
+  const klu_numeric* numeric = handles_->numeric;
+  return numeric ? static_cast<long>(numeric->lnz) + static_cast<long>(numeric->unz) : 0;
+}
+
 }  // namespace lcs

@@ -20,6 +20,8 @@ class KluFactor {
 
   bool ok() const { return numeric_ != nullptr; }  // factorised: not (structurally) singular
   Eigen::VectorXd solve(Eigen::VectorXd rhs) const;  // requires ok()
+  // Entries of L and U (a solve's work is about twice this), 0 when not ok().
+  long factor_entries() const;
 
  private:
   struct Handles;

@@ -91,6 +91,14 @@ Eigen::MatrixXd SchurBlocks::block(const std::vector<int>& block) const {
   return out;
 }
 
+double SchurBlocks::dominance_work(const std::vector<int>& block) const {
+  const double b = static_cast<double>(block.size());
+  double rows = 0;  // entries of P in the block's rows: one column's restriction reads them all
+  for (int i : block) rows += static_cast<double>(P_.outerIndexPtr()[i + 1] - P_.outerIndexPtr()[i]) + 1;
+  const double solve = factor_ ? 2.0 * static_cast<double>(factor_->lu.factor_entries()) + static_cast<double>(L_.rows()) : 0.0;
+  return b * (solve + rows);
+}
+
 bool SchurBlocks::symmetric_part_dominant(const std::vector<int>& block) const {
   const Eigen::Index b = static_cast<Eigen::Index>(block.size());
   Eigen::VectorXd diagonal(b), off = Eigen::VectorXd::Zero(b);  // off_i: sum |M_ij| + |M_ji|

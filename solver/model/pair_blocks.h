@@ -41,6 +41,10 @@ class SchurBlocks {
   // diagonally dominant, M_ii > (sum_j!=i |M_ij| + |M_ji|) / 2: then it is positive definite
   // (Gershgorin) and the block a P-matrix. O(b) memory: columns are summed as they come.
   bool symmetric_part_dominant(const std::vector<int>& block) const;
+  // What symmetric_part_dominant(block) costs, in entry operations: b solves with K's factors
+  // (twice their entries each, plus the solution's n) and the b x b products with P's rows.
+  // A block coupled end to end (a clamped ladder) makes it O(b (n + nnz(LU)) + b nnz(P)).
+  double dominance_work(const std::vector<int>& block) const;
 
  private:
   SchurBlocks() = default;
