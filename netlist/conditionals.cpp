@@ -80,6 +80,7 @@ std::vector<Card> resolve_conditionals(std::vector<Card> cards) {
     if (keyword == ".subckt") ++subckt_depth;
     if (keyword == ".ends" && subckt_depth > 0) --subckt_depth;
     if (keyword == ".param" && subckt_depth == 0) define_params(card, scope);
+    if (keyword == ".func" && subckt_depth == 0) define_function(card, scope);
     kept.push_back(k);
   }
   if (!open.empty()) throw NetlistError(open.back().if_card->at(0), "missing '.endif' for '.if'");

@@ -24,6 +24,7 @@ const char* const kOtherAnalyses[] = {"ac", "dc", "op", "noise", "tf", "disto", 
 
 DotCard classify_dot_card(const std::string& k) {
   if (k == ".param") return DotCard::Param;
+  if (k == ".func") return DotCard::Func;
   if (k == ".model") return DotCard::Model;
   if (k == ".subckt") return DotCard::Subckt;
   if (k == ".ends") return DotCard::Ends;
@@ -43,7 +44,7 @@ DotCard classify_dot_card(const std::string& k) {
 }
 
 bool allowed_in_subcircuit(DotCard kind) {
-  return kind == DotCard::Param || kind == DotCard::Model || kind == DotCard::Subckt || kind == DotCard::Ends;
+  return kind == DotCard::Param || kind == DotCard::Func || kind == DotCard::Model || kind == DotCard::Subckt || kind == DotCard::Ends;
 }
 
 TranSpec parse_tran(const Card& card, const ParamScope& scope) {

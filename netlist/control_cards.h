@@ -13,6 +13,7 @@ namespace lcs::parse {
 
 enum class DotCard {
   Param,
+  Func,      // .func NAME(ARGS) {BODY}: a user function of the scope's expressions
   Model,
   Subckt,
   Ends,

@@ -114,8 +114,10 @@ class Elaborator {
 
   void expand(Instance& in) {
     const std::vector<const Card*>& body = in.def->body;
-    for (const Card* card : body)
+    for (const Card* card : body) {
+      if ((*card)[0].is_word(".func")) define_function(*card, *in.scope);
       if ((*card)[0].is_word(".param")) define_params(*card, *in.scope);
+    }
     in.scope->evaluate_all();
     // Models next, so a diode may use a model defined further down (or in an enclosing scope).
     for (const Card* card : body)
@@ -148,6 +150,7 @@ class Elaborator {
     const std::string& k = card.keyword();
     switch (classify_dot_card(k)) {
       case DotCard::Param:  // defined before the other cards of the scope
+      case DotCard::Func:
       case DotCard::Model:
       case DotCard::Subckt:  // taken out by build_definitions
       case DotCard::Ends:
@@ -189,9 +192,6 @@ class Elaborator {
         if (k == ".step")  // LTspice/PSpice: reruns the deck per value; the CSV holds one run
           throw NetlistError(card.at(0), "'.step' (parameter sweeps, LTspice/PSpice) is not supported: lcspice "
                                          "runs one transient per deck; give each value its own deck or .param");
-        if (k == ".func")
-          throw NetlistError(card.at(0), "'.func' (user-defined functions in expressions) is not supported; "
-                                         "write the expression out, or give its value with .param");
         throw NetlistError(card.at(0), "unknown control card " + quote(card[0].text));
     }
   }

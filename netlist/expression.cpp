@@ -10,6 +10,9 @@ namespace lcs::parse {
 namespace {
 
 constexpr int kMaxDepth = 200;
+// User function calls inside user function bodies (a .func that calls itself never ends).
+constexpr int kMaxCallDepth = 64;
+thread_local int call_depth = 0;
 
 struct Function {
   const char* name;
@@ -56,7 +59,10 @@ bool is_name_char(char c) { return is_name_start(c) || (c >= '0' && c <= '9'); }
 
 class Evaluator {
  public:
-  Evaluator(std::string_view text, const Lookup& lookup) : s_(text), lookup_(lookup) {}
+  // `depth`: the nesting of the expression that calls this one (a user function's body counts
+  // its caller's parentheses and calls: the stack is bounded by kMaxDepth in all).
+  Evaluator(std::string_view text, const Lookup& lookup, const FunctionLookup& functions, int depth = 0)
+      : s_(text), lookup_(lookup), functions_(functions), depth_(depth) {}
 
   double run() {
     skip();
@@ -246,11 +252,8 @@ class Evaluator {
     unexpected();
   }
 
-  double call(const std::string& name, const std::string& written, std::size_t start) {
-    const Function* f = nullptr;
-    for (const Function& fn : kFunctions)
-      if (name == fn.name) f = &fn;
-    if (!f) fail(start, written.size(), "unknown function " + quote(written));
+  // The arguments of a call, from its '(' to past its ')'.
+  std::vector<double> arguments() {
     Depth d(*this, i_);
     std::size_t open = i_++;  // at '('
     std::vector<double> args;
@@ -267,6 +270,17 @@ class Evaluator {
       }
     }
     ++i_;
+    return args;
+  }
+
+  double call(const std::string& name, const std::string& written, std::size_t start) {
+    const Function* f = nullptr;
+    for (const Function& fn : kFunctions)
+      if (name == fn.name) f = &fn;
+    const UserFunction* user = f || !functions_ ? nullptr : functions_(name);
+    if (user) return call_user(*user, written, start);
+    if (!f) fail(start, written.size(), "unknown function " + quote(written));
+    const std::vector<double> args = arguments();
     bool bad = args.size() < f->min_args || (f->max_args && args.size() > f->max_args);
     if (bad) {
       std::string n = std::to_string(f->min_args) + (f->min_args == 1 ? " argument" : " arguments");
@@ -278,16 +292,53 @@ class Evaluator {
     return v;
   }
 
+  // The body with the parameters bound to the arguments; other names are the caller's.
+  double call_user(const UserFunction& user, const std::string& written, std::size_t start) {
+    const std::vector<double> args = arguments();
+    if (args.size() != user.params.size())
+      fail(start, written.size(),
+           quote(written) + " takes " + std::to_string(user.params.size()) +
+               (user.params.size() == 1 ? " argument" : " arguments") + " (.func at " + user.defined_at + ")");
+    if (call_depth >= kMaxCallDepth)
+      fail(start, written.size(), "functions nested too deeply calling " + quote(written) + " (does it call itself?)");
+    const Lookup bound = [&](const std::string& n) -> std::optional<double> {
+      for (std::size_t k = 0; k < user.params.size(); ++k)
+        if (user.params[k] == n) return args[k];
+      return lookup_(n);
+    };
+    ++call_depth;
+    double v = 0;
+    try {
+      v = Evaluator(user.body, bound, functions_, depth_ + 1).run();
+    } catch (const ExpressionError& e) {
+      --call_depth;
+      if (e.message.rfind("in function ", 0) == 0) fail(start, written.size(), e.message);
+      fail(start, written.size(), "in function " + quote(written) + " (.func at " + user.defined_at + "): " + e.message);
+    } catch (...) {
+      --call_depth;
+      throw;
+    }
+    --call_depth;
+    return v;
+  }
+
   std::string_view s_;
   const Lookup& lookup_;
-  std::size_t i_ = 0;
+  const FunctionLookup& functions_;
   int depth_ = 0;
+  std::size_t i_ = 0;
 };
 
 }  // namespace
 
-double evaluate_expression(std::string_view text, const Lookup& lookup) {
-  return Evaluator(text, lookup).run();
+bool is_builtin_function(const std::string& lower) {
+  for (const Function& fn : kFunctions)
+    if (lower == fn.name) return true;
+  return false;
+}
+
+double evaluate_expression(std::string_view text, const Lookup& lookup, const FunctionLookup& functions) {
+  return Evaluator(text, lookup, functions).run();
 }
 
 }  // namespace lcs::parse

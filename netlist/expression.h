@@ -2,7 +2,9 @@
 // parentheses, numbers with SPICE suffixes, parameter names, `pi`, and the functions sqrt exp
 // log (natural) ln log10 abs sin cos tan asin acos atan sinh cosh tanh min max pow floor ceil,
 // and ngspice's comparisons == != < <= > >=, logic && || (also & |) and !, and if(c, a, b)
-// (true is 1, false 0; a condition is true when nonzero).
+// (true is 1, false 0; a condition is true when nonzero). `.func name(a, b) {body}` defines a
+// user function: a call binds the arguments to the parameter names and evaluates the body, whose
+// other names are looked up where the call is (as ngspice expands a .func in place).
 // Internal to the netlist reader.
 #pragma once
 
@@ -10,6 +12,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace lcs::parse {
 
@@ -29,7 +32,19 @@ struct LookupFailure {
 // Value of a lower-case parameter name; nullopt when it is not defined.
 using Lookup = std::function<std::optional<double>(const std::string& name)>;
 
+// A `.func` definition.
+struct UserFunction {
+  std::vector<std::string> params;  // lower-case, distinct
+  std::string body;                 // the expression text
+  std::string defined_at;           // "file:line", for errors inside the body
+};
+// The user function of a lower-case name; nullptr when there is none.
+using FunctionLookup = std::function<const UserFunction*(const std::string& name)>;
+
+// Whether `lower` names a built-in function (sqrt, sin, if, ...), which .func may not redefine.
+bool is_builtin_function(const std::string& lower);
+
 // Throws ExpressionError; the result is always finite.
-double evaluate_expression(std::string_view text, const Lookup& lookup);
+double evaluate_expression(std::string_view text, const Lookup& lookup, const FunctionLookup& functions = nullptr);
 
 }  // namespace lcs::parse

@@ -72,10 +72,59 @@ void ParamScope::evaluate_all() const {
   }
 }
 
+void ParamScope::define_function(const std::string& name, UserFunction function) {
+  functions_[name] = std::move(function);
+}
+
+const UserFunction* ParamScope::function(const std::string& name) const {
+  for (const ParamScope* s = this; s; s = s->parent_) {
+    auto it = s->functions_.find(name);
+    if (it != s->functions_.end()) return &it->second;
+  }
+  return nullptr;
+}
+
+void define_function(const Card& card, ParamScope& scope) {
+  if (card.size() < 2 || !card[1].is_word())
+    throw NetlistError(card.size() < 2 ? card.after_last() : card.at(1), "expected a function name after '.func'");
+  const Token& name = card[1];
+  if (!is_identifier(name.lower)) throw NetlistError(card.at(name), "invalid function name " + quote(name.text));
+  if (is_builtin_function(name.lower))
+    throw NetlistError(card.at(name), "cannot redefine the built-in function " + quote(name.text));
+  if (card.size() < 3 || !card[2].is(Token::Kind::LParen))
+    throw NetlistError(card.size() < 3 ? card.after_last() : card.at(2),
+                       "expected '(' and the argument names after '.func " + name.text + "'");
+  UserFunction f;
+  std::size_t i = 3;
+  while (i < card.size() && !card[i].is(Token::Kind::RParen)) {
+    const Token& arg = card[i];
+    if (!arg.is_word() || !is_identifier(arg.lower))
+      throw NetlistError(card.at(arg), "expected an argument name, got " + quote(arg.text));
+    for (const std::string& p : f.params)
+      if (p == arg.lower) throw NetlistError(card.at(arg), "argument " + quote(arg.text) + " named twice");
+    f.params.push_back(arg.lower);
+    ++i;
+    if (i < card.size() && card[i].is(Token::Kind::Comma)) ++i;
+  }
+  if (i >= card.size()) throw NetlistError(card.after_last(), "missing ')' after the arguments of " + quote(name.text));
+  ++i;  // past ')'
+  if (i < card.size() && card[i].is(Token::Kind::Equals)) ++i;
+  if (i >= card.size()) throw NetlistError(card.after_last(), "missing the body of function " + quote(name.text));
+  const Token& first = card[i];
+  if (i + 1 == card.size() && first.is_expression())
+    f.body = first.text;
+  else
+    f.body = card.text(first.begin, card.tokens.back().end);
+  const SourceLocation loc = card.at(0);
+  f.defined_at = loc.file + ":" + std::to_string(loc.line);
+  scope.define_function(name.lower, std::move(f));
+}
+
 double evaluate_at(const Card& card, int begin, int end, const ParamScope& scope) {
   try {
     return evaluate_expression(std::string_view(card.chars).substr(begin, end - begin),
-                               [&](const std::string& name) { return scope.lookup(name); });
+                               [&](const std::string& name) { return scope.lookup(name); },
+                               [&](const std::string& name) { return scope.function(name); });
   } catch (const ExpressionError& e) {
     throw NetlistError(card.span(begin + e.offset, begin + e.offset + e.length), e.message);
   }

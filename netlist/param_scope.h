@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "netlist/expression.h"
 #include "netlist/lexer.h"
 
 namespace lcs::parse {
@@ -30,6 +31,11 @@ class ParamScope {
   // Evaluates every local definition in definition order (so errors show up in card order).
   void evaluate_all() const;
 
+  // `.func`: a user function of this scope (a later definition of the same name replaces it),
+  // and the one a name calls here or in an enclosing scope (nullptr: none).
+  void define_function(const std::string& name, UserFunction function);
+  const UserFunction* function(const std::string& name) const;
+
  private:
   struct Def {
     const Card* card = nullptr;  // nullptr: value set directly
@@ -42,7 +48,12 @@ class ParamScope {
   const ParamScope* parent_;
   std::map<std::string, Def> defs_;
   std::vector<std::string> order_;
+  std::map<std::string, UserFunction> functions_;
 };
+
+// `.func NAME(ARG, ...) {BODY}` (also `= {BODY}`, `'BODY'` or the bare expression): defines
+// NAME in `scope`. Throws NetlistError at a malformed definition or a built-in's name.
+void define_function(const Card& card, ParamScope& scope);
 
 // Evaluates an expression written at chars [begin, end) of `card` (errors point inside it).
 double evaluate_at(const Card& card, int begin, int end, const ParamScope& scope);

@@ -1,5 +1,6 @@
 // Cards of LTspice-written decks (and ngspice's .global): `.lib FILE` as an include, the datasheet
-// fields of vendor diode cards, `.backanno`, `.global`, and the clear refusals of `.step`/`.func`.
+// fields of vendor diode cards, `.backanno`, `.global`, and the clear refusal of `.step`
+// (`.func` is read: user_function_test.cpp).
 #include <gtest/gtest.h>
 
 #include "netlist/netlist.h"
@@ -83,13 +84,10 @@ TEST(LtspiceDialect, InstanceParasiticsAreRefusedWithTheRemedy) {
             "t.cir:2:11: error: unknown parameter 'foo' for 'v1'\nV1 in 0 5 foo=1\n          ^~~");
 }
 
-TEST(LtspiceDialect, SweepsAndUserFunctionsAreRefusedByName) {
+TEST(LtspiceDialect, SweepsAreRefusedByName) {
   EXPECT_EQ(test::diag("t\nR1 a 0 {r}\n.param r=1k\n.step param r 1k 10k 1k\n"),
             "t.cir:4:1: error: '.step' (parameter sweeps, LTspice/PSpice) is not supported: lcspice runs one "
             "transient per deck; give each value its own deck or .param\n.step param r 1k 10k 1k\n^~~~~");
-  EXPECT_EQ(test::diag("t\nR1 a 0 1\n.func f(x) {2*x}\n"),
-            "t.cir:3:1: error: '.func' (user-defined functions in expressions) is not supported; write the "
-            "expression out, or give its value with .param\n.func f(x) {2*x}\n^~~~~");
 }
 
 }  // namespace
