@@ -245,6 +245,11 @@ class Elaborator {
     }
     if (pe.control_token) control_refs_.push_back({index, card.at(pe.control_token)});
     net_.elements.push_back(std::move(pe.element));
+    for (Element& parasitic : pe.parasitics) {
+      register_name(parasitic.name, card.at(0), "element");
+      scale_for_parallel_copies(parasitic, in.multiplier);
+      net_.elements.push_back(std::move(parasitic));
+    }
   }
 
   // `D anode cathode` without a model: LTspice's default diode, which is ideal (VON = 0, RON = 0:

@@ -1,5 +1,6 @@
 #include "netlist/element_card.h"
 
+#include "netlist/instance_parasitics.h"
 #include "netlist/parallel_copies.h"
 #include "netlist/source_card.h"
 
@@ -41,10 +42,17 @@ struct Reader {
   }
 
   // What follows the value of R, L and C: `M=m` (m copies in parallel: ngspice's multiplier) and,
-  // for L and C, `IC=value`. Returns m (1 when not given).
-  double trailing(std::size_t i, Element& e, bool ic_allowed) const {
+  // for L and C, `IC=value` and LTspice's parasitics (into *parasitics). Returns m (1 when not given).
+  double trailing(std::size_t i, Element& e, bool ic_allowed, InstanceParasitics* parasitics = nullptr) const {
     double m = 1.0;
     while (i < card.size()) {
+      if (parasitics) {
+        const std::size_t next = read_parasitic(card, i, e.kind, *scope.params, name, *parasitics);
+        if (next != i) {
+          i = next;
+          continue;
+        }
+      }
       const bool assignment = card[i].is_word() && i + 1 < card.size() && card[i + 1].is(Token::Kind::Equals);
       if (assignment && (card[i].is_word("m") || (ic_allowed && card[i].is_word("ic")))) {
         if (i + 2 >= card.size()) throw NetlistError(card.after_last(), "missing value for " + quote(card[i].lower));
@@ -348,7 +356,10 @@ ParsedElement parse_element(const Card& card, const ElementScope& scope,
       out.shorted = e.nodes[0] == e.nodes[1];
       e.value = r.value(3);
       r.positive(3, e.value, letter == 'r' ? "resistance" : letter == 'l' ? "inductance" : "capacitance");
-      scale_for_parallel_copies(e, r.trailing(4, e, letter != 'r'));
+      InstanceParasitics parasitics;
+      const double m = r.trailing(4, e, letter != 'r', letter == 'r' ? nullptr : &parasitics);
+      scale_for_parallel_copies(e, m);
+      if (parasitics.any() && !out.shorted) out.parasitics = expand_parasitics(e, parasitics, m);
       break;
     }
     case 'k': {
@@ -375,8 +386,11 @@ ParsedElement parse_element(const Card& card, const ElementScope& scope,
       r.node(2, e);
       r.distinct_nodes(e, letter == 'v' ? "a voltage source cannot hold a voltage across a short" : nullptr);
       double m = 1.0;
-      e.waveform = parse_source_waveform(card, 3, *scope.params, e.name, warnings, letter == 'i' ? &m : nullptr);
+      InstanceParasitics parasitics;
+      e.waveform = parse_source_waveform(card, 3, *scope.params, e.name, warnings, letter == 'i' ? &m : nullptr,
+                                         letter == 'v' ? &parasitics : nullptr);
       scale_for_parallel_copies(e, m);
+      if (parasitics.any()) out.parasitics = expand_parasitics(e, parasitics, 1.0);
       break;
     }
     case 'd': {

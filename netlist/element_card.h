@@ -28,6 +28,9 @@ struct ParsedElement {
   std::size_t control_token = 0;             // F, H: token of the controlling source's name
   // R, C, D with both terminals on one node: no current flows through it and it changes nothing.
   bool shorted = false;
+  // L, C, V: LTspice's instance parasitics (Rser=, ...) as their own elements, the card's nodes
+  // already moved onto them (instance_parasitics.h).
+  std::vector<Element> parasitics;
 };
 
 ParsedElement parse_element(const Card& card, const ElementScope& scope,

@@ -37,7 +37,7 @@ std::string plural(std::size_t n, const char* what) {
 
 Waveform parse_source_waveform(const Card& card, std::size_t first, const ParamScope& scope,
                                const std::string& name, std::vector<std::string>& warnings,
-                               double* multiplier) {
+                               double* multiplier, InstanceParasitics* parasitics) {
   Waveform w;
   bool have_dc = false, have_function = false;
   const std::size_t n = card.size();
@@ -162,6 +162,13 @@ Waveform parse_source_waveform(const Card& card, std::size_t first, const ParamS
       ++i;
       continue;
     }
+    if (parasitics) {
+      const std::size_t next = read_parasitic(card, i, ElementKind::VoltageSource, scope, name, *parasitics);
+      if (next != i) {
+        i = next;
+        continue;
+      }
+    }
     if (t.is_word() && i + 1 < card.size() && card[i + 1].is(Token::Kind::Equals))
       throw NetlistError(card.at(t), "unknown parameter " + quote(t.text) + " for " + quote(name) +
                                          ltspice_parasitic_hint(t.lower));
@@ -174,9 +181,11 @@ Waveform parse_source_waveform(const Card& card, std::size_t first, const ParamS
 
 std::string ltspice_parasitic_hint(const std::string& k) {
   if (k == "rser" || k == "lser")
-    return " (LTspice's series parasitic: lcspice reads none; write it as its own element in series)";
+    return " (LTspice's series parasitic: lcspice reads Rser on L, C and V and Lser on C; write this one as "
+           "its own element in series)";
   if (k == "rpar" || k == "cpar")
-    return " (LTspice's parallel parasitic: lcspice reads none; write it as its own element in parallel)";
+    return " (LTspice's parallel parasitic: lcspice reads Rpar on L and C and Cpar on L, C and V; write this "
+           "one as its own element in parallel)";
   return "";
 }
 

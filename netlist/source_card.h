@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "netlist/instance_parasitics.h"
 #include "netlist/lexer.h"
 #include "netlist/param_scope.h"
 #include "netlist/waveform.h"
@@ -16,13 +17,15 @@ namespace lcs::parse {
 
 // Reads the tokens from `first` to the end of the card. `name` is the element's (flat) name for
 // messages. The result is not resolved yet (that needs .tran). `m=value` (a current source's
-// multiplier) is read into *multiplier; without one (a voltage source) it is an error.
+// multiplier) is read into *multiplier; without one (a voltage source) it is an error. A voltage
+// source's LTspice parasitics (Rser=, Cpar=) are read into *parasitics when it is given.
 Waveform parse_source_waveform(const Card& card, std::size_t first, const ParamScope& scope,
                                const std::string& name, std::vector<std::string>& warnings,
-                               double* multiplier = nullptr);
+                               double* multiplier = nullptr, InstanceParasitics* parasitics = nullptr);
 
-// LTspice's instance parasitics (`Rser=`, `Rpar=`, `Cpar=`, `Lser=` on V, C, L cards): the
-// remedy to append to the unknown-parameter error, or "" for another name.
+// LTspice's instance parasitics on an element that does not take the one written (Lser on an
+// inductor, Rser on a resistor): the remedy to append to the unknown-parameter error, or "" for
+// another name.
 std::string ltspice_parasitic_hint(const std::string& lower_key);
 
 }  // namespace lcs::parse

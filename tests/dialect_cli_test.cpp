@@ -1,5 +1,6 @@
-// The ngspice dialect end to end: a `.control` block's `tran`, LTspice's model-less diode, a
-// shorted clamp diode, and what the real ngspice decks get (exit codes and first messages).
+// The ngspice dialect end to end: a `.control` block's `tran`, LTspice's model-less diode and
+// instance parasitics, a shorted clamp diode, and what the real ngspice decks get (exit codes
+// and first messages).
 #include <cmath>
 #include <fstream>
 
@@ -38,6 +39,38 @@ TEST(DialectCli, ControlTranWithAModelLessDiodeAndAShortedClamp) {
     EXPECT_NEAR(row[2], std::max(0.0, va), k == 0 ? 2 * M_PI * 100 * 5e-12 * 1.01 : 1e-9) << row[0];
     EXPECT_EQ(row[3], 0.0);
   }
+}
+
+// LTspice's Rser on a source and an inductor (instance_parasitics.h): 1 V through 5 + 5 ohm into
+// 10 mH from rest, i(l1) = 0.1 (1 - exp(-t / 1 ms)) and v(in) = 1 - 5 i; the internal nodes and
+// the parasitic resistors are not default probes.
+TEST(DialectCli, SeriesParasiticsOfASourceAndAnInductor) {
+  const fs::path dir = scratch_dir("dialect_rser");
+  std::ofstream(dir / "rl.cir") << "rl, LTspice style\nV1 in 0 1 Rser=5\nL1 in 0 10m Rser=5\n.tran 10u 3m UIC\n.end\n";
+  Result r = run_lcspice("run '" + (dir / "rl.cir").string() + "' -o '" + (dir / "o.csv").string() + "'", dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  Csv csv = parse_csv(read_file(dir / "o.csv"));
+  ASSERT_EQ(csv.header, (std::vector<std::string>{"time", "v(in)", "i(v1)", "i(l1)"}));
+  ASSERT_GE(csv.rows.size(), 301u);
+  for (const std::vector<double>& row : csv.rows) {
+    const double i = 0.1 * (1 - std::exp(-row[0] / 1e-3));
+    EXPECT_NEAR(row[3], i, 1e-9) << row[0];
+    EXPECT_NEAR(row[2], -i, 1e-9) << row[0];
+    EXPECT_NEAR(row[1], 1 - 5 * i, 1e-8) << row[0];
+  }
+}
+
+// A buck converter written for LTspice (Rser on the supply, the inductor and the capacitor, a
+// Vfwd/Ron diode): the parasitics are R cards in ngspice's deck, and the two agree.
+TEST(DialectCli, LtspiceBuckWithParasiticsAgreesWithNgspice) {
+  const fs::path dir = scratch_dir("dialect_buck");
+  std::ofstream(dir / "buck.cir") << "buck, LTspice style\nV1 in 0 12 Rser=0.1\nS1 in sw ctl 0 SW1\n"
+                                     "V2 ctl 0 PULSE(0 5 0 10n 10n 4u 10u)\nD1 0 sw DI\nL1 sw out 100u Rser=0.05\n"
+                                     "C1 out 0 47u Rser=10m\nR1 out 0 5\n.model DI D(Ron=0.01 Vfwd=0.4)\n"
+                                     ".model SW1 SW(Ron=0.01 Roff=1meg Vt=2.5 Vh=0)\n.tran 50n 200u\n.end\n";
+  Result r = run_lcspice("validate '" + (dir / "buck.cir").string() + "'", dir);
+  EXPECT_EQ(r.code, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("PASS: every probe within"), std::string::npos) << r.out;
 }
 
 TEST(DialectCli, DcOnlyDeckIsRefusedForHavingNoTransientAnalysis) {

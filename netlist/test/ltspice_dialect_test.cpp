@@ -73,13 +73,16 @@ TEST(NgspiceGlobal, GlobalNodesAreSharedByEverySubcircuitInstance) {
   EXPECT_EQ(test::diag("t\nR1 a 0 1\n.global\n"), "t.cir:3:8: error: missing node names after '.global'\n.global\n       ^");
 }
 
-TEST(LtspiceDialect, InstanceParasiticsAreRefusedWithTheRemedy) {
-  EXPECT_EQ(test::diag("t\nV1 in 0 SINE(0 5 1k) Rser=1\nR1 in 0 1k\n"),
-            "t.cir:2:22: error: unknown parameter 'Rser' for 'v1' (LTspice's series parasitic: lcspice reads none; "
-            "write it as its own element in series)\nV1 in 0 SINE(0 5 1k) Rser=1\n                     ^~~~");
-  EXPECT_EQ(test::diag("t\nC1 a 0 10u Cpar=1p\n"),
-            "t.cir:2:12: error: unknown parameter 'Cpar' for 'c1' (LTspice's parallel parasitic: lcspice reads none; "
-            "write it as its own element in parallel)\nC1 a 0 10u Cpar=1p\n           ^~~~");
+// Parasitics an element does not take (instance_parasitics_test.cpp reads the ones it does).
+TEST(LtspiceDialect, ParasiticsAnElementDoesNotTakeAreRefusedWithTheRemedy) {
+  EXPECT_EQ(test::diag("t\nL1 in 0 1m Lser=1n\n"),
+            "t.cir:2:12: error: unknown parameter 'Lser' for 'l1' (LTspice's series parasitic: lcspice reads Rser on "
+            "L, C and V and Lser on C; write this one as its own element in series)\nL1 in 0 1m Lser=1n\n"
+            "           ^~~~");
+  EXPECT_EQ(test::diag("t\nR1 a 0 1k Cpar=1p\n"),
+            "t.cir:2:11: error: unknown parameter 'Cpar' for 'r1' (LTspice's parallel parasitic: lcspice reads Rpar on "
+            "L and C and Cpar on L, C and V; write this one as its own element in parallel)\nR1 a 0 1k Cpar=1p\n"
+            "          ^~~~");
   EXPECT_EQ(test::diag("t\nV1 in 0 5 foo=1\n"),
             "t.cir:2:11: error: unknown parameter 'foo' for 'v1'\nV1 in 0 5 foo=1\n          ^~~");
 }

@@ -857,6 +857,7 @@ std::vector<Probe> CircuitModel::default_probes() const {
     if (graph_.nodes[node].find('#') == std::string::npos)
       probes.push_back({Probe::Kind::NodeVoltage, graph_.nodes[node], "", {}});
   for (const std::shared_ptr<Device>& d : devices_) {
+    if (d->name().find('#') != std::string::npos) continue;  // an element's parasitic ("l1#rser")
     if (d->current_probed_by_default()) probes.push_back({Probe::Kind::ElementCurrent, d->name(), "", {}});
     for (char terminal : d->terminals_probed_by_default()) {
       Probe p{Probe::Kind::TerminalCurrent, d->name(), "", {}};
