@@ -16,7 +16,7 @@ struct FunctionSpec {
 const FunctionSpec kFunctions[] = {
     {"sin", Waveform::Kind::Sin, 2, 6},
     {"sine", Waveform::Kind::Sin, 2, 6},  // ngspice's other name for SIN
-    {"pulse", Waveform::Kind::Pulse, 2, 7},
+    {"pulse", Waveform::Kind::Pulse, 2, 8},  // the 8th: NP, the number of pulses (ngspice 39, LTspice)
     {"pwl", Waveform::Kind::Pwl, 2, 0},
     {"exp", Waveform::Kind::Exp, 2, 6},
     {"sffm", Waveform::Kind::Sffm, 2, 8},
@@ -113,7 +113,10 @@ Waveform parse_source_waveform(const Card& card, std::size_t first, const ParamS
         throw NetlistError(card.at(t), quote(t.lower) + " needs at least " + plural(fn->min_params, "parameter"));
       if (fn->max_params && args.size() > fn->max_params)
         throw NetlistError(card.at(args[fn->max_params]),
-                           quote(t.lower) + " takes at most " + plural(fn->max_params, "parameter"));
+                           quote(t.lower) + " takes at most " + plural(fn->max_params, "parameter") +
+                               (fn->kind == Waveform::Kind::Sin && args.size() == 7
+                                    ? " (LTspice's 7th, Ncycles, is not read)"
+                                    : ""));
       w.kind = fn->kind;
       for (std::size_t a : args) w.params.push_back(value_of(card, a, scope));
       if (fn->kind == Waveform::Kind::Pwl) {
@@ -132,7 +135,7 @@ Waveform parse_source_waveform(const Card& card, std::size_t first, const ParamS
           throw NetlistError(card.at(args[5]), "sin phase is too large: 2*pi*PHASE/360 is not a finite number");
       }
       if (fn->kind == Waveform::Kind::Pulse) {
-        const char* what[] = {nullptr, nullptr, nullptr, "rise time", "fall time", "width", "period"};
+        const char* what[] = {nullptr, nullptr, nullptr, "rise time", "fall time", "width", "period", "count NP"};
         for (std::size_t k = 3; k < w.params.size(); ++k)
           if (w.params[k] < 0)
             throw NetlistError(card.at(args[k]), std::string("pulse ") + what[k] + " must not be negative");

@@ -84,10 +84,14 @@ std::string fmt(double x) {
   return buf;
 }
 
-// One period of a PULSE (phase 0 at TD), or the whole pulse when it does not repeat.
+// One period of a PULSE (phase 0 at TD), or the whole pulse when it does not repeat. NP, the
+// 8th parameter (ngspice 39's vsrcload.c, LTspice's Ncycles): NP > 0 periods, then V1 for good
+// from `end` = TD + NP PER on (where the next period would start, at V1).
 struct PulseShape {
   double v1 = 0, td = 0, per = 0;  // per <= 0: a single pulse
+  double end = INFINITY;
   Knots knots;
+  bool over(double t) const { return t > end; }
 };
 
 PulseShape pulse_shape(const std::vector<double>& p) {
@@ -99,6 +103,8 @@ PulseShape pulse_shape(const std::vector<double>& p) {
   double tf = std::max(0.0, param(p, 4));
   double pw = std::max(0.0, param(p, 5));
   s.per = param(p, 6);
+  const double np = param(p, 7);
+  if (s.per > 0 && np > 0 && std::isfinite(s.td + np * s.per)) s.end = s.td + np * s.per;
   Knots full = {{0.0, s.v1}, {tr, v2}, {tr + pw, v2}, {tr + pw + tf, s.v1}};
   if (!(s.per > 0)) {
     s.per = 0;
@@ -314,7 +320,7 @@ double Waveform::value(double t) const {
       return SinShape(params).value(t);
     case Kind::Pulse: {
       PulseShape s = pulse_shape(params);
-      if (t < s.td) return s.v1;
+      if (t < s.td || t >= s.end) return s.v1;  // at `end` itself: the train is over
       double start, tau;
       pulse_phase(s, t, start, tau);
       return pl_value(s.knots, tau);
@@ -344,7 +350,7 @@ double Waveform::value_before(double t) const {
       return value(t);
     case Kind::Pulse: {
       PulseShape s = pulse_shape(params);
-      if (t <= s.td) return s.v1;
+      if (t <= s.td || s.over(t)) return s.v1;
       double start, tau;
       pulse_phase(s, t, start, tau);
       // At the start of a period (other than the first) the left limit is the previous period's end.
@@ -378,7 +384,7 @@ double Waveform::derivative(double t) const {
       return SinShape(params).derivative(t);
     case Kind::Pulse: {
       PulseShape s = pulse_shape(params);
-      if (t < s.td) return 0.0;
+      if (t < s.td || t >= s.end) return 0.0;
       double start, tau;
       pulse_phase(s, t, start, tau);
       return pl_slope(s.knots, tau);
@@ -418,8 +424,9 @@ std::pair<double, double> Waveform::range(double t0, double t1) const {
       break;
     case Kind::Pulse: {
       PulseShape s = pulse_shape(params);
-      if (t0 < s.td) take(s.v1);
-      if (t1 < s.td) break;
+      if (t0 < s.td || s.over(t1)) take(s.v1);
+      t1 = std::min(t1, s.end);
+      if (t1 < s.td || t0 > t1) break;
       double a = std::max(t0, s.td);
       double start, tau_a;
       pulse_phase(s, a, start, tau_a);
@@ -538,6 +545,8 @@ std::vector<double> Waveform::breakpoints(double t0, double t1) const {
     case Kind::Pulse: {
       PulseShape s = pulse_shape(params);
       add(s.td);
+      add(s.end);
+      t1 = std::min(t1, s.end);
       if (s.per <= 0) {
         for (const Knot& n : s.knots) add(s.td + n.t);
         break;

@@ -13,7 +13,7 @@ struct Waveform {
   double dc = 0.0;             // `DC value` (or a bare value); for Kind::Dc the value at all times
   // Parameters as written, in SPICE order; missing trailing ones are filled by resolve().
   //   SIN(VO VA FREQ TD THETA PHASE)   PHASE in degrees
-  //   PULSE(V1 V2 TD TR TF PW PER)
+  //   PULSE(V1 V2 TD TR TF PW PER [NP])  NP > 0: that many pulses, then V1 (ngspice 39, LTspice)
   //   PWL(t1 v1 t2 v2 ...)             times non-decreasing
   //   EXP(V1 V2 TD1 TAU1 TD2 TAU2)
   //   SFFM(VO VA FC MDI FS TD PHASEM PHASEC)     VO + VA sin(2 pi FC tau + PHASEC + MDI sin(2 pi FS tau + PHASEM))

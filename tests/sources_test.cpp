@@ -195,6 +195,24 @@ TEST(SffmSource, TheEventMethodRefusesItNamingTheSourceAndEulerRunsIt) {
 // radau5: ngspice gets it as a behavioural source of time gated by a PULSE at TD (its
 // breakpoint). Measured: 2.4e-4 of the range outside the tube (the jump itself is inside it:
 // max|error| there is half the range). Without the gate ngspice stepped across the jump: 31 %.
+// PULSE's 8th parameter, NP (ngspice 39, LTspice's Ncycles): three pulses, then V1. ngspice reads
+// it too (its deck gets the 8 parameters), so the two agree, v(in) to rounding, where a fourth
+// pulse at 1.6 ms would put v(in) a whole range apart.
+TEST(PulseSource, CountOfPulsesAgreesWithNgspice) {
+  const fs::path dir = scratch_dir("pulse_np_validate");
+  std::ofstream(dir / "np.cir") << "np\nV1 in 0 PULSE(0 1 0.1m 1u 1u 0.2m 0.5m 3)\nR1 in out 1k\nC1 out 0 100n\n"
+                                   ".tran 1u 3m\n.end\n";
+  Result r = run_lcspice("validate '" + (dir / "np.cir").string() + "' --tol 1e-3", dir);
+  EXPECT_EQ(r.code, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("PASS: every probe within"), std::string::npos) << r.out;
+  Csv csv = run_csv(dir / "np.cir", "");
+  for (const std::vector<double>& row : csv.rows) {
+    if (row[0] > 1.6e-3) {
+      EXPECT_EQ(row[1], 0.0) << row[0];
+    }
+  }
+}
+
 TEST(SffmSource, AgreesWithNgspiceThroughItsJumpAtTd) {
   const fs::path dir = scratch_dir("sffm_validate");
   std::ofstream(dir / "fm.cir") << "fm\nV2 in 0 SFFM(0.1 2 10k 0.5 200 0.1m 30 60)\nR2 in 0 1k\n.tran 1u 1m\n.end\n";

@@ -245,6 +245,33 @@ TEST(WaveformPulse, SinglePulseWithoutPeriod) {
   expect_times(w.breakpoints(0, 100), {1, 2, 3, 4});
 }
 
+// NP = 2 (ngspice 39, LTspice's Ncycles): the trapezoid twice, then V1 from TD + 2 PER = 21 ms.
+TEST(WaveformPulse, CountOfPulsesEndsTheTrain) {
+  Waveform w = make(Waveform::Kind::Pulse, {0, 5, 1e-3, 1e-3, 2e-3, 3e-3, 10e-3, 2});
+  EXPECT_NEAR(w.value(11.5e-3), 2.5, 1e-9);  // the second pulse
+  EXPECT_EQ(w.value(21e-3), 0);
+  EXPECT_EQ(w.value(21.5e-3), 0);          // where a third would rise
+  EXPECT_EQ(w.value(1.0), 0);
+  EXPECT_EQ(w.derivative(21e-3), 0);
+  EXPECT_EQ(w.derivative(21.5e-3), 0);
+  expect_times(w.breakpoints(0, 40e-3), {1e-3, 2e-3, 5e-3, 7e-3, 11e-3, 12e-3, 15e-3, 17e-3, 21e-3});
+  auto r = w.range(20e-3, 40e-3);
+  EXPECT_EQ(r.first, 0);
+  EXPECT_EQ(r.second, 0);
+  r = w.range(11.5e-3, 40e-3);
+  EXPECT_EQ(r.first, 0);
+  EXPECT_EQ(r.second, 5);
+  // A shape longer than the period is cut at 21 ms like any period end: the last one falls there.
+  Waveform cut = make(Waveform::Kind::Pulse, {0, 5, 0, 0, 0, 10e-3, 10e-3, 1});
+  EXPECT_EQ(cut.value(9.99e-3), 5);
+  EXPECT_EQ(cut.value_before(10e-3), 5);
+  EXPECT_EQ(cut.value(10e-3), 0);
+  EXPECT_EQ(cut.value(10.01e-3), 0);
+  // 0 (or no NP): the train does not end.
+  Waveform endless = make(Waveform::Kind::Pulse, {0, 5, 1e-3, 1e-3, 2e-3, 3e-3, 10e-3, 0});
+  EXPECT_NEAR(endless.value(21.5e-3), 2.5, 1e-9);
+}
+
 TEST(WaveformPulse, AbsurdPeriodsStayBoundedAndFinite) {
   Waveform tiny = make(Waveform::Kind::Pulse, {0, 1, 0, 0, 0, 1e-300, 2e-300});
   EXPECT_TRUE(tiny.breakpoints(0.5, 1).size() <= 10'000'000u);
