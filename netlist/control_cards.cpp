@@ -47,7 +47,7 @@ bool allowed_in_subcircuit(DotCard kind) {
   return kind == DotCard::Param || kind == DotCard::Func || kind == DotCard::Model || kind == DotCard::Subckt || kind == DotCard::Ends;
 }
 
-TranSpec parse_tran(const Card& card, const ParamScope& scope) {
+TranSpec parse_tran(const Card& card, const ParamScope& scope, std::vector<std::string>& warnings) {
   TranSpec spec;
   spec.loc = card.at(0);
   std::vector<std::size_t> values;
@@ -56,6 +56,18 @@ TranSpec parse_tran(const Card& card, const ParamScope& scope) {
     if (t.is(Token::Kind::Comma)) continue;
     if (t.is_word("uic")) {
       spec.uic = true;
+      continue;
+    }
+    if (t.is_word("startup")) {
+      spec.uic = true;
+      warnings.push_back(warning_line(card.at(t), "'startup' (LTspice: the supplies ramped up from 0 V over the "
+                                                  "first 20 us) is read as UIC: the run starts from rest with the "
+                                                  "sources at their values"));
+      continue;
+    }
+    if (t.is_word("steady") || t.is_word("nodiscard")) {
+      warnings.push_back(warning_line(card.at(t), quote(t.lower) + " (LTspice) is ignored: lcspice runs to TSTOP "
+                                                                   "and writes rows from TSTART"));
       continue;
     }
     if (values.size() == 4) throw NetlistError(card.at(t), "unexpected extra token " + quote(t.text));

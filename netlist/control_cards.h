@@ -36,7 +36,9 @@ DotCard classify_dot_card(const std::string& lower_keyword);
 // Control cards may only appear at the top level.
 bool allowed_in_subcircuit(DotCard kind);
 
-TranSpec parse_tran(const Card& card, const ParamScope& scope);
+// LTspice's flags after the values: `startup` (supplies ramped up from 0 V over 20 us) is read
+// as UIC, a start from rest, with a warning; `steady` and `nodiscard` are warned about and ignored.
+TranSpec parse_tran(const Card& card, const ParamScope& scope, std::vector<std::string>& warnings);
 // .ic and .nodeset: v(node)=value ...
 std::vector<NodeIc> parse_ic(const Card& card, const ParamScope& scope);
 // .print/.plot (`tran` or no analysis name: probes; another analysis: ignored with a warning)

@@ -67,7 +67,7 @@ class Elaborator {
     root.scope = std::make_unique<ParamScope>();
     collect_global_nodes(top);
     expand(root);
-    if (control_tran && !net_.tran) net_.tran = parse_tran(*control_tran, *root.scope);
+    if (control_tran && !net_.tran) net_.tran = parse_tran(*control_tran, *root.scope, net_.warnings);
     note_unused_models();
     resolve_couplings();
     resolve_controls();
@@ -160,7 +160,7 @@ class Elaborator {
       case DotCard::Tran:
         if (net_.tran)
           throw NetlistError(card.at(0), "duplicate '.tran' card (first at " + where(net_.tran->loc, card.at(0)) + ")");
-        net_.tran = parse_tran(card, *in.scope);
+        net_.tran = parse_tran(card, *in.scope, net_.warnings);
         if (net_.tran->step_picked)
           net_.warnings.push_back(warning_line(
               card.at(0), "'.tran 0 TSTOP' (LTspice/PSpice): lcspice picks TSTEP = TSTOP/" +

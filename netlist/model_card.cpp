@@ -104,7 +104,7 @@ const char* const kModelTypes[] = {"d", "npn", "pnp", "ltra", "sw", "csw"};
 
 // .model NAME SW(VT= VH= RON= ROFF=) / CSW(IT= IH= RON= ROFF=), ngspice's defaults.
 void read_switch_params(const Card& card, const std::vector<Assignment>& params, const ParamScope& scope,
-                        SwitchModel& sw) {
+                        SwitchModel& sw, std::vector<std::string>& warnings) {
   const char* threshold = sw.current_controlled ? "it" : "vt";
   const char* hysteresis = sw.current_controlled ? "ih" : "vh";
   for (const Assignment& a : params) {
@@ -119,8 +119,16 @@ void read_switch_params(const Card& card, const std::vector<Assignment>& params,
     if (key.lower == threshold) {
       sw.vt = v;
     } else if (key.lower == hysteresis) {
-      check(v >= 0, "not be negative (ngspice's negative hysteresis is not modelled)");
-      sw.vh = v;
+      // Negative: LTspice's smooth passage from ROFF to RON over VT -+ |VH|; ngspice's reversed band
+      // (on when rising past VT - |VH|, off when falling past VT + |VH|). Neither is an ideal
+      // switch; the switch at VT is (a control that crosses the band quickly, as a gate drive
+      // does, switches within |VH| / slope of VT either way).
+      if (v < 0)
+        warnings.push_back(warning_line(at_value, "switch model " + quote(sw.name) + ": negative " +
+                                                      (sw.current_controlled ? "IH" : "VH") +
+                                                      " (LTspice: a smooth passage over VT -+ |VH|; ngspice: a reversed "
+                                                      "band) is modelled as an ideal switch at VT, without hysteresis"));
+      sw.vh = std::max(v, 0.0);
     } else if (key.lower == "ron") {
       check(v > 0, "be positive");
       sw.ron = v;
@@ -227,7 +235,7 @@ ModelCard parse_model_card(const Card& card, const ParamScope& scope, const std:
     m.sw.name = prefix + m.name;
     m.sw.current_controlled = m.type == "csw";
     m.sw.loc = card.at(1);
-    read_switch_params(card, params, scope, m.sw);
+    read_switch_params(card, params, scope, m.sw, warnings);
     return m;
   }
   if (m.type == "ltra") {

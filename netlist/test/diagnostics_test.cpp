@@ -34,9 +34,6 @@ TEST(ParseDiagnostics, SyntaxAndElements) {
       {"t\nV1 c 0 1\nS1 a 0 c 0 m1\n.model m1 CSW(IT=1)\n",
        "t.cir:3:12: error: model 'm1' is not an SW model (it is CSW); S switches take SW models\nS1 a 0 c 0 m1\n"
        "           ^~"},
-      {"t\n.model m1 SW(VH=-1)\n",
-       "t.cir:2:17: error: switch parameter 'vh' must not be negative (ngspice's negative hysteresis is not "
-       "modelled)\n.model m1 SW(VH=-1)\n                ^~"},
       {"t\nV1 c 0 1\nW1 a 0 v1 m1 maybe\n.model m1 CSW\n",
        "t.cir:3:14: error: unexpected extra token 'maybe'\nW1 a 0 v1 m1 maybe\n             ^~~~~"},
       {"t\n( a b\n", "t.cir:2:1: error: expected an element or a control card, got '('\n( a b\n^"},

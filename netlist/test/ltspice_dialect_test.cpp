@@ -87,6 +87,22 @@ TEST(LtspiceDialect, ParasiticsAnElementDoesNotTakeAreRefusedWithTheRemedy) {
             "t.cir:2:11: error: unknown parameter 'foo' for 'v1'\nV1 in 0 5 foo=1\n          ^~~");
 }
 
+// LTspice's .tran flags: `startup` ramps the supplies up from 0 V over 20 us; read as UIC (a
+// start from rest), with a warning saying so. `steady` and `nodiscard` change nothing here.
+TEST(LtspiceDialect, TranFlagsStartupSteadyNodiscard) {
+  const Netlist n = test::parse("t\nV1 a 0 5\nR1 a b 1k\nC1 b 0 1u\n.tran 0 1m 0 startup steady nodiscard\n");
+  ASSERT_TRUE(n.tran.has_value());
+  EXPECT_TRUE(n.tran->uic);
+  EXPECT_DOUBLE_EQ(n.tran->tstop, 1e-3);
+  ASSERT_EQ(n.warnings.size(), 4u);
+  EXPECT_EQ(n.warnings[0], "t.cir:5:14: warning: 'startup' (LTspice: the supplies ramped up from 0 V over the first "
+                           "20 us) is read as UIC: the run starts from rest with the sources at their values");
+  EXPECT_EQ(n.warnings[1], "t.cir:5:22: warning: 'steady' (LTspice) is ignored: lcspice runs to TSTOP and writes rows "
+                           "from TSTART");
+  EXPECT_EQ(n.warnings[2], "t.cir:5:29: warning: 'nodiscard' (LTspice) is ignored: lcspice runs to TSTOP and writes "
+                           "rows from TSTART");
+}
+
 TEST(LtspiceDialect, SweepsAreRefusedByName) {
   EXPECT_EQ(test::diag("t\nR1 a 0 {r}\n.param r=1k\n.step param r 1k 10k 1k\n"),
             "t.cir:4:1: error: '.step' (parameter sweeps, LTspice/PSpice) is not supported: lcspice runs one "

@@ -113,5 +113,17 @@ TEST(NgspiceDialect, GroundPortIsGroundInsideWithAWarning) {
                            "whatever an instance connects there");
 }
 
+// A negative VH (LTspice: a smooth passage; ngspice: a reversed band) is the ideal switch at VT,
+// with a warning at the value.
+TEST(NgspiceDialect, NegativeSwitchHysteresisIsTheIdealSwitchAtVtWithAWarning) {
+  const Netlist n = test::parse("t\nV1 c 0 1\nS1 a 0 c 0 m1\nR1 a 0 1\n.model m1 SW(VT=0.5 VH=-0.4 RON=0.1)\n");
+  const SwitchModel& m = n.switch_models.at("m1");
+  EXPECT_EQ(m.vt, 0.5);
+  EXPECT_EQ(m.vh, 0.0);
+  ASSERT_EQ(n.warnings.size(), 1u);
+  EXPECT_EQ(n.warnings[0], "t.cir:5:24: warning: switch model 'm1': negative VH (LTspice: a smooth passage over VT -+ "
+                           "|VH|; ngspice: a reversed band) is modelled as an ideal switch at VT, without hysteresis");
+}
+
 }  // namespace
 }  // namespace lcs
