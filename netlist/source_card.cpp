@@ -1,6 +1,7 @@
 #include "netlist/source_card.h"
 
 #include <cmath>
+#include <optional>
 
 #include "netlist/number.h"
 
@@ -40,6 +41,9 @@ Waveform parse_source_waveform(const Card& card, std::size_t first, const ParamS
                                double* multiplier, InstanceParasitics* parasitics) {
   Waveform w;
   bool have_dc = false, have_function = false;
+  double pwl_td = 0;
+  std::optional<double> pwl_repeat;
+  std::size_t pwl_repeat_at = 0;
   const std::size_t n = card.size();
   std::size_t i = first;
   while (i < n) {
@@ -67,14 +71,18 @@ Waveform parse_source_waveform(const Card& card, std::size_t first, const ParamS
       i += 3;
       continue;
     }
-    // ngspice's PWL options after the list: TD=delay shifts every time point; R=time repeats.
+    // ngspice's PWL options after the list, in either order: TD=delay shifts every time point;
+    // R=time repeats the stretch from that time point to the last (applied after the loop).
     if (have_function && w.kind == Waveform::Kind::Pwl && (t.is_word("td") || t.is_word("r")) && i + 1 < n &&
         card[i + 1].is(Token::Kind::Equals)) {
-      if (t.is_word("r"))
-        throw NetlistError(card.at(t), "pwl repetition 'r=' of " + quote(name) + " is not supported (write the periods out)");
-      if (i + 2 >= n) throw NetlistError(card.after_last(), "missing value for 'td'");
-      const double td = value_of(card, i + 2, scope);
-      for (std::size_t k = 0; k < w.params.size(); k += 2) w.params[k] += td;
+      if (i + 2 >= n) throw NetlistError(card.after_last(), "missing value for " + quote(t.lower));
+      const double v = value_of(card, i + 2, scope);
+      if (t.is_word("td")) {
+        pwl_td = v;
+      } else {
+        pwl_repeat = v;
+        pwl_repeat_at = i + 2;
+      }
       i += 3;
       continue;
     }
@@ -179,6 +187,17 @@ Waveform parse_source_waveform(const Card& card, std::size_t first, const ParamS
   }
   if (!have_dc && !have_function)
     warnings.push_back(warning_line(card.at(0), quote(name) + " has no value, DC 0 assumed"));
+  if (pwl_repeat) {
+    const double r = *pwl_repeat;
+    bool found = false;
+    for (std::size_t k = 0; k + 2 < w.params.size(); k += 2)  // not the last point: a period of 0
+      found = found || std::fabs(w.params[k] - r) <= 1e-12 * std::max(std::fabs(r), std::fabs(w.params[k]));
+    if (!found)
+      throw NetlistError(card.at(pwl_repeat_at), "pwl repeat time r=" + card[pwl_repeat_at].text + " of " +
+                                                     quote(name) + " must be one of its time points before the last");
+    w.repeat_from = r + pwl_td;
+  }
+  for (std::size_t k = 0; pwl_td != 0 && k < w.params.size(); k += 2) w.params[k] += pwl_td;
   return w;
 }
 

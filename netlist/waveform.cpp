@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <optional>
 
 namespace lcs {
 namespace {
@@ -151,6 +152,71 @@ Knots pwl_knots(const std::vector<double>& p) {
   Knots k;
   for (std::size_t i = 0; i + 1 < p.size(); i += 2) k.push_back({p[i], p[i + 1]});
   return k;
+}
+
+// PWL with ngspice's `r=` (vsrcload.c): from its last time point on, the waveform repeats the
+// stretch from the time point r to the last one, period last - r. That stretch, as a periodic
+// shape whose phase 0 is at the last point (td = last, never ending); nullopt without a repeat
+// (or a stretch of zero length). Before the last point the PWL is as written.
+std::optional<PulseShape> pwl_repeat(const std::vector<double>& p, double from) {
+  if (from < 0 || p.size() < 4) return std::nullopt;
+  const Knots k = pwl_knots(p);
+  const double last = k.back().t, per = last - from;
+  if (!(per > 0)) return std::nullopt;
+  PulseShape s;
+  s.td = last;
+  s.per = per;
+  Knots full;
+  for (const Knot& n : k)
+    if (n.t >= from) full.push_back({n.t - from, n.v});
+  for (const Knot& n : full)
+    if (n.t < per) s.knots.push_back(n);
+  s.knots.push_back({per, pl_left(full, per)});
+  s.v1 = s.knots.front().v;
+  return s;
+}
+
+// Bounds over [a, b] of a periodic shape from its phase 0 at s.td on (a >= s.td).
+void periodic_range(const PulseShape& s, double a, double b, double& lo, double& hi) {
+  auto take = [&](double v) {
+    lo = std::min(lo, v);
+    hi = std::max(hi, v);
+  };
+  double start, tau_a;
+  pulse_phase(s, a, start, tau_a);
+  if (s.per <= 0) {
+    pl_range(s.knots, tau_a, b - s.td, lo, hi);
+  } else if (b - a >= s.per) {
+    for (const Knot& n : s.knots) take(n.v);  // a whole period is covered
+  } else {
+    double tau_b = tau_a + (b - a);
+    if (tau_b <= s.per) {
+      pl_range(s.knots, tau_a, tau_b, lo, hi);
+    } else {
+      pl_range(s.knots, tau_a, s.per, lo, hi);
+      pl_range(s.knots, 0.0, tau_b - s.per, lo, hi);
+    }
+  }
+}
+
+// The corners of a periodic shape in (t0, t1), from its phase 0 at s.td on, to `add`.
+template <typename Add>  // Add: bool(double), false once it takes no more
+void periodic_breakpoints(const PulseShape& s, double t0, double t1, std::size_t limit, const Add& add) {
+  if (s.per <= 0) {
+    for (const Knot& n : s.knots) add(s.td + n.t);
+    return;
+  }
+  std::vector<double> corners;
+  for (const Knot& n : s.knots)
+    if (n.t < s.per && (corners.empty() || corners.back() != n.t)) corners.push_back(n.t);
+  double kfirst = std::max(0.0, std::floor((t0 - s.td) / s.per));
+  double klast = std::ceil((t1 - s.td) / s.per);
+  if (!std::isfinite(kfirst) || !std::isfinite(klast) || klast < kfirst) return;  // no period in [t0, t1]
+  // An integer count, so a period tiny against t (k beyond 2^53) cannot loop forever.
+  const double periods = std::min(klast - kfirst, static_cast<double>(limit));
+  for (long long j = 0; j <= static_cast<long long>(periods); ++j)
+    for (double c : corners)
+      if (!add(s.td + (kfirst + static_cast<double>(j)) * s.per + c)) return;
 }
 
 // SIN: VO + VA exp(-THETA tau) sin(2 pi FREQ tau + PHASE), tau = t - TD >= 0.
@@ -326,6 +392,11 @@ double Waveform::value(double t) const {
       return pl_value(s.knots, tau);
     }
     case Kind::Pwl:
+      if (const std::optional<PulseShape> r = pwl_repeat(params, repeat_from); r && t >= r->td) {
+        double start, tau;
+        pulse_phase(*r, t, start, tau);
+        return pl_value(r->knots, tau);
+      }
       return pl_value(pwl_knots(params), t);
     case Kind::Exp:
       return ExpShape(params).value(t);
@@ -358,6 +429,11 @@ double Waveform::value_before(double t) const {
       return pl_left(s.knots, tau);
     }
     case Kind::Pwl:
+      if (const std::optional<PulseShape> r = pwl_repeat(params, repeat_from); r && t > r->td) {
+        double start, tau;
+        pulse_phase(*r, t, start, tau);
+        return pl_left(r->knots, tau == 0 ? r->per : tau);
+      }
       return pl_left(pwl_knots(params), t);
     case Kind::Exp:
       return ExpShape(params).value_before(t);
@@ -390,6 +466,11 @@ double Waveform::derivative(double t) const {
       return pl_slope(s.knots, tau);
     }
     case Kind::Pwl:
+      if (const std::optional<PulseShape> r = pwl_repeat(params, repeat_from); r && t >= r->td) {
+        double start, tau;
+        pulse_phase(*r, t, start, tau);
+        return pl_slope(r->knots, tau);
+      }
       return pl_slope(pwl_knots(params), t);
     case Kind::Exp:
       return ExpShape(params).derivative(t);
@@ -419,30 +500,22 @@ std::pair<double, double> Waveform::range(double t0, double t1) const {
     case Kind::Dc:
       take(dc);
       break;
-    case Kind::Pwl:
-      pl_range(pwl_knots(params), t0, t1, lo, hi);
+    case Kind::Pwl: {
+      const std::optional<PulseShape> r = pwl_repeat(params, repeat_from);
+      if (!r || t1 < r->td) {
+        pl_range(pwl_knots(params), t0, t1, lo, hi);
+        break;
+      }
+      if (t0 < r->td) pl_range(pwl_knots(params), t0, r->td, lo, hi);
+      periodic_range(*r, std::max(t0, r->td), t1, lo, hi);
       break;
+    }
     case Kind::Pulse: {
       PulseShape s = pulse_shape(params);
       if (t0 < s.td || s.over(t1)) take(s.v1);
       t1 = std::min(t1, s.end);
       if (t1 < s.td || t0 > t1) break;
-      double a = std::max(t0, s.td);
-      double start, tau_a;
-      pulse_phase(s, a, start, tau_a);
-      if (s.per <= 0) {
-        pl_range(s.knots, tau_a, t1 - s.td, lo, hi);
-      } else if (t1 - a >= s.per) {
-        for (const Knot& n : s.knots) take(n.v);  // a whole period is covered
-      } else {
-        double tau_b = tau_a + (t1 - a);
-        if (tau_b <= s.per) {
-          pl_range(s.knots, tau_a, tau_b, lo, hi);
-        } else {
-          pl_range(s.knots, tau_a, s.per, lo, hi);
-          pl_range(s.knots, 0.0, tau_b - s.per, lo, hi);
-        }
-      }
+      periodic_range(s, std::max(t0, s.td), t1, lo, hi);
       break;
     }
     case Kind::Sin: {
@@ -520,6 +593,7 @@ std::vector<double> Waveform::breakpoints(double t0, double t1) const {
   if (t1 < t0) std::swap(t0, t1);
   auto add = [&](double t) {
     if (t > t0 && t < t1 && out.size() < kMaxBreakpoints) out.push_back(t);
+    return out.size() < kMaxBreakpoints;
   };
   switch (kind) {
     case Kind::Dc:
@@ -541,26 +615,15 @@ std::vector<double> Waveform::breakpoints(double t0, double t1) const {
       break;
     case Kind::Pwl:
       for (const Knot& n : pwl_knots(params)) add(n.t);
+      if (const std::optional<PulseShape> r = pwl_repeat(params, repeat_from))
+        periodic_breakpoints(*r, t0, t1, kMaxBreakpoints, add);
       break;
     case Kind::Pulse: {
       PulseShape s = pulse_shape(params);
       add(s.td);
       add(s.end);
-      t1 = std::min(t1, s.end);
-      if (s.per <= 0) {
-        for (const Knot& n : s.knots) add(s.td + n.t);
-        break;
-      }
-      std::vector<double> corners;
-      for (const Knot& n : s.knots)
-        if (n.t < s.per && (corners.empty() || corners.back() != n.t)) corners.push_back(n.t);
-      double kfirst = std::max(0.0, std::floor((t0 - s.td) / s.per));
-      double klast = std::ceil((t1 - s.td) / s.per);
-      if (!std::isfinite(kfirst) || !std::isfinite(klast) || klast < kfirst) break;  // no period in [t0, t1]
-      // An integer count, so a period tiny against t (k beyond 2^53) cannot loop forever.
-      const double periods = std::min(klast - kfirst, static_cast<double>(kMaxBreakpoints));
-      for (long long j = 0; j <= static_cast<long long>(periods) && out.size() < kMaxBreakpoints; ++j)
-        for (double c : corners) add(s.td + (kfirst + static_cast<double>(j)) * s.per + c);
+      t1 = std::min(t1, s.end);  // `add` reads it: no corner after the train
+      periodic_breakpoints(s, t0, t1, kMaxBreakpoints, add);
       break;
     }
   }
@@ -593,6 +656,7 @@ std::string Waveform::describe() const {
       break;
     case Kind::Pwl:
       list("PWL", params.size());
+      if (repeat_from >= 0) out += " r=" + fmt(repeat_from);
       break;
     case Kind::Exp:
       list("EXP", params.size());

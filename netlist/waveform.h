@@ -14,12 +14,15 @@ struct Waveform {
   // Parameters as written, in SPICE order; missing trailing ones are filled by resolve().
   //   SIN(VO VA FREQ TD THETA PHASE)   PHASE in degrees
   //   PULSE(V1 V2 TD TR TF PW PER [NP])  NP > 0: that many pulses, then V1 (ngspice 39, LTspice)
-  //   PWL(t1 v1 t2 v2 ...)             times non-decreasing
+  //   PWL(t1 v1 t2 v2 ...) [r=T]       times non-decreasing; r=: repeat from the time point T on
   //   EXP(V1 V2 TD1 TAU1 TD2 TAU2)
   //   SFFM(VO VA FC MDI FS TD PHASEM PHASEC)     VO + VA sin(2 pi FC tau + PHASEC + MDI sin(2 pi FS tau + PHASEM))
   //   AM(VO VMO VMA FM FC TD PHASEM PHASEC)      VO + (VMO + VMA sin(2 pi FM tau + PHASEM)) sin(2 pi FC tau + PHASEC)
   //   (SFFM and AM: tau = t - TD, the value 0 before TD; phases in degrees)
   std::vector<double> params;
+  // PWL `r=T` (ngspice): after its last point the stretch from the point at time T to the last
+  // repeats (T is one of the points, the TD= shift included); negative: no repeat.
+  double repeat_from = -1;
   bool resolved = false;
   int written = -1;            // how many params the card wrote (set by the first resolve())
 

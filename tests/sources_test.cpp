@@ -213,6 +213,25 @@ TEST(PulseSource, CountOfPulsesAgreesWithNgspice) {
   }
 }
 
+// ngspice's PWL r= with td=: the stretch from 1 ms to 2.5 ms (a ramp down from 1 V, then 0 V)
+// repeats from 2.7 ms on (shifted by TD), jumping back to 1 V each 1.5 ms; ngspice repeats it too.
+TEST(PwlSource, RepeatAgreesWithNgspice) {
+  const fs::path dir = scratch_dir("pwl_repeat_validate");
+  std::ofstream(dir / "pwl.cir") << "pwl repeat\nV1 a 0 PWL(0 0 1m 1 2m 0 2.5m 0) r=1m td=0.2m\nR1 a b 1k\n"
+                                    "C1 b 0 1u\n.tran 10u 10m\n.end\n";
+  Result r = run_lcspice("validate '" + (dir / "pwl.cir").string() + "' --tol 1e-3", dir);
+  EXPECT_EQ(r.code, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("PASS: every probe within"), std::string::npos) << r.out;
+  Csv csv = run_csv(dir / "pwl.cir", "");
+  for (const std::vector<double>& row : csv.rows) {
+    const double t = row[0];
+    if (t < 2.7e-3) continue;
+    double tau = std::fmod(t - 2.7e-3, 1.5e-3);  // 0 at 1.2 ms of the written list
+    if (tau > 1.5e-3 - 1e-12) tau = 0;           // a row at a wrap: the value after the jump
+    EXPECT_NEAR(row[1], tau < 1e-3 ? 1 - tau / 1e-3 : 0.0, 1e-9) << t;
+  }
+}
+
 TEST(SffmSource, AgreesWithNgspiceThroughItsJumpAtTd) {
   const fs::path dir = scratch_dir("sffm_validate");
   std::ofstream(dir / "fm.cir") << "fm\nV2 in 0 SFFM(0.1 2 10k 0.5 200 0.1m 30 60)\nR2 in 0 1k\n.tran 1u 1m\n.end\n";

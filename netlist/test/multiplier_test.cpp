@@ -77,9 +77,23 @@ TEST(ParseSources, PwlDelayShiftsEveryTimePoint) {
   EXPECT_DOUBLE_EQ(p[0], 2e-3);
   EXPECT_DOUBLE_EQ(p[2], 3e-3);
   EXPECT_EQ(p[3], 1.0);
-  EXPECT_EQ(test::diag("t\nV1 a 0 PWL(0 0 1m 1) r=0\nR1 a 0 1\n"),
-            "t.cir:2:22: error: pwl repetition 'r=' of 'v1' is not supported (write the periods out)\n"
-            "V1 a 0 PWL(0 0 1m 1) r=0\n                     ^");
+}
+
+// ngspice's PWL repeat, r= a time point (before TD= shifts it, in either order on the card).
+TEST(ParseSources, PwlRepeatNamesATimePoint) {
+  for (const char* options : {"r=1m td=2m", "td=2m r=1m"}) {
+    Netlist n = parse(std::string("t\nV1 a 0 PWL(0 0 1m 1 3m 0) ") + options + "\nR1 a 0 1\n");
+    const Waveform& w = element(n, "v1").waveform;
+    EXPECT_DOUBLE_EQ(w.params[0], 2e-3) << options;
+    EXPECT_DOUBLE_EQ(w.repeat_from, 3e-3) << options;
+    EXPECT_DOUBLE_EQ(w.value(5e-3 + 1e-3), 0.5) << options;  // one period (2 ms) after 4 ms
+  }
+  EXPECT_EQ(test::diag("t\nV1 a 0 PWL(0 0 1m 1) r=0.5m\nR1 a 0 1\n"),
+            "t.cir:2:24: error: pwl repeat time r=0.5m of 'v1' must be one of its time points before the last\n"
+            "V1 a 0 PWL(0 0 1m 1) r=0.5m\n                       ^~~~");
+  EXPECT_EQ(test::diag("t\nV1 a 0 PWL(0 0 1m 1) r=1m\nR1 a 0 1\n"),
+            "t.cir:2:24: error: pwl repeat time r=1m of 'v1' must be one of its time points before the last\n"
+            "V1 a 0 PWL(0 0 1m 1) r=1m\n                       ^~");
 }
 
 TEST(ParseSources, SffmModulationIndexAboveFcOverFsIsLimitedWithAWarning) {

@@ -310,6 +310,33 @@ TEST(WaveformPwl, ValuesJumpsAndEnds) {
   EXPECT_EQ(w.describe(), "PWL(0 0 1 1 1 3 2 3 3 0)");
 }
 
+// PWL(0 0 1 2 3 0 4 1) r=1 (ngspice): as written to t = 4, then the stretch from t = 1 to 4
+// (period 3) again and again: 2 at 4+ (a jump from 1), 0 at 6, 1 at 7-, 2 at 7.
+TEST(WaveformPwl, RepeatFromATimePoint) {
+  Waveform w = make(Waveform::Kind::Pwl, {0, 0, 1, 2, 3, 0, 4, 1});
+  w.repeat_from = 1;
+  EXPECT_DOUBLE_EQ(w.value(0.5), 1);
+  EXPECT_DOUBLE_EQ(w.value(3.5), 0.5);
+  EXPECT_DOUBLE_EQ(w.value_before(4), 1);
+  EXPECT_DOUBLE_EQ(w.value(4), 2);
+  EXPECT_DOUBLE_EQ(w.value(5), 1);
+  EXPECT_DOUBLE_EQ(w.value(6), 0);
+  EXPECT_DOUBLE_EQ(w.value(6.5), 0.5);
+  EXPECT_DOUBLE_EQ(w.value_before(7), 1);
+  EXPECT_DOUBLE_EQ(w.value(7), 2);
+  EXPECT_NEAR(w.value(3001 + 0.5), 1.5, 1e-9);  // 1000 periods on
+  EXPECT_DOUBLE_EQ(w.derivative(4.5), -1);
+  EXPECT_DOUBLE_EQ(w.derivative(6), 1);
+  expect_times(w.breakpoints(0, 8), {1, 3, 4, 6, 7});
+  auto r = w.range(4.5, 5.5);
+  EXPECT_DOUBLE_EQ(r.first, 0.5);
+  EXPECT_DOUBLE_EQ(r.second, 1.5);
+  r = w.range(3.5, 100);
+  EXPECT_DOUBLE_EQ(r.first, 0);
+  EXPECT_DOUBLE_EQ(r.second, 2);
+  EXPECT_EQ(w.describe(), "PWL(0 0 1 2 3 0 4 1) r=1");
+}
+
 TEST(WaveformPwl, ConstantBeforeFirstPoint) {
   Waveform w = make(Waveform::Kind::Pwl, {1, 2, 3, 4});
   EXPECT_EQ(w.value(0), 2);

@@ -42,17 +42,22 @@ void check_finite_inputs(const Netlist& netlist, const InputProvider& inputs, do
   for (int k = 1; k < inputs.size(); ++k) {
     const InputSignal& s = inputs[k];
     if (s.history >= 0) continue;  // a line's wave: the circuit's own values, checked as they come
-    // A PULSE train repeats its corners and stays within its levels: its first and last
-    // thousandth of [0, t1], at most its delay and four periods, are the evidence (all 1e7
-    // corners of a .tran of 1e7 periods made this check cost seconds, and a thousandth of 2e13
-    // periods, TSTOP 1 G s at 50 us, 36 s in the instrumented build; both found by
-    // operating_point_fuzz).
+    // A PULSE train (or a repeating PWL) repeats its corners and stays within its levels: its
+    // first and last thousandth of [0, t1], at most its delay and four periods, are the evidence
+    // (all 1e7 corners of a .tran of 1e7 periods made this check cost seconds, and a thousandth
+    // of 2e13 periods, TSTOP 1 G s at 50 us, 36 s in the instrumented build; both found by
+    // operating_point_fuzz). A repeating PWL's whole written list is read (its repeats start at
+    // its last point).
     std::vector<double> times;
-    if (s.waveform.kind == Waveform::Kind::Pulse && t1 > 0) {
-      const std::vector<double>& p = s.waveform.params;  // resolved: TD is p[2], PER p[6]
-      const double per = p.size() > 6 && p[6] > 0 ? p[6] : INFINITY;
-      const double td = p.size() > 2 ? std::max(0.0, p[2]) : 0.0;
-      const double first = std::min(t1 / 1024, td + 4 * per), last = std::min(t1 / 1024, 4 * per);
+    const Waveform& w = s.waveform;
+    const bool repeating_pwl = w.kind == Waveform::Kind::Pwl && w.repeat_from >= 0 && w.params.size() >= 4;
+    if ((w.kind == Waveform::Kind::Pulse || repeating_pwl) && t1 > 0) {
+      const std::vector<double>& p = w.params;  // resolved: TD is p[2], PER p[6]
+      const double end_point = repeating_pwl ? p[p.size() - 2] : 0.0;
+      const double per = repeating_pwl ? end_point - w.repeat_from : p.size() > 6 && p[6] > 0 ? p[6] : INFINITY;
+      const double td = repeating_pwl ? std::max(0.0, end_point) : p.size() > 2 ? std::max(0.0, p[2]) : 0.0;
+      const double first = repeating_pwl ? std::min(t1, td + 4 * per) : std::min(t1 / 1024, td + 4 * per);
+      const double last = std::min(t1 / 1024, 4 * per);
       times = s.waveform.breakpoints(0, first);
       for (double t : s.waveform.breakpoints(t1 - last, t1)) times.push_back(t);
     } else {
