@@ -67,6 +67,7 @@ class Elaborator {
     root.scope = std::make_unique<ParamScope>();
     collect_global_nodes(top);
     expand(root);
+    check_internal_nodes();
     if (control_tran && !net_.tran) net_.tran = parse_tran(*control_tran, *root.scope, net_.warnings);
     note_unused_models();
     resolve_couplings();
@@ -100,6 +101,18 @@ class Elaborator {
         global_nodes_.insert(t.lower);
       }
     }
+  }
+
+  void check_internal_nodes() const {
+    if (internal_nodes_.empty()) return;
+    for (const Element& e : net_.elements)
+      for (const std::string& node : e.nodes) {
+        auto it = internal_nodes_.find(node);
+        if (it != internal_nodes_.end() && !it->second.count(e.name))
+          throw NetlistError(e.loc, quote(e.name) + " connects to node " + quote(node) +
+                                        ", the internal node lcspice makes for an instance parasitic (Rser=, "
+                                        "Lser=): rename the node");
+      }
   }
 
   void register_name(const std::string& flat, const SourceLocation& loc, const char* what) {
@@ -245,9 +258,16 @@ class Elaborator {
     }
     if (pe.control_token) control_refs_.push_back({index, card.at(pe.control_token)});
     net_.elements.push_back(std::move(pe.element));
+    const std::string owner = net_.elements.back().name;
     for (Element& parasitic : pe.parasitics) {
       register_name(parasitic.name, card.at(0), "element");
       scale_for_parallel_copies(parasitic, in.multiplier);
+      for (const std::string& node : parasitic.nodes)
+        if (node.rfind(owner + "#", 0) == 0) {
+          std::set<std::string>& users = internal_nodes_[node];
+          users.insert(owner);
+          users.insert(parasitic.name);
+        }
       net_.elements.push_back(std::move(parasitic));
     }
   }
@@ -525,6 +545,9 @@ class Elaborator {
   };
   std::vector<UnsimulatedModel> unsimulated_models_;
   std::set<std::string> shorted_;  // elements left out because both terminals are one node
+  // Internal nodes of instance parasitics ("l1#rser") -> the elements that may use them (the
+  // element and its parasitics): a deck's own node of that name is refused (check_internal_nodes).
+  std::map<std::string, std::set<std::string>> internal_nodes_;
 };
 
 }  // namespace

@@ -100,6 +100,7 @@ void define_function(const Card& card, ParamScope& scope) {
     const Token& arg = card[i];
     if (!arg.is_word() || !is_identifier(arg.lower))
       throw NetlistError(card.at(arg), "expected an argument name, got " + quote(arg.text));
+    if (arg.lower == "pi") throw NetlistError(card.at(arg), "cannot name an argument 'pi' (the constant)");
     for (const std::string& p : f.params)
       if (p == arg.lower) throw NetlistError(card.at(arg), "argument " + quote(arg.text) + " named twice");
     f.params.push_back(arg.lower);

@@ -187,15 +187,16 @@ Waveform parse_source_waveform(const Card& card, std::size_t first, const ParamS
   }
   if (!have_dc && !have_function)
     warnings.push_back(warning_line(card.at(0), quote(name) + " has no value, DC 0 assumed"));
-  if (pwl_repeat) {
+  // ngspice (vsrcpar.c) reads r < -0.5 as no repeat (decks pass r=-1 through a parameter).
+  if (pwl_repeat && *pwl_repeat >= -0.5) {
     const double r = *pwl_repeat;
-    bool found = false;
-    for (std::size_t k = 0; k + 2 < w.params.size(); k += 2)  // not the last point: a period of 0
-      found = found || std::fabs(w.params[k] - r) <= 1e-12 * std::max(std::fabs(r), std::fabs(w.params[k]));
-    if (!found)
+    std::optional<double> point;  // the time point r names (the last one would repeat a period of 0)
+    for (std::size_t k = 0; !point && k + 2 < w.params.size(); k += 2)
+      if (std::fabs(w.params[k] - r) <= 1e-12 * std::max(std::fabs(r), std::fabs(w.params[k]))) point = w.params[k];
+    if (!point)
       throw NetlistError(card.at(pwl_repeat_at), "pwl repeat time r=" + card[pwl_repeat_at].text + " of " +
                                                      quote(name) + " must be one of its time points before the last");
-    w.repeat_from = r + pwl_td;
+    w.repeat_from = *point + pwl_td;
   }
   for (std::size_t k = 0; pwl_td != 0 && k < w.params.size(); k += 2) w.params[k] += pwl_td;
   return w;

@@ -158,8 +158,9 @@ Knots pwl_knots(const std::vector<double>& p) {
 // stretch from the time point r to the last one, period last - r. That stretch, as a periodic
 // shape whose phase 0 is at the last point (td = last, never ending); nullopt without a repeat
 // (or a stretch of zero length). Before the last point the PWL is as written.
-std::optional<PulseShape> pwl_repeat(const std::vector<double>& p, double from) {
-  if (from < 0 || p.size() < 4) return std::nullopt;
+std::optional<PulseShape> pwl_repeat(const std::vector<double>& p, std::optional<double> repeat_from) {
+  if (!repeat_from || p.size() < 4) return std::nullopt;
+  const double from = *repeat_from;
   const Knots k = pwl_knots(p);
   const double last = k.back().t, per = last - from;
   if (!(per > 0)) return std::nullopt;
@@ -512,7 +513,7 @@ std::pair<double, double> Waveform::range(double t0, double t1) const {
     }
     case Kind::Pulse: {
       PulseShape s = pulse_shape(params);
-      if (t0 < s.td || s.over(t1)) take(s.v1);
+      if (t0 < s.td || t1 >= s.end) take(s.v1);  // value(end) is V1
       t1 = std::min(t1, s.end);
       if (t1 < s.td || t0 > t1) break;
       periodic_range(s, std::max(t0, s.td), t1, lo, hi);
@@ -656,7 +657,7 @@ std::string Waveform::describe() const {
       break;
     case Kind::Pwl:
       list("PWL", params.size());
-      if (repeat_from >= 0) out += " r=" + fmt(repeat_from);
+      if (repeat_from) out += " r=" + fmt(*repeat_from);
       break;
     case Kind::Exp:
       list("EXP", params.size());

@@ -1,6 +1,7 @@
 // Independent source waveforms with ngspice semantics: DC, SIN, PULSE, PWL, EXP, SFFM, AM.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -21,8 +22,8 @@ struct Waveform {
   //   (SFFM and AM: tau = t - TD, the value 0 before TD; phases in degrees)
   std::vector<double> params;
   // PWL `r=T` (ngspice): after its last point the stretch from the point at time T to the last
-  // repeats (T is one of the points, the TD= shift included); negative: no repeat.
-  double repeat_from = -1;
+  // repeats (T is one of the points, the TD= shift included); none: no repeat.
+  std::optional<double> repeat_from;
   bool resolved = false;
   int written = -1;            // how many params the card wrote (set by the first resolve())
 

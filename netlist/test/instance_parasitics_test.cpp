@@ -73,5 +73,12 @@ TEST(InstanceParasitics, BadValuesPointAtThem) {
             "t.cir:2:18: error: 'rser' given twice for 'c1'\nC1 a 0 1u Rser=1 rser=2\n                 ^~~~");
 }
 
+// A node of the deck that has the name of an internal node would join the parasitic's chain.
+TEST(InstanceParasitics, ADeckNodeNamedLikeAnInternalNodeIsRefused) {
+  EXPECT_EQ(test::diag("t\nV1 in 0 DC 1 Rser=1\nR1 v1#rser 0 1\nR2 in 0 1\n"),
+            "t.cir:3:1: error: 'r1' connects to node 'v1#rser', the internal node lcspice makes for an instance "
+            "parasitic (Rser=, Lser=): rename the node\nR1 v1#rser 0 1\n^~");
+}
+
 }  // namespace
 }  // namespace lcs

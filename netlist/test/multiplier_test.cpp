@@ -85,9 +85,19 @@ TEST(ParseSources, PwlRepeatNamesATimePoint) {
     Netlist n = parse(std::string("t\nV1 a 0 PWL(0 0 1m 1 3m 0) ") + options + "\nR1 a 0 1\n");
     const Waveform& w = element(n, "v1").waveform;
     EXPECT_DOUBLE_EQ(w.params[0], 2e-3) << options;
-    EXPECT_DOUBLE_EQ(w.repeat_from, 3e-3) << options;
+    ASSERT_TRUE(w.repeat_from.has_value()) << options;
+    EXPECT_DOUBLE_EQ(*w.repeat_from, 3e-3) << options;
     EXPECT_DOUBLE_EQ(w.value(5e-3 + 1e-3), 0.5) << options;  // one period (2 ms) after 4 ms
   }
+  // A repeat point below 0 after the shift; r= within rounding of a point repeats from that point;
+  // r=-1 (below -0.5: ngspice's "no repeat").
+  Netlist shifted = parse("t\nV1 a 0 PWL(0 0 1m 1 2m 0) td=-0.5m r=0\nR1 a 0 1\n");
+  EXPECT_DOUBLE_EQ(*element(shifted, "v1").waveform.repeat_from, -0.5e-3);
+  EXPECT_DOUBLE_EQ(element(shifted, "v1").waveform.value(2.5e-3), 1.0);  // 3 ms of the list again
+  Netlist near = parse("t\nV1 a 0 PWL(0 0 1m 1 2m 0 3m 1) r=1.0000000000001m\nR1 a 0 1\n");
+  EXPECT_EQ(*element(near, "v1").waveform.repeat_from, 1e-3);
+  Netlist none = parse("t\nV1 a 0 PWL(0 0 1m 1 2m 0) r=-1\nR1 a 0 1\n");
+  EXPECT_FALSE(element(none, "v1").waveform.repeat_from.has_value());
   EXPECT_EQ(test::diag("t\nV1 a 0 PWL(0 0 1m 1) r=0.5m\nR1 a 0 1\n"),
             "t.cir:2:24: error: pwl repeat time r=0.5m of 'v1' must be one of its time points before the last\n"
             "V1 a 0 PWL(0 0 1m 1) r=0.5m\n                       ^~~~");

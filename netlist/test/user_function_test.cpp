@@ -65,6 +65,8 @@ TEST(UserFunction, ErrorsPointAtTheCallOrTheDefinition) {
             "t.cir:3:9: error: in function 'f' (.func at t.cir:2): functions nested too deeply calling 'f' (does it "
             "call itself?)\nR1 a 0 {f(1)}\n"
             "        ^");
+  EXPECT_EQ(test::diag("t\n.func f(pi) {pi*2}\n"),
+            "t.cir:2:9: error: cannot name an argument 'pi' (the constant)\n.func f(pi) {pi*2}\n        ^~");
   EXPECT_EQ(test::diag("t\n.func sin(x) {x}\n"),
             "t.cir:2:7: error: cannot redefine the built-in function 'sin'\n.func sin(x) {x}\n      ^~~");
   EXPECT_EQ(test::diag("t\n.func f(x, x) {x}\n"),
@@ -73,6 +75,19 @@ TEST(UserFunction, ErrorsPointAtTheCallOrTheDefinition) {
             "t.cir:2:11: error: missing the body of function 'f'\n.func f(x)\n          ^");
   EXPECT_EQ(test::diag("t\n.func f x\n"),
             "t.cir:2:9: error: expected '(' and the argument names after '.func f'\n.func f x\n        ^");
+}
+
+// f_k calls f_(k-1) twice: 2^(k+1) - 1 calls. Up to 100,000 calls an expression is evaluated
+// (15 levels, 65,535 calls); past that it is an error at the call, not minutes of work (30
+// levels would be two billion calls).
+TEST(UserFunction, CallsPerExpressionAreBounded) {
+  std::string deck = "t\n.func f0(x) {x+1}\n";
+  for (int k = 1; k <= 30; ++k)
+    deck += ".func f" + std::to_string(k) + "(x) {f" + std::to_string(k - 1) + "(x)+f" + std::to_string(k - 1) + "(x)}\n";
+  const Netlist n = test::parse(deck + "R1 a 0 {f15(1)}\nV1 a 0 1\n");
+  EXPECT_DOUBLE_EQ(test::element(n, "r1").value, 65536.0);  // 2^15 (1 + 1)
+  EXPECT_EQ(test::diag(deck + "R1 a 0 {f30(1)}\n"),
+            "t.cir:33:9: error: more than 100000 function calls in one expression\nR1 a 0 {f30(1)}\n        ^~~");
 }
 
 }  // namespace

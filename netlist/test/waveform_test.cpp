@@ -337,6 +337,18 @@ TEST(WaveformPwl, RepeatFromATimePoint) {
   EXPECT_EQ(w.describe(), "PWL(0 0 1 2 3 0 4 1) r=1");
 }
 
+// NP = 2.5 ends the train mid-period (at 20 s, in the third pulse's top): V1 at the end is in
+// the range that reaches it.
+TEST(WaveformPulse, RangeToTheEndOfAFractionalTrainHasV1) {
+  Waveform w = make(Waveform::Kind::Pulse, {0, 5, 0, 1, 2, 10, 8, 2.5});
+  EXPECT_EQ(w.value(19), 5);
+  EXPECT_EQ(w.value(20), 0);
+  EXPECT_EQ(w.value_before(20), 5);
+  const auto r = w.range(19, 20);
+  EXPECT_EQ(r.first, 0);
+  EXPECT_EQ(r.second, 5);
+}
+
 TEST(WaveformPwl, ConstantBeforeFirstPoint) {
   Waveform w = make(Waveform::Kind::Pwl, {1, 2, 3, 4});
   EXPECT_EQ(w.value(0), 2);

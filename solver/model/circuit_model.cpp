@@ -50,11 +50,11 @@ void check_finite_inputs(const Netlist& netlist, const InputProvider& inputs, do
     // its last point).
     std::vector<double> times;
     const Waveform& w = s.waveform;
-    const bool repeating_pwl = w.kind == Waveform::Kind::Pwl && w.repeat_from >= 0 && w.params.size() >= 4;
+    const bool repeating_pwl = w.kind == Waveform::Kind::Pwl && w.repeat_from && w.params.size() >= 4;
     if ((w.kind == Waveform::Kind::Pulse || repeating_pwl) && t1 > 0) {
       const std::vector<double>& p = w.params;  // resolved: TD is p[2], PER p[6]
       const double end_point = repeating_pwl ? p[p.size() - 2] : 0.0;
-      const double per = repeating_pwl ? end_point - w.repeat_from : p.size() > 6 && p[6] > 0 ? p[6] : INFINITY;
+      const double per = repeating_pwl ? end_point - *w.repeat_from : p.size() > 6 && p[6] > 0 ? p[6] : INFINITY;
       const double td = repeating_pwl ? std::max(0.0, end_point) : p.size() > 2 ? std::max(0.0, p[2]) : 0.0;
       const double first = repeating_pwl ? std::min(t1, td + 4 * per) : std::min(t1 / 1024, td + 4 * per);
       const double last = std::min(t1 / 1024, 4 * per);
