@@ -58,6 +58,20 @@ const Function kFunctions[] = {
      }},
 };
 
+const Function* find_builtin(const std::string& lower) {
+  for (const Function& fn : kFunctions)
+    if (lower == fn.name) return &fn;
+  return nullptr;
+}
+
+// One level of user-function calls, undone however the call ends.
+struct CallLevel {
+  CallLevel() { ++call_depth; }
+  ~CallLevel() { --call_depth; }
+  CallLevel(const CallLevel&) = delete;
+  CallLevel& operator=(const CallLevel&) = delete;
+};
+
 bool is_name_start(char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '_'; }
 bool is_name_char(char c) { return is_name_start(c) || (c >= '0' && c <= '9'); }
 
@@ -278,9 +292,7 @@ class Evaluator {
   }
 
   double call(const std::string& name, const std::string& written, std::size_t start) {
-    const Function* f = nullptr;
-    for (const Function& fn : kFunctions)
-      if (name == fn.name) f = &fn;
+    const Function* f = find_builtin(name);
     const UserFunction* user = f || !functions_ ? nullptr : functions_(name);
     if (user) return call_user(*user, written, start);
     if (!f) fail(start, written.size(), "unknown function " + quote(written));
@@ -312,22 +324,15 @@ class Evaluator {
         if (user.params[k] == n) return args[k];
       return lookup_(n);
     };
-    ++call_depth;
-    double v = 0;
+    CallLevel level;
     try {
-      v = Evaluator(user.body, bound, functions_, depth_ + 1).run();
+      return Evaluator(user.body, bound, functions_, depth_ + 1).run();
     } catch (const ExpressionError& e) {
-      --call_depth;
       // Said once, at the outermost call: an error inside nested bodies, or the call budget.
       if (e.message.rfind("in function ", 0) == 0 || e.message.rfind("more than ", 0) == 0)
         fail(start, written.size(), e.message);
       fail(start, written.size(), "in function " + quote(written) + " (.func at " + user.defined_at + "): " + e.message);
-    } catch (...) {
-      --call_depth;
-      throw;
     }
-    --call_depth;
-    return v;
   }
 
   std::string_view s_;
@@ -339,11 +344,7 @@ class Evaluator {
 
 }  // namespace
 
-bool is_builtin_function(const std::string& lower) {
-  for (const Function& fn : kFunctions)
-    if (lower == fn.name) return true;
-  return false;
-}
+bool is_builtin_function(const std::string& lower) { return find_builtin(lower) != nullptr; }
 
 double evaluate_expression(std::string_view text, const Lookup& lookup, const FunctionLookup& functions) {
   if (call_depth == 0) calls = 0;  // an expression of the deck, not one inside a function body

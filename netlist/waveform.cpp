@@ -119,25 +119,18 @@ PulseShape pulse_shape(const std::vector<double>& p) {
   return s;
 }
 
-// Splits t >= td into (period index, phase in [0, per)). Phases within a few ulps of a knot (or of
-// the period end) are snapped onto it, so breakpoints computed as td + k*per + knot land exactly on
-// the corner and a jump there yields its right value.
-void pulse_phase(const PulseShape& s, double t, double& period_start, double& tau) {
-  double x = t - s.td;
-  if (s.per <= 0) {
-    period_start = s.td;
-    tau = x;
-  } else {
-    double k = std::floor(x / s.per);
+// The phase of t >= td in its period, in [0, per) (t - td for a single pulse). Phases within a
+// few ulps of a knot (or of the period end) are snapped onto it, so breakpoints computed as
+// td + k*per + knot land exactly on the corner and a jump there yields its right value.
+double pulse_phase(const PulseShape& s, double t) {
+  double tau = t - s.td;
+  if (s.per > 0) {
+    double k = std::floor(tau / s.per);
     if (!std::isfinite(k)) k = 0;  // a period too small to divide by: no meaningful phase
-    tau = x - k * s.per;
+    tau -= k * s.per;
     double tol = 64 * DBL_EPSILON * std::max({std::fabs(t), std::fabs(s.td), s.per});
-    if (tau >= s.per - tol) {
-      k += 1;
-      tau = 0;
-    }
+    if (tau >= s.per - tol) tau = 0;
     if (!(tau >= 0)) tau = 0;  // also NaN
-    period_start = s.td + k * s.per;
   }
   double tol = 64 * DBL_EPSILON * std::max({std::fabs(t), std::fabs(s.td), s.per});
   for (const Knot& n : s.knots)
@@ -146,6 +139,7 @@ void pulse_phase(const PulseShape& s, double t, double& period_start, double& ta
       break;
     }
   if (tau < 0) tau = 0;
+  return tau;
 }
 
 Knots pwl_knots(const std::vector<double>& p) {
@@ -183,8 +177,7 @@ void periodic_range(const PulseShape& s, double a, double b, double& lo, double&
     lo = std::min(lo, v);
     hi = std::max(hi, v);
   };
-  double start, tau_a;
-  pulse_phase(s, a, start, tau_a);
+  const double tau_a = pulse_phase(s, a);
   if (s.per <= 0) {
     pl_range(s.knots, tau_a, b - s.td, lo, hi);
   } else if (b - a >= s.per) {
@@ -388,16 +381,11 @@ double Waveform::value(double t) const {
     case Kind::Pulse: {
       PulseShape s = pulse_shape(params);
       if (t < s.td || t >= s.end) return s.v1;  // at `end` itself: the train is over
-      double start, tau;
-      pulse_phase(s, t, start, tau);
-      return pl_value(s.knots, tau);
+      return pl_value(s.knots, pulse_phase(s, t));
     }
     case Kind::Pwl:
-      if (const std::optional<PulseShape> r = pwl_repeat(params, repeat_from); r && t >= r->td) {
-        double start, tau;
-        pulse_phase(*r, t, start, tau);
-        return pl_value(r->knots, tau);
-      }
+      if (const std::optional<PulseShape> r = pwl_repeat(params, repeat_from); r && t >= r->td)
+        return pl_value(r->knots, pulse_phase(*r, t));
       return pl_value(pwl_knots(params), t);
     case Kind::Exp:
       return ExpShape(params).value(t);
@@ -423,17 +411,15 @@ double Waveform::value_before(double t) const {
     case Kind::Pulse: {
       PulseShape s = pulse_shape(params);
       if (t <= s.td || s.over(t)) return s.v1;
-      double start, tau;
-      pulse_phase(s, t, start, tau);
+      const double tau = pulse_phase(s, t);
       // At the start of a period (other than the first) the left limit is the previous period's end.
       if (tau == 0) return s.per > 0 ? pl_left(s.knots, s.per) : s.v1;
       return pl_left(s.knots, tau);
     }
     case Kind::Pwl:
       if (const std::optional<PulseShape> r = pwl_repeat(params, repeat_from); r && t > r->td) {
-        double start, tau;
-        pulse_phase(*r, t, start, tau);
-        return pl_left(r->knots, tau == 0 ? r->per : tau);
+        const double tau = pulse_phase(*r, t);
+        return pl_left(r->knots, tau == 0 ? r->per : tau);  // at a period's start: the last one's end
       }
       return pl_left(pwl_knots(params), t);
     case Kind::Exp:
@@ -462,16 +448,11 @@ double Waveform::derivative(double t) const {
     case Kind::Pulse: {
       PulseShape s = pulse_shape(params);
       if (t < s.td || t >= s.end) return 0.0;
-      double start, tau;
-      pulse_phase(s, t, start, tau);
-      return pl_slope(s.knots, tau);
+      return pl_slope(s.knots, pulse_phase(s, t));
     }
     case Kind::Pwl:
-      if (const std::optional<PulseShape> r = pwl_repeat(params, repeat_from); r && t >= r->td) {
-        double start, tau;
-        pulse_phase(*r, t, start, tau);
-        return pl_slope(r->knots, tau);
-      }
+      if (const std::optional<PulseShape> r = pwl_repeat(params, repeat_from); r && t >= r->td)
+        return pl_slope(r->knots, pulse_phase(*r, t));
       return pl_slope(pwl_knots(params), t);
     case Kind::Exp:
       return ExpShape(params).derivative(t);
