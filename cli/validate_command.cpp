@@ -574,7 +574,12 @@ int validate_with_faults(const ValidateArgs& args, const NgspiceDeckFaults& faul
   // ideal threshold, which a Shockley junction needs its gap more to conduct at, the whole base
   // current comes from the holding source. The verdict starts at the first step.
   const bool held_start = !run.uic && !netlist.node_ics.empty() && shared_start.empty();
-  const size_t from = held_start && ours.times.size() > 1 ? 1 : 0;
+  // With UIC ngspice's t = 0 row is not its start either: the states are the given ones, but the
+  // rest (a node between an inductor and a switch's ROFF) comes out of the first step's companion
+  // models, an inductor read as a resistor L/h (PSpice buck, the inductor's IC=0 and ROFF = 1 MEG:
+  // the switch node at 12 V, half the supply, where the start has it at the supply).
+  const bool uic_start = run.uic || !shared_start.empty();
+  const size_t from = (held_start || uic_start) && ours.times.size() > 1 ? 1 : 0;
   auto tail = [from](const std::vector<double>& v) { return std::vector<double>(v.begin() + from, v.end()); };
   std::vector<ProbeComparison> rows;
   for (size_t p = 0; p < probes.size(); ++p) {
@@ -595,9 +600,12 @@ int validate_with_faults(const ValidateArgs& args, const NgspiceDeckFaults& faul
                 find_method(run.method)->fixed_step() ? "h =" : "output every", run.step, ours.times.size());
   std::printf("  ngspice: %zu time points, %.3f s CPU%s\n", theirs.time.size(), theirs.analysis_cpu_seconds,
               shared_start.empty() ? "" : (", started from lcspice's initial state (" + shared_start + ")").c_str());
-  if (from > 0)
+  if (held_start)
     std::printf("  .ic without UIC: ngspice's t = 0 row holds the .ic nodes with sources (not the circuit's\n"
                 "  currents); judged from the first step on\n");
+  else if (from > 0)
+    std::printf("  UIC: ngspice's t = 0 row is its first step's companion-model solve, not the start;\n"
+                "  judged from the first step on\n");
   if (smooth)
     std::printf("  both integrate the same Shockley diodes (ideal ones as VON sources + N = %g, IS = %g A):\n"
                 "  expected model gap 0; what differs is the two integrators' error\n",

@@ -166,7 +166,7 @@ std::vector<Probe> parse_probe_card(const Card& card, std::vector<std::string>& 
                          (card[end].is(Token::Kind::LParen) && card[end - 1].is_word())));
     const bool device_parameter = !t.text.empty() && t.text[0] == '@';
     const bool power = t.is_word("p") && groups == 1;
-    const bool expression = groups > 1 || (groups == 1 && !card[end - 1].is(Token::Kind::RParen)) ||
+    const bool expression = t.is_expression() || groups > 1 || (groups == 1 && !card[end - 1].is(Token::Kind::RParen)) ||
                             (groups == 1 && t.is(Token::Kind::LParen));
     if (device_parameter || power || expression) {
       const std::string entry = card.text(t.begin, card[end - 1].end);

@@ -391,7 +391,7 @@ class Elaborator {
     if (type != wanted)
       throw NetlistError(card.at(token), "model " + quote(name) + " is not a" + (current ? " CSW" : "n SW") +
                                              " model (it is " + to_upper(type) + "); " +
-                                             (current ? "W switches take CSW models" : "S switches take SW models"));
+                                             (current ? "W switches take CSW (or ISWITCH) models" : "S switches take SW (or VSWITCH) models"));
     return flat;
   }
 

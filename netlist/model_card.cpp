@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "netlist/out_of_scope.h"
 
@@ -100,7 +101,7 @@ void read_bjt_params(const Card& card, const std::vector<Assignment>& params, co
   warn_ignored(q.ignored, first_ignored, "transistor", q.name, warnings);
 }
 
-const char* const kModelTypes[] = {"d", "npn", "pnp", "ltra", "sw", "csw"};
+const char* const kModelTypes[] = {"d", "npn", "pnp", "ltra", "sw", "csw", "vswitch", "iswitch"};
 
 // .model NAME SW(VT= VH= RON= ROFF=) / CSW(IT= IH= RON= ROFF=), ngspice's defaults.
 void read_switch_params(const Card& card, const std::vector<Assignment>& params, const ParamScope& scope,
@@ -140,6 +141,57 @@ void read_switch_params(const Card& card, const std::vector<Assignment>& params,
                                            " model parameter " + quote(key.text));
     }
   }
+}
+
+// .model NAME VSWITCH(VON= VOFF= RON= ROFF=) / ISWITCH(ION= IOFF= RON= ROFF=): PSpice's switches
+// (Xyce reads them too), PSpice's defaults. PSpice passes the resistance smoothly from ROFF at VOFF
+// to RON at VON (log R cubic in the control, so sqrt(RON ROFF) at the midpoint); lcspice's switch
+// is ideal, so it switches at the midpoint VT = (VON + VOFF) / 2 without hysteresis, and VON below
+// VOFF (the switch closes as the control falls) reads the control with its sign reversed.
+void read_pspice_switch_params(const Card& card, const std::vector<Assignment>& params, const ParamScope& scope,
+                               SwitchModel& sw, std::vector<std::string>& warnings) {
+  const bool current = sw.current_controlled;
+  const char* on_key = current ? "ion" : "von";
+  const char* off_key = current ? "ioff" : "voff";
+  double on = current ? 1e-3 : 1.0, off = 0.0;
+  sw.ron = 1.0;
+  sw.roff = 1e6;
+  for (const Assignment& a : params) {
+    const Token& key = card[a.name];
+    if (a.flag()) throw NetlistError(card.at(key), "missing value for switch parameter " + quote(key.text));
+    const double v = value_of(card, a.value_first, a.value_last, scope);
+    const SourceLocation at_value = card.at(a.value_first);
+    auto check = [&](bool ok, const char* rule) {
+      if (!ok) throw NetlistError(at_value, "switch parameter " + quote(key.lower) + " must " + rule);
+    };
+    check(std::isfinite(v), "be finite");
+    if (key.lower == on_key) {
+      on = v;
+    } else if (key.lower == off_key) {
+      off = v;
+    } else if (key.lower == "ron" || key.lower == "roff") {
+      check(v > 0, "be positive");
+      (key.lower == "ron" ? sw.ron : sw.roff) = v;
+    } else {
+      throw NetlistError(card.at(key), std::string("unknown ") + (current ? "ISWITCH" : "VSWITCH") +
+                                           " model parameter " + quote(key.text) + " (PSpice's are " +
+                                           (current ? "ION, IOFF" : "VON, VOFF") + ", RON and ROFF)");
+    }
+  }
+  if (on == off)
+    throw NetlistError(card.at(2), std::string("switch model ") + quote(sw.name) + ": " +
+                                       (current ? "ION and IOFF" : "VON and VOFF") + " must differ");
+  sw.reversed = on < off;
+  sw.vt = 0.5 * (on + off);
+  sw.vh = 0;
+  const char* unit = current ? "A" : "V";
+  char buf[400];
+  std::snprintf(buf, sizeof buf,
+                "switch model '%s': %s (PSpice): its smooth passage from ROFF at %s = %.6g %s to RON at %s = "
+                "%.6g %s is modelled as an ideal switch at their midpoint, %s %.6g %s",
+                sw.name.c_str(), current ? "ISWITCH" : "VSWITCH", current ? "IOFF" : "VOFF", off, unit,
+                current ? "ION" : "VON", on, unit, sw.reversed ? "on below" : "on above", sw.vt, unit);
+  warnings.push_back(warning_line(card.at(2), buf));
 }
 
 // ngspice LTRA controls (step and interpolation choices of its own convolution); lcspice's
@@ -231,11 +283,15 @@ ModelCard parse_model_card(const Card& card, const ParamScope& scope, const std:
     read_bjt_params(card, params, scope, m.bjt, warnings);
     return m;
   }
-  if (m.type == "sw" || m.type == "csw") {
+  if (m.type == "sw" || m.type == "csw" || m.type == "vswitch" || m.type == "iswitch") {
     m.sw.name = prefix + m.name;
-    m.sw.current_controlled = m.type == "csw";
+    m.sw.current_controlled = m.type == "csw" || m.type == "iswitch";
     m.sw.loc = card.at(1);
-    read_switch_params(card, params, scope, m.sw, warnings);
+    if (m.type == "vswitch" || m.type == "iswitch")
+      read_pspice_switch_params(card, params, scope, m.sw, warnings);
+    else
+      read_switch_params(card, params, scope, m.sw, warnings);
+    m.type = m.sw.current_controlled ? "csw" : "sw";
     return m;
   }
   if (m.type == "ltra") {

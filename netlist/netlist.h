@@ -108,6 +108,7 @@ struct SwitchModel {
   std::string name;                    // lower-case
   bool current_controlled = false;     // CSW: IT/IH in amperes
   double vt = 0, vh = 0;               // threshold and hysteresis (V, or A for CSW)
+  bool reversed = false;               // on below VT - VH, off above VT + VH (PSpice VON < VOFF)
   double ron = 1, roff = 1e12;         // ROFF default 1/GMIN
   SourceLocation loc;
 };

@@ -31,7 +31,6 @@ const std::pair<const char*, const char*> kModelTypes[] = {
     {"numd", "CIDER numerical device"}, {"nbjt", "CIDER numerical device"}, {"numos", "CIDER numerical device"},
     {"urc", "uniform distributed RC line"}, {"txl", "TXL transmission line"}, {"cpl", "coupled line"},
     {"r", "semiconductor resistor"}, {"c", "semiconductor capacitor"}, {"l", "inductor model"},
-    {"vswitch", "PSpice switch (VSWITCH)"}, {"iswitch", "PSpice switch (ISWITCH)"},
     // XSPICE code models
     {"lcouple", "XSPICE code model"}, {"core", "XSPICE code model"}, {"aswitch", "XSPICE code model"},
     {"gain", "XSPICE code model"}, {"summer", "XSPICE code model"}, {"mult", "XSPICE code model"},

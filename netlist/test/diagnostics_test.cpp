@@ -32,7 +32,7 @@ TEST(ParseDiagnostics, SyntaxAndElements) {
        "source's current\nH1 b 0 r9 2\n       ^~"},
       {"t\nG1 a 0 b 0\n", "t.cir:2:11: error: missing value for 'g1'\nG1 a 0 b 0\n          ^"},
       {"t\nV1 c 0 1\nS1 a 0 c 0 m1\n.model m1 CSW(IT=1)\n",
-       "t.cir:3:12: error: model 'm1' is not an SW model (it is CSW); S switches take SW models\nS1 a 0 c 0 m1\n"
+       "t.cir:3:12: error: model 'm1' is not an SW model (it is CSW); S switches take SW (or VSWITCH) models\nS1 a 0 c 0 m1\n"
        "           ^~"},
       {"t\nV1 c 0 1\nW1 a 0 v1 m1 maybe\n.model m1 CSW\n",
        "t.cir:3:14: error: unexpected extra token 'maybe'\nW1 a 0 v1 m1 maybe\n             ^~~~~"},

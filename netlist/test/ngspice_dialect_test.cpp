@@ -35,6 +35,12 @@ TEST(NgspiceDialect, PrintEntriesThatAreNotProbesAreSkippedWithAWarningEach) {
   EXPECT_EQ(n.warnings[2], "t.cir:7:7: warning: '.save' entry '@d1[id]' is ignored: device parameters are not "
                            "probes lcspice writes");
   EXPECT_EQ(n.warnings[3], "t.cir:7:15: warning: '.save' entry 'p(r1)' is ignored: power probes are not written by lcspice");
+  // Xyce writes an expression in braces.
+  n = test::parse("t\nR1 3 0 1\nV1 3 0 1\n.PRINT TRAN I(V1) V(3) {V(3)/I(V1)}\n");
+  EXPECT_EQ(names(n.probes), "i(v1) v(3) ");
+  ASSERT_EQ(n.warnings.size(), 1u);
+  EXPECT_EQ(n.warnings[0], "t.cir:4:24: warning: '.print' entry '{V(3)/I(V1)}' is ignored: expressions are not "
+                           "written by lcspice (only v(), i() probes)");
   // A probe that is neither is still an error.
   EXPECT_EQ(test::diag("t\nR1 a 0 1\n.save q(a)\n"),
             "t.cir:3:7: error: invalid probe 'q(a)': expected v(node), v(node1,node2), i(element), ic/ib/ie(transistor) "
@@ -123,6 +129,39 @@ TEST(NgspiceDialect, NegativeSwitchHysteresisIsTheIdealSwitchAtVtWithAWarning) {
   ASSERT_EQ(n.warnings.size(), 1u);
   EXPECT_EQ(n.warnings[0], "t.cir:5:24: warning: switch model 'm1': negative VH (LTspice: a smooth passage over VT -+ "
                            "|VH|; ngspice: a reversed band) is modelled as an ideal switch at VT, without hysteresis");
+}
+
+// PSpice's VSWITCH/ISWITCH: the ideal switch at the midpoint of VON and VOFF, reversed when
+// VON < VOFF; PSpice's defaults (VON 1 V, VOFF 0, ION 1 mA, IOFF 0, RON 1, ROFF 1 MEG).
+TEST(PspiceDialect, VswitchAndIswitchAreIdealSwitchesAtTheirMidpoint) {
+  Netlist n = test::parse("t\nV1 c 0 1\nS1 a 0 c 0 sv\nR1 a 0 1\nW1 a 0 V1 si\n"
+                          ".model sv VSWITCH(VON=0 VOFF=5 RON=0.1)\n.model si ISWITCH\n");
+  const SwitchModel& v = n.switch_models.at("sv");
+  EXPECT_FALSE(v.current_controlled);
+  EXPECT_TRUE(v.reversed);
+  EXPECT_EQ(v.vt, 2.5);
+  EXPECT_EQ(v.vh, 0.0);
+  EXPECT_EQ(v.ron, 0.1);
+  EXPECT_EQ(v.roff, 1e6);
+  const SwitchModel& i = n.switch_models.at("si");
+  EXPECT_TRUE(i.current_controlled);
+  EXPECT_FALSE(i.reversed);
+  EXPECT_EQ(i.vt, 0.5e-3);
+  EXPECT_EQ(i.ron, 1.0);
+  ASSERT_EQ(n.warnings.size(), 2u);
+  EXPECT_EQ(n.warnings[1], "t.cir:7:11: warning: switch model 'si': ISWITCH (PSpice): its smooth passage from ROFF at "
+                           "IOFF = 0 A to RON at ION = 0.001 A is modelled as an ideal switch at their midpoint, on "
+                           "above 0.0005 A");
+  EXPECT_EQ(test::diag("t\nS1 a 0 c 0 m\n.model m VSWITCH(VON=1 VOFF=1)\n"),
+            "t.cir:3:10: error: switch model 'm': VON and VOFF must differ\n.model m VSWITCH(VON=1 VOFF=1)\n"
+            "         ^~~~~~~");
+  EXPECT_EQ(test::diag("t\nS1 a 0 c 0 m\n.model m VSWITCH(VT=1)\n"),
+            "t.cir:3:18: error: unknown VSWITCH model parameter 'VT' (PSpice's are VON, VOFF, RON and ROFF)\n"
+            ".model m VSWITCH(VT=1)\n                 ^~");
+  // An S switch takes a VSWITCH, not an ISWITCH.
+  EXPECT_EQ(test::diag("t\nS1 a 0 c 0 m\n.model m ISWITCH\n"),
+            "t.cir:2:12: error: model 'm' is not an SW model (it is CSW); S switches take SW (or VSWITCH) models\n"
+            "S1 a 0 c 0 m\n           ^");
 }
 
 }  // namespace

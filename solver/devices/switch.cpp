@@ -58,15 +58,29 @@ Probe Switch::control_probe() const {
 
 // Written through: the same card (ON/OFF kept) and its model under a name unique in the deck.
 NgspiceCards Switch::ngspice(const NgspiceDeckContext& context) const {
-  const bool voltage = element_.kind == ElementKind::VSwitch;
+  // A reversed switch (on as its control falls) is ngspice's SW on the negated control: the control
+  // nodes swapped, or for a current control a CCVS of gain -1 driving a fresh node.
+  bool voltage = element_.kind == ElementKind::VSwitch;
+  std::vector<std::string> before;
+  std::string control = voltage ? element_.nodes.at(2) + " " + element_.nodes.at(3) : deck_name('v', element_.control);
+  if (card_.reversed) {
+    if (voltage) {
+      control = element_.nodes.at(3) + " " + element_.nodes.at(2);
+    } else {
+      const std::string node = context.fresh("lcs_ctl_" + name());
+      before.push_back(context.fresh("h_lcs_ctl_" + name()) + " " + node + " 0 " + control + " -1");
+      control = node + " 0";
+      voltage = true;
+    }
+  }
+  const double vt = card_.reversed ? -card_.vt : card_.vt;
   const std::string model = context.fresh("lcs_sw_" + name());
-  const std::string control = voltage ? element_.nodes.at(2) + " " + element_.nodes.at(3)
-                                      : deck_name('v', element_.control);
   std::string rest = control + " " + model;
   if (element_.initially_on) rest += *element_.initially_on ? " ON" : " OFF";
   NgspiceCards cards = two_terminal_cards(deck_name(voltage ? 's' : 'w', name()), element_.nodes.at(0),
                                           element_.nodes.at(1), rest, name(), context);
-  cards.models.push_back(".model " + model + (voltage ? " SW(VT=" : " CSW(IT=") + number(card_.vt) +
+  cards.lines.insert(cards.lines.begin(), before.begin(), before.end());
+  cards.models.push_back(".model " + model + (voltage ? " SW(VT=" : " CSW(IT=") + number(vt) +
                          (voltage ? " VH=" : " IH=") + number(card_.vh) + " RON=" + number(card_.ron) +
                          " ROFF=" + number(card_.roff) + ")");
   return cards;
@@ -76,11 +90,14 @@ std::vector<std::string> Switch::notes() const {
   const bool voltage = element_.kind == ElementKind::VSwitch;
   const Probe control = control_probe();
   const char* unit = voltage ? "V" : "A";
+  const bool reversed = card_.reversed;
   char buf[320];
   std::snprintf(buf, sizeof buf,
-                "switch %s: controlled by %s, on above %.6g %s, off below %.6g %s (%s = %.6g, %s = %.6g), "
+                "switch %s: controlled by %s, on %s %.6g %s, off %s %.6g %s (%s = %.6g, %s = %.6g), "
                 "RON = %.6g ohm, ROFF = %.6g ohm, %s%s",
-                name().c_str(), control.name().c_str(), card_.vt + card_.vh, unit, card_.vt - card_.vh, unit,
+                name().c_str(), control.name().c_str(), reversed ? "below" : "above",
+                reversed ? card_.vt - card_.vh : card_.vt + card_.vh, unit, reversed ? "above" : "below",
+                reversed ? card_.vt + card_.vh : card_.vt - card_.vh, unit,
                 voltage ? "VT" : "IT", card_.vt, voltage ? "VH" : "IH", card_.vh, card_.ron, card_.roff,
                 on_ ? "on" : "off", element_.initially_on ? (*element_.initially_on ? " (ON on the card)" : " (OFF on the card)") : "");
   return {buf};

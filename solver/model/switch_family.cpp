@@ -15,9 +15,10 @@ SwitchFamily::SwitchFamily(const CircuitModel& base) : base_(base) {
     SwitchControl c;
     c.name = s->name();
     c.control = s->control_probe();
-    c.vt = s->card().vt;
-    c.on_above = s->card().vt + s->card().vh;
-    c.off_below = s->card().vt - s->card().vh;
+    c.sign = s->card().reversed ? -1.0 : 1.0;
+    c.vt = c.sign * s->card().vt;
+    c.on_above = c.vt + s->card().vh;
+    c.off_below = c.vt - s->card().vh;
     c.initially_on = s->element().initially_on;
     switches_.push_back(c);
     base_config_.push_back(s->on() ? 1 : 0);
@@ -54,6 +55,7 @@ Eigen::VectorXd SwitchFamily::controls(const SwitchConfig& config, const Eigen::
   Eigen::VectorXd y = o.G * x;
   if (z.size() > 0) y += o.H * z;
   y += o.J * m.input_values(t) + o.K * m.input_derivatives(t);
+  for (size_t k = 0; k < switches_.size(); ++k) y(k) *= switches_[k].sign;
   return y;
 }
 

@@ -20,8 +20,11 @@ namespace lcs {
 struct SwitchControl {
   std::string name;                 // the switch element
   Probe control;                    // v(nc+,nc-) (S) or i(vname) (W)
-  double on_above = 0, off_below = 0;  // VT + VH and VT - VH
-  double vt = 0;
+  // Thresholds on the control as read, sign × the probe: sign −1 for a reversed switch (PSpice's
+  // VON < VOFF, on as the control falls), so every switch is "on above, off below".
+  double sign = 1;
+  double on_above = 0, off_below = 0;  // sign VT + VH and sign VT - VH
+  double vt = 0;                       // sign VT
   std::optional<bool> initially_on;  // ON/OFF on the card
 };
 
