@@ -28,7 +28,7 @@ DotCard classify_dot_card(const std::string& k) {
   if (k == ".model") return DotCard::Model;
   if (k == ".subckt") return DotCard::Subckt;
   if (k == ".ends") return DotCard::Ends;
-  if (k == ".tran") return DotCard::Tran;
+  if (k == ".tran" || k == ".tran/op") return DotCard::Tran;  // PSpice's /OP: print the bias point too
   if (k == ".ic") return DotCard::Ic;
   if (k == ".nodeset") return DotCard::Nodeset;
   if (k == ".print" || k == ".plot") return DotCard::Print;
@@ -54,7 +54,7 @@ TranSpec parse_tran(const Card& card, const ParamScope& scope, std::vector<std::
   for (std::size_t i = 1; i < card.size(); ++i) {
     const Token& t = card[i];
     if (t.is(Token::Kind::Comma)) continue;
-    if (t.is_word("uic")) {
+    if (t.is_word("uic") || t.is_word("skipbp")) {  // SKIPBP: PSpice's name for UIC
       spec.uic = true;
       continue;
     }

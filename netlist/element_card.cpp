@@ -14,6 +14,7 @@ struct Reader {
   const Card& card;
   const ElementScope& scope;
   std::string name;  // flat name, for messages
+  std::vector<std::string>* warnings_ = nullptr;
 
   void node(std::size_t i, Element& e) const {
     if (i >= card.size()) throw NetlistError(card.after_last(), "missing node for " + quote(name));
@@ -63,6 +64,28 @@ struct Reader {
         } else {
           e.ic = v;
         }
+        i += 3;
+        continue;
+      }
+      // Temperature coefficients (ngspice's tc1= tc2=, PSpice's TC=a[,b]) scale the value by
+      // 1 + tc1 (T - TNOM) + tc2 (T - TNOM)^2: nothing at the nominal temperature, the only one
+      // lcspice simulates (.temp is ignored with a warning). The values are read to check them.
+      if (assignment && (card[i].is_word("tc") || card[i].is_word("tc1") || card[i].is_word("tc2"))) {
+        const bool list = card[i].is_word("tc");
+        if (i + 2 >= card.size()) throw NetlistError(card.after_last(), "missing value for " + quote(card[i].lower));
+        value_of(card, i + 2, *scope.params);
+        i += 3;
+        if (list && i + 1 < card.size() && card[i].is(Token::Kind::Comma)) {
+          value_of(card, i + 1, *scope.params);
+          i += 2;
+        }
+        continue;
+      }
+      if (assignment && (card[i].is_word("temp") || card[i].is_word("dtemp"))) {
+        if (i + 2 >= card.size()) throw NetlistError(card.after_last(), "missing value for " + quote(card[i].lower));
+        value_of(card, i + 2, *scope.params);
+        warnings_->push_back(warning_line(card.at(i), quote(name) + ": " + card[i].lower +
+                                                          "= is ignored (no temperature model)"));
         i += 3;
         continue;
       }
@@ -343,7 +366,7 @@ ParsedElement parse_element(const Card& card, const ElementScope& scope,
   Element& e = out.element;
   e.name = scope.prefix + head.lower;
   e.loc = card.at(head);
-  Reader r{card, scope, e.name};
+  Reader r{card, scope, e.name, &warnings};
   const char letter = head.lower[0];
   switch (letter) {
     case 'r':

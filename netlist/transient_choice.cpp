@@ -16,7 +16,7 @@ bool is_other_analysis(const std::string& lower_name) {
 
 const Card* choose_transient(const Deck& deck, bool required, std::vector<std::string>& warnings) {
   const bool has_tran_card =
-      std::any_of(deck.cards.begin(), deck.cards.end(), [](const Card& c) { return c[0].is_word(".tran"); });
+      std::any_of(deck.cards.begin(), deck.cards.end(), [](const Card& c) { return c[0].is_word(".tran") || c[0].is_word(".tran/op"); });
   const Card* chosen = nullptr;
   std::vector<std::string> ignored;  // distinct command names, in order
   for (const ControlBlock& block : deck.controls)

@@ -164,5 +164,24 @@ TEST(PspiceDialect, VswitchAndIswitchAreIdealSwitchesAtTheirMidpoint) {
             "S1 a 0 c 0 m\n           ^");
 }
 
+// PSpice's `.TRAN/OP ... SKIPBP` is `.tran ... UIC`; temperature coefficients on R, L and C are
+// read (checked) and change nothing at the nominal temperature; an instance TEMP= is warned about.
+TEST(PspiceDialect, TranOpSkipbpAndTemperatureCoefficients) {
+  Netlist n = test::parse("t\nV1 a 0 1\nR1 a b 1k TC=0.001,1e-6\nR2 b 0 {2k} tc1=1m tc2=0\nC1 b 0 1u TC=0.01\n"
+                          "L1 a c 1m tc1=1e-4 IC=0\nR3 c 0 1\nR4 a 0 1k dtemp=10\n"
+                          ".TRAN/OP 0.1ms 50ms 0 0.1ms SKIPBP\n");
+  ASSERT_TRUE(n.tran.has_value());
+  EXPECT_TRUE(n.tran->uic);
+  EXPECT_EQ(n.tran->tstop, 50e-3);
+  EXPECT_EQ(test::element(n, "r1").value, 1e3);
+  EXPECT_EQ(test::element(n, "r2").value, 2e3);
+  EXPECT_EQ(test::element(n, "c1").value, 1e-6);
+  ASSERT_EQ(n.warnings.size(), 1u);
+  EXPECT_EQ(n.warnings[0], "t.cir:8:11: warning: 'r4': dtemp= is ignored (no temperature model)");
+  EXPECT_EQ(test::diag("t\nR1 a 0 1k TC=\n"), "t.cir:2:14: error: missing value for 'tc'\nR1 a 0 1k TC=\n             ^");
+  EXPECT_EQ(test::diag("t\nR1 a 0 1k TC=x\n"),
+            "t.cir:2:14: error: invalid number 'x'\nR1 a 0 1k TC=x\n             ^");
+}
+
 }  // namespace
 }  // namespace lcs
