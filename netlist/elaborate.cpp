@@ -259,8 +259,13 @@ class Elaborator {
     if (pe.control_token) control_refs_.push_back({index, card.at(pe.control_token)});
     net_.elements.push_back(std::move(pe.element));
     const std::string owner = net_.elements.back().name;
+    std::size_t extra_coupling = 0;
     for (Element& parasitic : pe.parasitics) {
       register_name(parasitic.name, card.at(0), "element");
+      if (parasitic.kind == ElementKind::Coupling) {
+        const auto& tokens = pe.extra_coupled_tokens.at(extra_coupling++);
+        coupling_refs_.push_back({net_.elements.size(), {card.at(tokens[0]), card.at(tokens[1])}});
+      }
       scale_for_parallel_copies(parasitic, in.multiplier);
       for (const std::string& node : parasitic.nodes)
         if (node.rfind(owner + "#", 0) == 0) {

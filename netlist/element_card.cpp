@@ -387,19 +387,44 @@ ParsedElement parse_element(const Card& card, const ElementScope& scope,
     }
     case 'k': {
       e.kind = ElementKind::Coupling;
-      for (std::size_t i = 1; i <= 2; ++i) {
+      // K L1 L2 k (ngspice); LTspice also takes K L1 L2 L3 ... k: every pair coupled by k, the
+      // pairs after the first as elements of their own named K#2, K#3, ... The last token is k.
+      std::vector<std::size_t> names;
+      for (std::size_t i = 1; i + 1 < card.size(); ++i) {
+        if (!card[i].is_word()) throw NetlistError(card.at(i), "expected an inductor name, got " + quote(card[i].text));
+        names.push_back(i);
+      }
+      if (names.size() < 2) {
+        const std::size_t i = names.size() + 1;
         if (i >= card.size()) throw NetlistError(card.after_last(), "missing inductor name for " + quote(e.name));
         if (!card[i].is_word()) throw NetlistError(card.at(i), "expected an inductor name, got " + quote(card[i].text));
-        e.coupled.push_back(scope.prefix + card[i].lower);
-        out.coupled_tokens[i - 1] = i;
+        throw NetlistError(card.after_last(), "missing coupling coefficient for " + quote(e.name));
       }
-      if (e.coupled[0] == e.coupled[1])
-        throw NetlistError(card.at(2), quote(e.name) + " couples " + quote(card[2].lower) + " with itself");
-      e.value = r.value(3);
+      for (std::size_t a = 0; a < names.size(); ++a)
+        for (std::size_t b = 0; b < a; ++b)
+          if (card[names[a]].lower == card[names[b]].lower)
+            throw NetlistError(card.at(names[a]), quote(e.name) + " couples " + quote(card[names[a]].lower) +
+                                                      (names.size() == 2 ? " with itself" : " twice"));
+      const std::size_t value_token = names.back() + 1;
+      e.value = r.value(value_token);
       // ngspice: -1 <= k <= 1 (a negative k: the windings' fluxes oppose, M = k sqrt(L1 L2) < 0).
       if (!(e.value >= -1 && e.value <= 1))
-        throw NetlistError(card.at(3), "coupling coefficient of " + quote(e.name) + " must be in [-1, 1]");
-      if (card.size() > 4) r.extra(4);
+        throw NetlistError(card.at(value_token), "coupling coefficient of " + quote(e.name) + " must be in [-1, 1]");
+      int serial = 1;
+      for (std::size_t a = 0; a < names.size(); ++a)
+        for (std::size_t b = a + 1; b < names.size(); ++b) {
+          Element k = e;
+          k.coupled = {scope.prefix + card[names[a]].lower, scope.prefix + card[names[b]].lower};
+          if (serial++ == 1) {
+            e = k;
+            out.coupled_tokens[0] = names[a];
+            out.coupled_tokens[1] = names[b];
+          } else {
+            k.name = e.name + "#" + std::to_string(serial - 1);
+            out.parasitics.push_back(k);
+            out.extra_coupled_tokens.push_back({names[a], names[b]});
+          }
+        }
       break;
     }
     case 'v':

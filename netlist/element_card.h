@@ -2,6 +2,7 @@
 // unknown element letters. Internal to the netlist reader.
 #pragma once
 
+#include <array>
 #include <functional>
 #include <string>
 #include <vector>
@@ -25,6 +26,9 @@ struct ParsedElement {
                            // (D without a model name: empty)
   std::size_t model_token = 0;               // D, Q, O: token of the model name
   std::size_t coupled_tokens[2] = {0, 0};    // K: tokens of the two inductor names
+  // K with more than two inductors (LTspice): the other pairs' couplings are in `parasitics`
+  // (named K#2, K#3, ...), their inductor names' tokens here, in the same order.
+  std::vector<std::array<std::size_t, 2>> extra_coupled_tokens;
   std::size_t control_token = 0;             // F, H: token of the controlling source's name
   // R, C, D with both terminals on one node: no current flows through it and it changes nothing.
   bool shorted = false;

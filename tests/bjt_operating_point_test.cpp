@@ -155,5 +155,31 @@ TEST(BjtOperatingPoint, EmitterFollowersIntoAnOpenLossyLineCarryNoDcCurrent) {
   }
 }
 
+// A DTL NAND gate with both inputs low: the input diodes clamp x at VON + RON i/2; the level
+// shifter's diodes d3, d4 and q1's base are off, and the node y between d3 and d4 is reached only
+// through them (its potential is a choice). The enumeration found this one point twice, d3 "on"
+// at a current of the regularisation's leak in one copy, and `op` and `run` refused the deck as
+// having 2 operating points ("transistor d3", a diode); polished, the copies are one point.
+TEST(BjtOperatingPoint, DtlGateWithAFloatingLevelShifterNodeHasOneOperatingPoint) {
+  const fs::path dir = scratch_dir("bjt_op_dtl");
+  const fs::path f = dir / "dtl.cir";
+  std::ofstream(f) << "DTL NAND gate, inputs low\nVCC vcc 0 5\nVA a 0 0\nVB b 0 0\nDA x a dx\nDB x b dx\n"
+                      "R1 vcc x 5k\nD3 x y dx\nD4 y z dx\nR2 z 0 5k\nRC vcc out 2.2k\nQ1 out z 0 qx\n"
+                      ".model dx D(VON=0.7 RON=10)\n.model qx NPN(BF=100 VON=0.7 RON=10)\n.tran 10n 1u\n.end\n";
+  const Result r = run_lcspice("op '" + f.string() + "'", dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  std::map<std::string, double> values = op_values(r.out);
+  const double i = 4.3 / 5005;  // (5 - x)/5k with x = 0.7 + 10 (i/2)
+  EXPECT_NEAR(values["v(x)"], 0.7 + 5 * i, 1e-12);
+  EXPECT_NEAR(values["i(da)"], i / 2, 1e-15);
+  EXPECT_NEAR(values["v(out)"], 5.0, 1e-12);
+  EXPECT_NEAR(values["v(z)"], 0.0, 1e-12);
+  EXPECT_EQ(values["i(d3)"], 0.0);
+  const Result all = run_lcspice("op --all '" + f.string() + "'", dir);
+  EXPECT_NE(all.out.find("* 1 solution"), std::string::npos) << all.out;
+  const Result run = run_lcspice("run '" + f.string() + "' -o '" + (dir / "out.csv").string() + "'", dir);
+  EXPECT_EQ(run.code, 0) << run.err;
+}
+
 }  // namespace
 }  // namespace lcs::cli_testing

@@ -109,5 +109,26 @@ TEST(LtspiceDialect, SweepsAreRefusedByName) {
             "transient per deck; give each value its own deck or .param\n.step param r 1k 10k 1k\n^~~~~");
 }
 
+// LTspice's K with more than two inductors couples every pair by the one k: K1 plus K1#2, K1#3.
+TEST(LtspiceDialect, CouplingOfThreeInductorsIsEveryPair) {
+  const Netlist n = test::parse("t\nV1 a 0 1\nLP a 0 100m\nLS1 b c 25m\nLS2 c d 25m\nR1 b d 1\nR2 c 0 1\n"
+                                "K1 LP LS1 LS2 0.999\n");
+  const std::vector<std::pair<std::string, std::vector<std::string>>> expected = {
+      {"k1", {"lp", "ls1"}}, {"k1#2", {"lp", "ls2"}}, {"k1#3", {"ls1", "ls2"}}};
+  for (const auto& [name, coupled] : expected) {
+    const Element& k = test::element(n, name);
+    EXPECT_EQ(k.kind, ElementKind::Coupling) << name;
+    EXPECT_EQ(k.coupled, coupled) << name;
+    EXPECT_EQ(k.value, 0.999) << name;
+  }
+  EXPECT_TRUE(n.warnings.empty());
+  EXPECT_EQ(test::diag("t\nL1 a 0 1\nL2 b 0 1\nR1 a b 1\nK1 L1 L2 L1 1\n"),
+            "t.cir:5:10: error: 'k1' couples 'l1' twice\nK1 L1 L2 L1 1\n         ^~");
+  EXPECT_EQ(test::diag("t\nL1 a 0 1\nL2 b 0 1\nR1 a b 1\nK1 L1 L2 L3 1\n"),
+            "t.cir:5:10: error: coupled inductor 'l3' is not defined\nK1 L1 L2 L3 1\n         ^~");
+  EXPECT_EQ(test::diag("t\nL1 a 0 1\nL2 b 0 1\nR1 a b 1\nK1 L1 L2\n"),
+            "t.cir:5:9: error: missing coupling coefficient for 'k1'\nK1 L1 L2\n        ^");
+}
+
 }  // namespace
 }  // namespace lcs

@@ -248,13 +248,28 @@ bool repair_numerical_failure(const CircuitModel& model, double t, OperatingPoin
 // only by a transistor's collector, lets either side take the whole tail current). Only the
 // solutions whose conducting set solves the unreduced DC equations complementarily (polish) are
 // the circuit's; if none does, the enumeration is kept as it is.
+// Two of them may be one point: a pair at a degenerate vertex given a current of rounding (a diode
+// between two junctions of a DTL gate's level shifter, its middle node reached only through them)
+// is at zero current once polished, as in the solution that had it off. Such solutions count once
+// (equal polished x and z to 1e-9 of their largest entries), with A regular or not.
 std::vector<Eigen::VectorXd> exact_solutions(const CircuitModel& model, double t, const StaticProblem& p,
                                              const std::vector<Eigen::VectorXd>& zs) {
-  if (p.undetermined.empty()) return zs;
   std::vector<Eigen::VectorXd> exact;
+  std::vector<OperatingPoint> points;
+  auto same = [](const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
+    if (a.size() != b.size()) return false;
+    if (a.size() == 0) return true;
+    const double scale = std::max({1e-300, max_abs(a), max_abs(b)});
+    return (a - b).cwiseAbs().maxCoeff() <= 1e-9 * scale;
+  };
   for (const Eigen::VectorXd& z : zs) {
     OperatingPoint op = point_from(p, z);
-    if (polish(model, t, op)) exact.push_back(z);
+    if (!polish(model, t, op) && !p.undetermined.empty()) continue;  // regular: the solution stands as it is
+    if (std::any_of(points.begin(), points.end(),
+                    [&](const OperatingPoint& o) { return same(o.x, op.x) && same(o.z, op.z); }))
+      continue;
+    points.push_back(op);
+    exact.push_back(z);
   }
   return exact.empty() ? zs : exact;
 }
@@ -304,8 +319,14 @@ std::vector<Eigen::VectorXd> with_off_devices_off(const CircuitModel& model, con
 OperatingPoint choose_among(const CircuitModel& model, const StaticProblem& p, double t,
                             const std::vector<Eigen::VectorXd>& all) {
   const std::vector<std::string> differ = elements_that_differ(model, all);
-  const std::string who = differ.empty() ? std::string("the circuit")
-                                         : (differ.size() == 1 ? "transistor " : "transistors ") + join_names(differ);
+  const Netlist& netlist = model.netlist();
+  const bool transistors = std::all_of(differ.begin(), differ.end(), [&](const std::string& name) {
+    return std::any_of(netlist.elements.begin(), netlist.elements.end(),
+                       [&](const Element& e) { return e.name == name && e.kind == ElementKind::Bjt; });
+  });
+  const char* kind = transistors ? (differ.size() == 1 ? "transistor " : "transistors ")
+                                 : (differ.size() == 1 ? "element " : "elements ");
+  const std::string who = differ.empty() ? std::string("the circuit") : kind + join_names(differ);
   const std::string count = std::to_string(all.size()) + " operating points";
   std::vector<std::string> off_names;
   const std::vector<Eigen::VectorXd> zs = with_off_devices_off(model, all, off_names);
@@ -467,7 +488,8 @@ std::string undetermined_state_warning(const std::vector<std::string>& labels) {
 std::vector<OperatingPoint> enumerate_operating_points(const CircuitModel& model, double t) {
   StaticProblem p = static_problem(model, t);
   std::vector<OperatingPoint> out;
-  for (const Eigen::VectorXd& z : enumerate_lcp_solutions(p.M, p.q)) {
+  // The solutions `op` counts: distinct, and exact where the DC problem needed regularising.
+  for (const Eigen::VectorXd& z : exact_solutions(model, t, p, distinct_in_w(p.M, p.q, enumerate_lcp_solutions(p.M, p.q)))) {
     out.push_back(point_from(p, z));
     polish(model, t, out.back());
     finish(model, out.back());
