@@ -8,6 +8,7 @@
 #include "netlist/control_cards.h"
 #include "netlist/element_card.h"
 #include "netlist/model_card.h"
+#include "netlist/number.h"
 #include "netlist/parallel_copies.h"
 #include "netlist/out_of_scope.h"
 #include "netlist/param_scope.h"
@@ -66,6 +67,7 @@ class Elaborator {
     root.def = &top;
     root.scope = std::make_unique<ParamScope>();
     collect_global_nodes(top);
+    diode_capacitance_ = diode_capacitance_option(top);
     expand(root);
     check_internal_nodes();
     if (control_tran && !net_.tran) net_.tran = parse_tran(*control_tran, *root.scope, net_.warnings);
@@ -101,6 +103,23 @@ class Elaborator {
         global_nodes_.insert(t.lower);
       }
     }
+  }
+
+  // `.options diodecap` (or diodecap=1; diodecap=0 is off), anywhere at the top level: the
+  // diode cards' CJO is modelled (model_card.h), so a card's warning must not list it as ignored
+  // and the models read after the option need to know before the `.options` card is reached.
+  static bool diode_capacitance_option(const SubcktDef& top) {
+    bool on = false;
+    for (const Card* card : top.body) {
+      const Card& c = *card;
+      if (!(c[0].is_word(".options") || c[0].is_word(".option") || c[0].is_word(".opt"))) continue;
+      for (std::size_t k = 1; k < c.size(); ++k) {
+        if (!c[k].is_word("diodecap")) continue;
+        const bool valued = k + 2 < c.size() && c[k + 1].is(Token::Kind::Equals);
+        on = !(valued && parse_number(c[k + 2].lower) == 0.0);  // as read_netlist_options reads it
+      }
+    }
+    return on;
   }
 
   void check_internal_nodes() const {
@@ -210,7 +229,7 @@ class Elaborator {
   }
 
   void add_model(const Card& card, Instance& in) {
-    ModelCard m = parse_model_card(card, *in.scope, in.prefix, net_.warnings);
+    ModelCard m = parse_model_card(card, *in.scope, in.prefix, net_.warnings, diode_capacitance_);
     const std::string flat = in.prefix + m.name;
     auto it = model_locs_.find(flat);
     if (it != model_locs_.end())
@@ -544,6 +563,7 @@ class Elaborator {
   std::map<std::string, SourceLocation> model_locs_;
   std::map<std::string, std::string> model_types_;
   std::vector<CouplingRef> coupling_refs_;
+  bool diode_capacitance_ = false;  // `.options diodecap`
   struct UnsimulatedModel {
     std::string name, type;
     SourceLocation loc;

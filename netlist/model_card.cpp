@@ -11,7 +11,7 @@ namespace {
 
 // ngspice diode (level 1 and its extensions) parameters that lcspice accepts and does not use.
 const char* const kIgnoredDiodeParams[] = {
-    "cjo", "cj0", "cj", "vj", "pb", "m", "mj", "tt", "nbv", "ikf", "ik", "ikr",
+    "vj", "pb", "m", "mj", "tt", "nbv", "ikf", "ik", "ikr",
     "jsw", "isw", "ns", "cjp", "cjsw", "php", "mjsw", "fc", "fcs", "eg", "xti", "kf", "af",
     "tnom", "tref", "level", "area", "pj", "temp", "dtemp", "tlev", "tlevc", "tm1", "tm2",
     "trs", "trs1", "trs2", "tbv1", "tbv2", "tcv", "tpb", "tphp", "tcj", "tcjsw", "gap1", "gap2",
@@ -249,7 +249,7 @@ void read_line_params(const Card& card, const std::vector<Assignment>& params, c
 }  // namespace
 
 ModelCard parse_model_card(const Card& card, const ParamScope& scope, const std::string& prefix,
-                           std::vector<std::string>& warnings) {
+                           std::vector<std::string>& warnings, bool diode_capacitance) {
   ModelCard m;
   if (card.size() < 2) throw NetlistError(card.after_last(), "missing model name after '.model'");
   if (!card[1].is_word()) throw NetlistError(card.at(1), "expected a model name, got " + quote(card[1].text));
@@ -336,6 +336,10 @@ ModelCard parse_model_card(const Card& card, const ParamScope& scope, const std:
     } else if (key.lower == "bv" || key.lower == "vrev") {  // Vrev: LTspice's breakdown voltage
       check(v > 0, "be positive");
       d.bv = v;
+    } else if (key.lower == "cjo" || key.lower == "cj0" || key.lower == "cj") {
+      check(v >= 0 && std::isfinite(v), "not be negative");
+      d.cjo = v;
+      if (!diode_capacitance) add_ignored(d.ignored, first_ignored, card.at(key), key.lower);
     } else if (key.lower == "ibv") {
       check(v > 0, "be positive");
       d.ibv = v;

@@ -25,7 +25,9 @@ struct ModelCard {
   bool unsimulated = false;
 };
 
+// `diode_capacitance` (`.options diodecap`): a diode card's CJO is modelled; otherwise it is read
+// (into DiodeModel::cjo, unused) and listed among the ignored parameters, as SPEC §2 has it.
 ModelCard parse_model_card(const Card& card, const ParamScope& scope, const std::string& prefix,
-                           std::vector<std::string>& warnings);
+                           std::vector<std::string>& warnings, bool diode_capacitance = false);
 
 }  // namespace lcs::parse

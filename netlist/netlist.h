@@ -68,6 +68,11 @@ struct DiodeModel {
   std::optional<double> bv;            // V, > 0; none: no breakdown
   double ibv = 1e-3;                   // A, ngspice's default
   std::optional<double> rrev;          // LTspice's Rrev: the breakdown's on-resistance (ideal law)
+  // Junction capacitance CJO [F] (also CJ0, CJ). Modelled only under `.options diodecap`
+  // (SPEC §2 lists it as ignored), at its zero-bias value across the junction as the
+  // transistors' CJE/CJC are: ngspice's depletion curve (VJ, M, FC) and the diffusion charge
+  // (TT) are not modelled.
+  std::optional<double> cjo;
   std::vector<std::string> ignored;    // accepted ngspice parameters unused by lcspice (cjo, tt, ...)
   SourceLocation loc;
 };

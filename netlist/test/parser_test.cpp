@@ -11,6 +11,7 @@ namespace {
 
 using test::element;
 using test::parse;
+using test::diag;
 
 TEST(ParseElements, PassiveElements) {
   Netlist n = parse(
@@ -157,6 +158,25 @@ TEST(ParseModels, DiodeParameters) {
   ASSERT_EQ(n.warnings.size(), 1u);
   EXPECT_EQ(n.warnings[0], "t.cir:6:10: warning: diode model 'dsmooth': parameters cjo, tt ignored by lcspice");
   EXPECT_EQ(element(n, "d2").model, "dsmooth");
+}
+
+// CJO is read either way; it is listed as ignored (SPEC §2) unless `.options diodecap` is given,
+// before or after the card, and a bad value is an error.
+TEST(ParseModels, DiodeCapacitanceIsListedAsIgnoredUnlessOptionsDiodecap) {
+  Netlist n = parse("t\nD1 a 0 dc\n.model dc D(IS=1e-14 CJO=2p TT=5n)\n");
+  EXPECT_EQ(n.diode_models.at("dc").cjo, 2e-12);
+  EXPECT_EQ(n.diode_models.at("dc").ignored, (std::vector<std::string>{"cjo", "tt"}));
+  for (const char* option : {".options diodecap\n", ".options diodecap=1\n"}) {
+    n = parse(std::string("t\nD1 a 0 dc\n.model dc D(IS=1e-14 CJ0=2p TT=5n)\n") + option);
+    EXPECT_EQ(n.diode_models.at("dc").cjo, 2e-12) << option;
+    EXPECT_EQ(n.diode_models.at("dc").ignored, (std::vector<std::string>{"tt"})) << option;
+    ASSERT_EQ(n.warnings.size(), 1u);
+    EXPECT_EQ(n.warnings[0], "t.cir:3:29: warning: diode model 'dc': parameter tt ignored by lcspice");
+  }
+  n = parse("t\n.options diodecap=0\nD1 a 0 dc\n.model dc D(IS=1e-14 CJ=2p)\n");
+  EXPECT_EQ(n.diode_models.at("dc").ignored, (std::vector<std::string>{"cj"}));
+  EXPECT_EQ(diag("t\nD1 a 0 dc\n.model dc D(CJO=-1p)\n"),
+            "t.cir:3:17: error: diode parameter 'cjo' must not be negative\n.model dc D(CJO=-1p)\n                ^~~");
 }
 
 TEST(ParseModels, ManyIgnoredNgspiceParameters) {

@@ -184,6 +184,7 @@ struct DeviceOptions {
   // curve is fitted (diode_refit.h); a junction not listed gets the ifit decade pair.
   std::map<std::string, DiodeCurrentRanges> diode_ranges;
   std::optional<double> bjtcap;  // base–emitter capacitance of every transistor (`.options bjtcap=`)
+  bool diodecap = false;         // each diode's CJO across its junction (`.options diodecap`)
   // The run's time scales (a lossy line's kernel is fitted over the band they span; 0: unknown)
   // and the target relative error of that fit.
   double tstop = 0, tstep = 0;

@@ -1,6 +1,7 @@
 #include "solver/devices/diode.h"
 
 #include <cmath>
+#include <cstdio>
 
 namespace lcs {
 
@@ -70,6 +71,7 @@ DiodeModel parallel_card(DiodeModel card, double area) {
   if (!(area > 0) || area == 1.0) return card;
   card.is *= area;
   card.ibv *= area;
+  if (card.cjo) *card.cjo *= area;
   card.rs /= area;
   if (card.ron) *card.ron /= area;
   if (card.rrev) *card.rrev /= area;
@@ -89,18 +91,25 @@ Diode::Diode(const Element& element, const Netlist& netlist, const DeviceOptions
       card_(parallel_card(model_of(element, netlist), element.value)),
       law_(resolve_diode_law(card_, options.ifit, junction_range(options, element.name, false))) {
   if (card_.bv) breakdown_ = resolve_breakdown_law(card_, options.ifit, junction_range(options, element.name, true));
+  if (options.diodecap) capacitance_ = card_.cjo.value_or(0.0);
 }
 
 std::vector<BranchDecl> Diode::branches() const {
   const std::string &anode = element_.nodes.at(0), &cathode = element_.nodes.at(1);
   std::vector<BranchDecl> out{{name(), BranchClass::Diode, anode, cathode}};
   if (breakdown_) out.push_back({name() + ":bv", BranchClass::Diode, cathode, anode});
+  if (capacitance() > 0) out.push_back({name() + ":cj", BranchClass::Capacitor, anode, cathode});
   return out;
 }
 
+// i(d) is the forward minus the breakdown current, plus the junction capacitance's (part of the
+// device, as in ngspice's diode).
 std::vector<std::pair<int, double>> Diode::element_current() const {
-  if (!breakdown_) return {};
-  return {{0, 1.0}, {1, -1.0}};  // forward minus breakdown current
+  if (!breakdown_ && !(capacitance() > 0)) return {};
+  std::vector<std::pair<int, double>> out{{0, 1.0}};
+  if (breakdown_) out.push_back({1, -1.0});
+  if (capacitance() > 0) out.push_back({breakdown_ ? 2 : 1, 1.0});
+  return out;
 }
 
 PairLaw junction_pair_law(const std::string& name, int element, const ResolvedDiodeLaw& law, SmoothJunction smooth) {
@@ -133,6 +142,7 @@ void Diode::stamp(const StampContext& context, Stamps& stamps) const {
   if (breakdown_)
     stamps.pairs.push_back({context.branch(1), junction_pair_law(name() + ":bv", element_index(), *breakdown_,
                                                         {card_.ibv, card_.n})});
+  if (capacitance() > 0) stamps.storage.push_back({context.branch(breakdown_ ? 2 : 1), capacitance(), std::nullopt});
 }
 
 std::string ngspice_junction(const std::string& tag, const std::string& anode, const std::string& cathode,
@@ -156,20 +166,38 @@ std::string ngspice_junction(const std::string& tag, const std::string& anode, c
   return meter;
 }
 
+// The junction capacitance is a capacitor of CJO across the junction, behind a 0 V ammeter that
+// also carries the junction's current: i(d) is the device's, as lcspice's.
 NgspiceCards Diode::ngspice(const NgspiceDeckContext& context) const {
   NgspiceCards cards;
   std::string anode = element_.nodes.at(0), cathode = element_.nodes.at(1);
   if (context.reversed) std::swap(anode, cathode);
   const SmoothDiodeLaw smooth =
       smooth_equivalent(card_, law_, context.emission, context.saturation_current);
+  std::string ammeter;
+  if (capacitance() > 0) {
+    ammeter = context.fresh(deck_name('v', "amm_" + name()));
+    const std::string inner = context.fresh("lcs_" + name() + "_a");
+    cards.lines.push_back(ammeter + " " + anode + " " + inner + " DC 0");
+    anode = inner;
+    auto ic = context.branch_initial.find(name() + ":cj");
+    cards.lines.push_back(deck_name('c', name() + "_cj") + " " + anode + " " + cathode + " " + number(capacitance()) +
+                          (ic != context.branch_initial.end() ? " IC=" + number(ic->second) : ""));
+  }
   const std::string meter = ngspice_junction(name(), anode, cathode, smooth, context, cards);
   cards.ideal_diode = !(law_.fitted || card_.has_is || card_.has_n || card_.has_rs);
-  cards.probes["i(" + name() + ")"] = {meter + "#branch", ""};
+  cards.probes["i(" + name() + ")"] = {(ammeter.empty() ? meter : ammeter) + "#branch", ""};
   return cards;
 }
 
 std::vector<std::string> Diode::notes() const {
   std::vector<std::string> out;
+  if (capacitance() > 0) {
+    char buf[200];
+    std::snprintf(buf, sizeof buf, "diode %s: junction capacitance %.6g F (CJO at zero bias, .options diodecap)", name().c_str(),
+                  capacitance());
+    out.push_back(buf);
+  }
   for (const std::string& p : card_.ignored)
     out.push_back("diode " + name() + ": model parameter " + p + " is ignored by the ideal model");
   return out;

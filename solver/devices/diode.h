@@ -81,11 +81,15 @@ class Diode : public Device {
   const ResolvedDiodeLaw& law() const { return law_; }
   // The breakdown pair's law, when the card has BV: a second branch cathode -> anode ("d1:bv").
   const std::optional<ResolvedDiodeLaw>& breakdown() const { return breakdown_; }
+  // CJO times the area under `.options diodecap`: a capacitor branch across the junction
+  // ("d1:cj") when positive.
+  double capacitance() const { return capacitance_; }
 
  private:
   DiodeModel card_;
   ResolvedDiodeLaw law_;
   std::optional<ResolvedDiodeLaw> breakdown_;
+  double capacitance_ = 0;
 };
 
 }  // namespace lcs

@@ -293,6 +293,7 @@ CircuitModel CircuitModel::build(const Netlist& netlist, const ModelOptions& opt
   device_options.ifit = netlist_options.ifit.value_or(options.ifit);
   device_options.diode_ranges = options.diode_ranges;
   device_options.bjtcap = netlist_options.bjtcap;
+  device_options.diodecap = netlist_options.diodecap;
   device_options.tstop = options.t1;
   device_options.tstep = netlist.tran ? netlist.tran->tstep : 0;
   m.devices_ = make_devices(m.netlist_, device_options);

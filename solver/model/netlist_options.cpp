@@ -83,6 +83,11 @@ NetlistOptions read_netlist_options(const Netlist& netlist) {
     if (!c || !valid_bjtcap(*c)) fail(netlist, "bjtcap", kBjtcapMessage);
     o.bjtcap = *c;
   }
+  if (const std::string* text = option_text(netlist, "diodecap")) {
+    const std::optional<double> v = text->empty() ? std::optional<double>(1.0) : parse::parse_number(*text);
+    if (!v || (*v != 0.0 && *v != 1.0)) fail(netlist, "diodecap", ".options diodecap takes no value, or 0 or 1");
+    o.diodecap = *v == 1.0;
+  }
   return o;
 }
 

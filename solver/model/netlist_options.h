@@ -22,6 +22,9 @@ struct NetlistOptions {
   // `.options bjtcap=`: a base–emitter capacitance [F] for every transistor (Stewart 5.4.7's
   // physical regularisation), over the cards' CJE; >= 0 and finite. nullopt: not given.
   std::optional<double> bjtcap;
+  // `.options diodecap` (diodecap=1; diodecap=0: off): each diode's CJO as a capacitance across
+  // its junction (model_card.h). Off by default: SPEC §2 lists CJO as ignored.
+  bool diodecap = false;
 
   bool IsValid(std::string* why) const;
 };
@@ -31,6 +34,7 @@ struct NetlistOptions {
 //   ".options theta must be a number in [0, 1]"
 //   ".options ifit must be a positive number of amperes"
 //   ".options bjtcap must be a capacitance in farads, not negative"
+//   ".options diodecap takes no value, or 0 or 1"
 NetlistOptions read_netlist_options(const Netlist& netlist);
 
 }  // namespace lcs
