@@ -474,6 +474,42 @@ TEST(BjtAstable, EventAndRadau5AgreeOnThePeriodWhenTheHalfPeriodIsAWholeNumberOf
   }
 }
 
+// A hobby astable (9 V, RC 1k, RB 47k and 39k, 10 uF, BF 294, VON 0.67, RON 2.5, CJE 13.6 pF,
+// CJC 3.7 pF), started off balance (UIC, C1 charged to -5 V). Each base, kicked down by the other
+// collector's fall, charges through its RB towards VCC and turns its transistor on at VON:
+// T = (RB1 + RB2) CB ln((2 VCC - VON - VCESAT)/(VCC - VON)), VCESAT the saturated collector's
+// 0.023 V. The event method used to switch once and stop: the recovering base's junction
+// constraint started its mode just below zero with a slope of -17 V/s, which against the mode's
+// fastest terms (CJE through RON, 1e10 V/s) counted as not falling, and it was excused until it
+// came back above zero, which it never did: the base rose to 8 V with its junction off.
+TEST(BjtAstable, HobbyAstableOffBalanceOscillatesWithEveryJunctionComplementary) {
+  const fs::path deck = write_deck("bjt_astable_", "hobby",
+                                   "hobby astable\nVCC vcc 0 9\nRC1 vcc c1 1k\nRC2 vcc c2 1k\nRB1 vcc b1 47k\n"
+                                   "RB2 vcc b2 39k\nC1 c1 b2 10u IC=-5\nC2 c2 b1 10u\nQ1 c1 b1 0 q\nQ2 c2 b2 0 q\n"
+                                   ".model q NPN(BF=294 BR=7.9 VON=0.67 RON=2.5 CJE=13.6p CJC=3.7p)\n"
+                                   ".tran 1m 3 UIC\n.end\n");
+  const double vcc = 9, von = 0.67, vcesat = 0.023;
+  const double period = (47e3 + 39e3) * 10e-6 * std::log((2 * vcc - von - vcesat) / (vcc - von));  // 0.6289 s
+  for (const char* method : {"event", "euler"}) {
+    SCOPED_TRACE(method);
+    const Csv csv = run_csv(deck, method, "--step 1e-4 --probe 'v(b1),v(b2),ib(q1),ib(q2)'");
+    const auto measured = periods(csv);
+    ASSERT_GE(measured.size(), 3u);  // 4 periods in 3 s (measured 0.6276 s, both methods)
+    for (double p : measured) EXPECT_NEAR(p, period, 0.01 * period);
+    // A base 50 mV past VON drives 20 mA through RON: at least 68 uA of base current (1 - alphaF
+    // of it). Less is a conducting junction held off (the bug: 1e-10 A at 6.7 V).
+    for (const char* q : {"1", "2"}) {
+      const auto v = column(csv, std::string("v(b") + q + ")"), ib = column(csv, std::string("ib(q") + q + ")");
+      for (size_t k = 0; k < v.size(); ++k) {
+        if (v[k] > von + 0.05) {
+          ASSERT_GT(ib[k], 1e-5) << "q" << q << " row " << k << ": v(b) " << v[k];
+        }
+      }
+    }
+  }
+}
+
+
 // ---------------------------------------------------------------------------------------------
 // The event method at coarse --rtol (issue 10). A switching of these circuits passes through
 // modes that last picoseconds (the astable's Q2 active for 98 ps while 0.49 A discharges 10 pF;

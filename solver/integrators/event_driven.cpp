@@ -177,6 +177,7 @@ struct EventDriven::Impl {
   Eigen::VectorXd W;       // rounding weights of [x; σ] for the current source form
   Eigen::VectorXd ga, da;  // constraint values and slopes at X
   std::vector<char> below_at_start;  // constraints that began the mode just below zero
+  Eigen::VectorXd start_value;       // their values then: an excused one may not fall below it
   Eigen::VectorXd scale, slope_scale;
   std::array<Eigen::VectorXd, kMaxLevel + 1> Xb, gb, db, sc;
 
@@ -706,6 +707,7 @@ void EventDriven::Impl::refresh_constraints() {
   row_scales(cur->Gabs, cur->Gnorm, X, xn, scale);
   row_scales(cur->GMabs, cur->GMnorm, X, xn, slope_scale);
   below_at_start.resize(m);
+  start_value = ga;
   for (int i = 0; i < m; ++i)
     below_at_start[i] = ga(i) < -kTol * scale(i) && da(i) >= -kZeroTol * slope_scale(i);
   if (guard_count > 0 && cur->Guard.rows() == guard_count) {
@@ -738,11 +740,19 @@ void EventDriven::Impl::project() {
   X.head(n) -= cur->dyn.project * (cur->Pc * X);
 }
 
+// An excused constraint is violated once it falls below where it began by the mode check's
+// band for zero (kZeroTol of its terms: past that the mode that excused it fails, so the event
+// switches): its slope at the start is judged against the mode's fastest terms (a junction's
+// CJE through its RON, 1e10 V/s), and a base recovering through 47k and 10 uF past the B-E
+// junction's VON fell at 17 V/s, "not plainly falling", and was never watched again (an astable
+// switched once and then held the base at 8 V with its junction off).
 bool EventDriven::Impl::violated(const Eigen::VectorXd& Xv, Eigen::VectorXd& g, Eigen::VectorXd& scale) const {
   g.noalias() = cur->G * Xv;
   row_scales(cur->Gabs, cur->Gnorm, Xv, W.cwiseProduct(Xv).norm(), scale);
-  for (int i = 0; i < m; ++i)
-    if (g(i) < -(kTol * scale(i) + 1e-300) && !below_at_start[i]) return true;
+  for (int i = 0; i < m; ++i) {
+    if (!(g(i) < -(kTol * scale(i) + 1e-300))) continue;
+    if (!below_at_start[i] || g(i) < start_value(i) - kZeroTol * scale(i)) return true;
+  }
   return !guards_below(Xv).empty();
 }
 
@@ -810,7 +820,9 @@ bool EventDriven::Impl::step(int j) {
 // of the bracket was 190 V past the collector's saturation.
 bool EventDriven::Impl::far_past(const Eigen::VectorXd& g, const Eigen::VectorXd& scale) const {
   for (int i = 0; i < m; ++i)
-    if (!below_at_start[i] && g(i) < -std::max(options.rtol, kZeroTol) * scale(i)) return true;
+    if (g(i) < -std::max(options.rtol, kZeroTol) * scale(i) &&
+        (!below_at_start[i] || g(i) < start_value(i) - 2 * std::max(options.rtol, kZeroTol) * scale(i)))
+      return true;
   return false;
 }
 
