@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <memory>
+#include <optional>
 #include <set>
 
 #include "netlist/control_cards.h"
@@ -72,6 +73,7 @@ class Elaborator {
     check_internal_nodes();
     if (control_tran && !net_.tran) net_.tran = parse_tran(*control_tran, *root.scope, net_.warnings);
     note_unused_models();
+    warn_temperature_coefficients();
     resolve_couplings();
     resolve_controls();
     check_node_ics();
@@ -103,6 +105,21 @@ class Elaborator {
         global_nodes_.insert(t.lower);
       }
     }
+  }
+
+  // A nonzero TC= changes nothing at the nominal temperature, the one lcspice simulates; a deck
+  // that sets another with `.options temp=` or `tnom=` (accepted silently, as every unknown
+  // option is) would get it wrong without a word. (`.temp` warns on its own card.)
+  void warn_temperature_coefficients() {
+    if (!first_temperature_coefficient_) return;
+    for (const char* option : {"temp", "tnom"})
+      if (net_.options.count(option)) {
+        const auto& [name, loc] = *first_temperature_coefficient_;
+        net_.warnings.push_back(warning_line(loc, quote(name) + ": temperature coefficients are not modelled: "
+                                                  "lcspice runs at the nominal temperature (.options " +
+                                                  option + "= is ignored)"));
+        return;
+      }
   }
 
   // `.options diodecap` (or diodecap=1; diodecap=0 is off), anywhere at the top level: the
@@ -241,7 +258,8 @@ class Elaborator {
     if (m.type == "d") net_.diode_models[flat] = std::move(m.diode);
     if (m.type == "npn" || m.type == "pnp") net_.bjt_models[flat] = std::move(m.bjt);
     if (m.type == "ltra") net_.line_models[flat] = std::move(m.line);
-    if (m.type == "sw" || m.type == "csw") net_.switch_models[flat] = std::move(m.sw);
+    if (m.type == "sw" || m.type == "csw" || m.type == "vswitch" || m.type == "iswitch")
+      net_.switch_models[flat] = std::move(m.sw);
   }
 
   void add_element(const Card& card, Instance& in) {
@@ -256,6 +274,8 @@ class Elaborator {
       if (!flat.empty()) refuse_unsimulated(card, 3, model_types_.at(flat));
     }
     ParsedElement pe = parse_element(card, scope, net_.warnings);
+    if (pe.temperature_coefficient_token && !first_temperature_coefficient_)
+      first_temperature_coefficient_ = std::make_pair(pe.element.name, card.at(pe.temperature_coefficient_token));
     scale_for_parallel_copies(pe.element, in.multiplier);
     register_name(pe.element.name, card.at(0), "element");
     const std::size_t index = net_.elements.size();
@@ -410,9 +430,10 @@ class Elaborator {
     const std::string& name = card[token].lower;
     const std::string flat = find_model(in, name);
     const char* wanted = current ? "csw" : "sw";
+    const char* pspice = current ? "iswitch" : "vswitch";
     if (flat.empty()) throw NetlistError(card.at(token), "switch model " + quote(name) + " is not defined");
     const std::string& type = model_types_.at(flat);
-    if (type != wanted)
+    if (type != wanted && type != pspice)
       throw NetlistError(card.at(token), "model " + quote(name) + " is not a" + (current ? " CSW" : "n SW") +
                                              " model (it is " + to_upper(type) + "); " +
                                              (current ? "W switches take CSW (or ISWITCH) models" : "S switches take SW (or VSWITCH) models"));
@@ -564,6 +585,7 @@ class Elaborator {
   std::map<std::string, std::string> model_types_;
   std::vector<CouplingRef> coupling_refs_;
   bool diode_capacitance_ = false;  // `.options diodecap`
+  std::optional<std::pair<std::string, SourceLocation>> first_temperature_coefficient_;
   struct UnsimulatedModel {
     std::string name, type;
     SourceLocation loc;

@@ -15,6 +15,7 @@ struct Reader {
   const ElementScope& scope;
   std::string name;  // flat name, for messages
   std::vector<std::string>* warnings_ = nullptr;
+  mutable std::size_t temperature_coefficient = 0;  // token of the first nonzero TC=/tc1=/tc2=
 
   void node(std::size_t i, Element& e) const {
     if (i >= card.size()) throw NetlistError(card.after_last(), "missing node for " + quote(name));
@@ -72,13 +73,16 @@ struct Reader {
       // lcspice simulates (.temp is ignored with a warning). The values are read to check them.
       if (assignment && (card[i].is_word("tc") || card[i].is_word("tc1") || card[i].is_word("tc2"))) {
         const bool list = card[i].is_word("tc");
+        const std::size_t at = i;
         if (i + 2 >= card.size()) throw NetlistError(card.after_last(), "missing value for " + quote(card[i].lower));
-        value_of(card, i + 2, *scope.params);
+        bool nonzero = value_of(card, i + 2, *scope.params) != 0;
         i += 3;
-        if (list && i + 1 < card.size() && card[i].is(Token::Kind::Comma)) {
-          value_of(card, i + 1, *scope.params);
+        if (list && i < card.size() && card[i].is(Token::Kind::Comma)) {
+          if (i + 1 >= card.size()) throw NetlistError(card.after_last(), "missing second value for 'tc'");
+          nonzero = value_of(card, i + 1, *scope.params) != 0 || nonzero;
           i += 2;
         }
+        if (nonzero && !temperature_coefficient) temperature_coefficient = at;
         continue;
       }
       if (assignment && (card[i].is_word("temp") || card[i].is_word("dtemp"))) {
@@ -395,10 +399,15 @@ ParsedElement parse_element(const Card& card, const ElementScope& scope,
         names.push_back(i);
       }
       if (names.size() < 2) {
-        const std::size_t i = names.size() + 1;
-        if (i >= card.size()) throw NetlistError(card.after_last(), "missing inductor name for " + quote(e.name));
-        if (!card[i].is_word()) throw NetlistError(card.at(i), "expected an inductor name, got " + quote(card[i].text));
-        throw NetlistError(card.after_last(), "missing coupling coefficient for " + quote(e.name));
+        // Fewer than three tokens after K: a number last is the coefficient (an inductor name
+        // is missing), a name last is the second inductor (the coefficient is missing).
+        const std::size_t last = card.size() - 1;
+        if (card.size() == 3 && !starts_with_digit(card[last]) && card[last].is_word())
+          throw NetlistError(card.after_last(), "missing coupling coefficient for " + quote(e.name));
+        if (card.size() > 1 && !card[1].is_word() && !starts_with_digit(card[1]))
+          throw NetlistError(card.at(1), "expected an inductor name, got " + quote(card[1].text));
+        throw NetlistError(card.size() > 2 ? card.at(last) : card.after_last(),
+                           "missing inductor name for " + quote(e.name) + " (K takes two or more inductors and k)");
       }
       for (std::size_t a = 0; a < names.size(); ++a)
         for (std::size_t b = 0; b < a; ++b)
@@ -475,6 +484,7 @@ ParsedElement parse_element(const Card& card, const ElementScope& scope,
     default:
       throw NetlistError(card.at(head), "unknown element type " + quote(std::string(1, letter)));
   }
+  out.temperature_coefficient_token = r.temperature_coefficient;
   return out;
 }
 

@@ -29,6 +29,10 @@ struct ParsedElement {
   // K with more than two inductors (LTspice): the other pairs' couplings are in `parasitics`
   // (named K#2, K#3, ...), their inductor names' tokens here, in the same order.
   std::vector<std::array<std::size_t, 2>> extra_coupled_tokens;
+  // R, L, C: the token of a nonzero temperature coefficient (TC=, tc1=, tc2=), 0 when none. It
+  // changes nothing at the nominal temperature; the elaborator warns when `.options temp=` or
+  // `tnom=` sets another.
+  std::size_t temperature_coefficient_token = 0;
   std::size_t control_token = 0;             // F, H: token of the controlling source's name
   // R, C, D with both terminals on one node: no current flows through it and it changes nothing.
   bool shorted = false;

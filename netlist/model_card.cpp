@@ -291,7 +291,6 @@ ModelCard parse_model_card(const Card& card, const ParamScope& scope, const std:
       read_pspice_switch_params(card, params, scope, m.sw, warnings);
     else
       read_switch_params(card, params, scope, m.sw, warnings);
-    m.type = m.sw.current_controlled ? "csw" : "sw";
     return m;
   }
   if (m.type == "ltra") {

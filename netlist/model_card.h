@@ -19,7 +19,7 @@ struct ModelCard {
   DiodeModel diode;   // type "d": name = prefix + name
   BjtModel bjt;       // type "npn" or "pnp": name = prefix + name
   LineModel line;     // type "ltra": name = prefix + name
-  SwitchModel sw;     // type "sw" or "csw" (PSpice's VSWITCH, ISWITCH read as these): name = prefix + name
+  SwitchModel sw;     // type "sw", "csw", "vswitch" or "iswitch" (PSpice's, read as SW/CSW): name = prefix + name
   // A type ngspice knows and lcspice does not simulate (NMOS, NUMD, LCOUPLE, ...): kept only to
   // refuse the elements that use it (see out_of_scope.h); `type` is that type, lower-case.
   bool unsimulated = false;

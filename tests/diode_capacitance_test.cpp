@@ -127,5 +127,17 @@ TEST(DiodeCapacitance, DetectorAgreesWithNgspice) {
   EXPECT_NE(p.out.find("c_d1_cj lcs_d1_a out 2e-11"), std::string::npos) << p.out;
 }
 
+// The junction capacitor's card in the ngspice deck takes a name no element of the deck has: a
+// capacitor named C_D1_CJ beside diode d1 made ngspice refuse the deck ("device already exists").
+TEST(DiodeCapacitance, ValidateNamesTheCapacitorApartFromTheDecksOwn) {
+  const fs::path deck = write_deck("diode_cjo_", "collision",
+                                   "name collision\nV1 in 0 SIN(0 2 1MEG)\nR1 in a 100\nD1 a 0 dm\nC_D1_CJ in b 1n\n"
+                                   "R2 b 0 1k\n.model dm d(von=0.7 ron=1 cjo=100p)\n.options diodecap\n"
+                                   ".tran 10n 4u\n.end\n");
+  const Result r = run_lcspice("validate '" + deck.string() + "'", deck.parent_path());
+  EXPECT_EQ(r.code, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("PASS: every probe within"), std::string::npos) << r.out;
+}
+
 }  // namespace
 }  // namespace lcs::cli_testing

@@ -128,6 +128,10 @@ TEST(LtspiceDialect, CouplingOfThreeInductorsIsEveryPair) {
             "t.cir:5:10: error: coupled inductor 'l3' is not defined\nK1 L1 L2 L3 1\n         ^~");
   EXPECT_EQ(test::diag("t\nL1 a 0 1\nL2 b 0 1\nR1 a b 1\nK1 L1 L2\n"),
             "t.cir:5:9: error: missing coupling coefficient for 'k1'\nK1 L1 L2\n        ^");
+  // A coefficient after one inductor: the second inductor is what is missing.
+  EXPECT_EQ(test::diag("t\nL1 a 0 1\nK1 L1 0.5\n"),
+            "t.cir:3:7: error: missing inductor name for 'k1' (K takes two or more inductors and k)\nK1 L1 0.5\n"
+            "      ^~~");
 }
 
 }  // namespace

@@ -160,7 +160,7 @@ TEST(PspiceDialect, VswitchAndIswitchAreIdealSwitchesAtTheirMidpoint) {
             ".model m VSWITCH(VT=1)\n                 ^~");
   // An S switch takes a VSWITCH, not an ISWITCH.
   EXPECT_EQ(test::diag("t\nS1 a 0 c 0 m\n.model m ISWITCH\n"),
-            "t.cir:2:12: error: model 'm' is not an SW model (it is CSW); S switches take SW (or VSWITCH) models\n"
+            "t.cir:2:12: error: model 'm' is not an SW model (it is ISWITCH); S switches take SW (or VSWITCH) models\n"
             "S1 a 0 c 0 m\n           ^");
 }
 

@@ -179,6 +179,18 @@ TEST(ParseModels, DiodeCapacitanceIsListedAsIgnoredUnlessOptionsDiodecap) {
             "t.cir:3:17: error: diode parameter 'cjo' must not be negative\n.model dc D(CJO=-1p)\n                ^~~");
 }
 
+// A nonzero temperature coefficient with .options temp=/tnom= (another temperature than the
+// nominal one, which lcspice runs at) is warned about once; with the nominal one it is silent.
+TEST(ParseElements, TemperatureCoefficientsWithAnotherTemperatureAreWarnedAbout) {
+  Netlist n = parse("t\nV1 a 0 1\nR1 a 0 1k TC=0,0\nR2 a 0 1k TC=0.01\nR3 a 0 1k tc2=1e-6\n.options tnom=20 temp=60\n");
+  ASSERT_EQ(n.warnings.size(), 1u);
+  EXPECT_EQ(n.warnings[0], "t.cir:4:11: warning: 'r2': temperature coefficients are not modelled: lcspice runs at "
+                           "the nominal temperature (.options temp= is ignored)");
+  EXPECT_TRUE(parse("t\nV1 a 0 1\nR2 a 0 1k TC=0.01\n").warnings.empty());
+  EXPECT_EQ(diag("t\nR1 a 0 1k TC=0.001,\n"),
+            "t.cir:2:20: error: missing second value for 'tc'\nR1 a 0 1k TC=0.001,\n                   ^");
+}
+
 TEST(ParseModels, ManyIgnoredNgspiceParameters) {
   Netlist n = parse("t\n.model D1N4148 D(Is=2.52n Rs=.568 N=1.752 Cjo=4p M=.4 tt=20n bv=100 ibv=100u level=1)\n");
   const DiodeModel& d = n.diode_models.at("d1n4148");

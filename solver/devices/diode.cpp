@@ -181,7 +181,8 @@ NgspiceCards Diode::ngspice(const NgspiceDeckContext& context) const {
     cards.lines.push_back(ammeter + " " + anode + " " + inner + " DC 0");
     anode = inner;
     auto ic = context.branch_initial.find(name() + ":cj");
-    cards.lines.push_back(deck_name('c', name() + "_cj") + " " + anode + " " + cathode + " " + number(capacitance()) +
+    cards.lines.push_back(context.fresh(deck_name('c', name() + "_cj")) + " " + anode + " " + cathode + " " +
+                          number(capacitance()) +
                           (ic != context.branch_initial.end() ? " IC=" + number(ic->second) : ""));
   }
   const std::string meter = ngspice_junction(name(), anode, cathode, smooth, context, cards);

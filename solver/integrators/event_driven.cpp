@@ -201,7 +201,9 @@ struct EventDriven::Impl {
                              const std::string& signature, const Eigen::VectorXd& Xs,
                              const Eigen::MatrixXd* error);
   bool apply_impulse(Eigen::VectorXd& x, const Eigen::VectorXd& u);
-  void refresh_constraints();
+  // `mode_start`: the mode was just (re)selected; otherwise the sources were reset within it (a
+  // grid time, a line's history), and a constraint excused before keeps its starting value.
+  void refresh_constraints(bool mode_start);
   void project();
   bool step(int j);  // false at an event
   void bisect(int j);
@@ -700,16 +702,22 @@ bool EventDriven::Impl::apply_impulse(Eigen::VectorXd& x, const Eigen::VectorXd&
 // good: 20 s of a VON = 0 rectifier whose source crosses zero at grid times, the waveform and
 // the propagated sine differing by rounding there, lost a turn-off at 8.05 s and then printed
 // a negative diode current for half a period, again and again.)
-void EventDriven::Impl::refresh_constraints() {
+void EventDriven::Impl::refresh_constraints(bool mode_start) {
   ga.noalias() = cur->G * X;
   da.noalias() = cur->GM * X;
   const double xn = W.cwiseProduct(X).norm();
   row_scales(cur->Gabs, cur->Gnorm, X, xn, scale);
   row_scales(cur->GMabs, cur->GMnorm, X, xn, slope_scale);
+  const bool kept = !mode_start && static_cast<int>(below_at_start.size()) == m && start_value.size() == m;
   below_at_start.resize(m);
-  start_value = ga;
-  for (int i = 0; i < m; ++i)
-    below_at_start[i] = ga(i) < -kTol * scale(i) && da(i) >= -kZeroTol * slope_scale(i);
+  if (!kept) start_value = ga;
+  for (int i = 0; i < m; ++i) {
+    const bool excused = ga(i) < -kTol * scale(i) && da(i) >= -kZeroTol * slope_scale(i);
+    // Excused at every grid time, a slow fall would start afresh each time and never reach
+    // the band: one excused before keeps where it began.
+    if (!(kept && excused && below_at_start[i])) start_value(i) = ga(i);
+    below_at_start[i] = excused;
+  }
   if (guard_count > 0 && cur->Guard.rows() == guard_count) {
     guard_values(X, gga, gscale);
     gda.noalias() = cur->GuardM * X;
@@ -978,7 +986,7 @@ std::optional<GuardCrossing> EventDriven::RunSegment(const SegmentStart& start, 
     r.X.resize(n + sigma.size());
     r.X << x, sigma;
     r.project();
-    r.refresh_constraints();
+    r.refresh_constraints(true);
     return before != nullptr && before->active != r.cur->active;
   };
 
@@ -1146,7 +1154,7 @@ std::optional<GuardCrossing> EventDriven::RunSegment(const SegmentStart& start, 
         }
       }
       r.project();
-      r.refresh_constraints();
+      r.refresh_constraints(false);
       X_start = r.X;
       mode_start = r.cur;
     }
@@ -1221,7 +1229,7 @@ std::optional<GuardCrossing> EventDriven::RunSegment(const SegmentStart& start, 
         r.sources->sigma(tg, r.cur->signature, sigma);
         r.X.tail(sigma.size()) = sigma;
         r.project();
-        r.refresh_constraints();
+        r.refresh_constraints(false);
         emit_now(tg, false);
       }
     }

@@ -251,16 +251,21 @@ bool repair_numerical_failure(const CircuitModel& model, double t, OperatingPoin
 // Two of them may be one point: a pair at a degenerate vertex given a current of rounding (a diode
 // between two junctions of a DTL gate's level shifter, its middle node reached only through them)
 // is at zero current once polished, as in the solution that had it off. Such solutions count once
-// (equal polished x and z to 1e-9 of their largest entries), with A regular or not.
+// (equal polished x and z, entry by entry), with A regular or not.
 std::vector<Eigen::VectorXd> exact_solutions(const CircuitModel& model, double t, const StaticProblem& p,
                                              const std::vector<Eigen::VectorXd>& zs) {
   std::vector<Eigen::VectorXd> exact;
   std::vector<OperatingPoint> points;
+  // Entry by entry, to 1e-9 of the entry, above a floor of 1e-12 of the largest (the rounding a
+  // degenerate vertex leaves): a floor of 1e-9 of the largest let a -1e10 V source elsewhere in
+  // the deck merge a flip-flop's two latch states.
   auto same = [](const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
     if (a.size() != b.size()) return false;
     if (a.size() == 0) return true;
-    const double scale = std::max({1e-300, max_abs(a), max_abs(b)});
-    return (a - b).cwiseAbs().maxCoeff() <= 1e-9 * scale;
+    const double floor = 1e-12 * std::max({1e-300, max_abs(a), max_abs(b)});
+    for (Eigen::Index i = 0; i < a.size(); ++i)
+      if (std::abs(a(i) - b(i)) > 1e-9 * std::max(std::abs(a(i)), std::abs(b(i))) + floor) return false;
+    return true;
   };
   for (const Eigen::VectorXd& z : zs) {
     OperatingPoint op = point_from(p, z);
