@@ -39,10 +39,10 @@ SwitchGuards guards_of(const SwitchFamily& family, const CircuitModel& model, co
   g.threshold.resize(k);
   g.sign.resize(k);
   for (Eigen::Index s = 0; s < k; ++s) {
-    if (g.G.rows() == k) g.G.row(s) *= sw[s].sign;  // the control as the thresholds read it
-    if (g.H.rows() == k) g.H.row(s) *= sw[s].sign;
-    g.J.row(s) *= sw[s].sign;
-    g.K.row(s) *= sw[s].sign;
+    // The control as the thresholds read it (a matrix without columns has no rows to scale:
+    // its data pointer is null, and a row block of it is undefined behaviour).
+    for (Eigen::MatrixXd* a : {&g.G, &g.H, &g.J, &g.K})
+      if (a->rows() == k && a->cols() > 0) a->row(s) *= sw[s].sign;
     g.threshold(s) = config[s] ? sw[s].off_below : sw[s].on_above;
     g.sign(s) = config[s] ? 1.0 : -1.0;
   }
