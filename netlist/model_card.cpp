@@ -103,20 +103,42 @@ void read_bjt_params(const Card& card, const std::vector<Assignment>& params, co
 
 const char* const kModelTypes[] = {"d", "npn", "pnp", "ltra", "sw", "csw", "vswitch", "iswitch"};
 
+// One switch parameter's value: present and finite; `check(ok, rule)` throws at the value.
+struct SwitchParam {
+  const Token& key;
+  double v;
+  SourceLocation at;
+  void check(bool ok, const char* rule) const {
+    if (!ok) throw NetlistError(at, "switch parameter " + quote(key.lower) + " must " + rule);
+  }
+};
+
+SwitchParam switch_param(const Card& card, const Assignment& a, const ParamScope& scope) {
+  const Token& key = card[a.name];
+  if (a.flag()) throw NetlistError(card.at(key), "missing value for switch parameter " + quote(key.text));
+  SwitchParam p{key, value_of(card, a.value_first, a.value_last, scope), card.at(a.value_first)};
+  p.check(std::isfinite(p.v), "be finite");
+  return p;
+}
+
+// RON or ROFF, the same in both switch families: true when `p` was one of them.
+bool read_switch_resistance(const SwitchParam& p, SwitchModel& sw) {
+  if (p.key.lower != "ron" && p.key.lower != "roff") return false;
+  p.check(p.v > 0, "be positive");
+  (p.key.lower == "ron" ? sw.ron : sw.roff) = p.v;
+  return true;
+}
+
 // .model NAME SW(VT= VH= RON= ROFF=) / CSW(IT= IH= RON= ROFF=), ngspice's defaults.
 void read_switch_params(const Card& card, const std::vector<Assignment>& params, const ParamScope& scope,
                         SwitchModel& sw, std::vector<std::string>& warnings) {
   const char* threshold = sw.current_controlled ? "it" : "vt";
   const char* hysteresis = sw.current_controlled ? "ih" : "vh";
   for (const Assignment& a : params) {
-    const Token& key = card[a.name];
-    if (a.flag()) throw NetlistError(card.at(key), "missing value for switch parameter " + quote(key.text));
-    const double v = value_of(card, a.value_first, a.value_last, scope);
-    const SourceLocation at_value = card.at(a.value_first);
-    auto check = [&](bool ok, const char* rule) {
-      if (!ok) throw NetlistError(at_value, "switch parameter " + quote(key.lower) + " must " + rule);
-    };
-    check(std::isfinite(v), "be finite");
+    const SwitchParam p = switch_param(card, a, scope);
+    const Token& key = p.key;
+    const double v = p.v;
+    if (read_switch_resistance(p, sw)) continue;
     if (key.lower == threshold) {
       sw.vt = v;
     } else if (key.lower == hysteresis) {
@@ -125,17 +147,11 @@ void read_switch_params(const Card& card, const std::vector<Assignment>& params,
       // switch; the switch at VT is (a control that crosses the band quickly, as a gate drive
       // does, switches within |VH| / slope of VT either way).
       if (v < 0)
-        warnings.push_back(warning_line(at_value, "switch model " + quote(sw.name) + ": negative " +
+        warnings.push_back(warning_line(p.at, "switch model " + quote(sw.name) + ": negative " +
                                                       (sw.current_controlled ? "IH" : "VH") +
                                                       " (LTspice: a smooth passage over VT -+ |VH|; ngspice: a reversed "
                                                       "band) is modelled as an ideal switch at VT, without hysteresis"));
       sw.vh = std::max(v, 0.0);
-    } else if (key.lower == "ron") {
-      check(v > 0, "be positive");
-      sw.ron = v;
-    } else if (key.lower == "roff") {
-      check(v > 0, "be positive");
-      sw.roff = v;
     } else {
       throw NetlistError(card.at(key), std::string("unknown ") + (sw.current_controlled ? "CSW" : "SW") +
                                            " model parameter " + quote(key.text));
@@ -157,21 +173,14 @@ void read_pspice_switch_params(const Card& card, const std::vector<Assignment>& 
   sw.ron = 1.0;
   sw.roff = 1e6;
   for (const Assignment& a : params) {
-    const Token& key = card[a.name];
-    if (a.flag()) throw NetlistError(card.at(key), "missing value for switch parameter " + quote(key.text));
-    const double v = value_of(card, a.value_first, a.value_last, scope);
-    const SourceLocation at_value = card.at(a.value_first);
-    auto check = [&](bool ok, const char* rule) {
-      if (!ok) throw NetlistError(at_value, "switch parameter " + quote(key.lower) + " must " + rule);
-    };
-    check(std::isfinite(v), "be finite");
+    const SwitchParam p = switch_param(card, a, scope);
+    const Token& key = p.key;
+    const double v = p.v;
+    if (read_switch_resistance(p, sw)) continue;
     if (key.lower == on_key) {
       on = v;
     } else if (key.lower == off_key) {
       off = v;
-    } else if (key.lower == "ron" || key.lower == "roff") {
-      check(v > 0, "be positive");
-      (key.lower == "ron" ? sw.ron : sw.roff) = v;
     } else {
       throw NetlistError(card.at(key), std::string("unknown ") + (current ? "ISWITCH" : "VSWITCH") +
                                            " model parameter " + quote(key.text) + " (PSpice's are " +
