@@ -131,17 +131,9 @@ int run_command(const RunArgs& args) {
     options.method = args.method;
   }
   if (args.theta) options.method_options.theta = *args.theta;
-  if (args.theta && !method_of(options).uses_theta)
-    warn("--theta is used only by --method theta; method " + options.method + " ignores it");
   apply_diode_model(args, options);
   if (args.rtol) options.method_options.rtol = *args.rtol;
   if (args.atol) options.method_options.atol = *args.atol;
-  if ((args.rtol || args.atol) && !method_of(options).adaptive())
-    warn("--rtol/--atol are used by the adaptive methods (" + adaptive_method_names() + "); " +
-         options.method + " has a fixed step (--step)");
-  if (args.emission && !method_of(options).smooth_model)
-    warn("--emission is used only by --method " + smooth_method_name() + "; method " + options.method +
-         " ignores it");
   if (args.emission && !(*args.emission > 0))
     throw CliError(kExitUsage, "error: --emission must be positive");
 
@@ -189,6 +181,15 @@ int run_command(const RunArgs& args) {
     options.method = default_method_for(model, &why).name;
     if (!why.empty()) note("method " + options.method + ": the default method does not apply (" + why + ")");
   }
+  // Judged against the method that runs, so after the default is picked.
+  if (args.theta && !method_of(options).uses_theta)
+    warn("--theta is used only by --method theta; method " + options.method + " ignores it");
+  if ((args.rtol || args.atol) && !method_of(options).adaptive())
+    warn("--rtol/--atol are used by the adaptive methods (" + adaptive_method_names() + "); " +
+         options.method + " has a fixed step (--step)");
+  if (args.emission && !method_of(options).smooth_model)
+    warn("--emission is used only by --method " + smooth_method_name() + "; method " + options.method +
+         " ignores it");
   // A method that cannot integrate this circuit is a usage error (the netlist is fine, as another
   // method shows), like --diode shockley with a complementarity method.
   std::string not_applicable;

@@ -568,6 +568,15 @@ TEST(MethodTraits, OptionWarningsFollowTheTraits) {
     EXPECT_FALSE(warned(r, "--rtol/--atol are used")) << m << "\n" << r.err;
   }
 
+  // Without --method the default (event, SPEC §1) runs: the warnings are judged against it, not
+  // against the fixed-step method the options start from.
+  Result default_rtol = run("--rtol 1e-6 --stats");
+  EXPECT_EQ(default_rtol.code, 0) << default_rtol.err;
+  EXPECT_FALSE(warned(default_rtol, "--rtol/--atol are used")) << default_rtol.err;
+  EXPECT_TRUE(warned(default_rtol, "method event: ")) << default_rtol.err;
+  Result default_theta = run("--theta 0.3");
+  EXPECT_TRUE(warned(default_theta, theta_warning + "event ignores it")) << default_theta.err;
+
   for (const std::string m : {"euler", "event", "radau3", "radau5", "theta"}) {
     Result r = run("--method " + m + " --emission 2");
     EXPECT_EQ(r.code, 0) << m << "\n" << r.err;
