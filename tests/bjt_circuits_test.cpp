@@ -579,6 +579,38 @@ TEST(BjtAstable, EventMethodAtCoarseTolerancesSwitchesWithinItsTolerance) {
   }
 }
 
+// The hobby astable above at its own TSTEP (1 ms: the event bracket at --rtol 1e-3 is 2 us). At
+// t = 0 (UIC) the junction capacitors start Q2's base at 5 V, 4.3 V past VON: the mode check
+// used to count a value within one bracket of its slope as zero also where no event had been
+// located, and at 2 us times the junction's 3e9 V/s the base-emitter junction held off passed.
+// Q1's collector then climbed to 69 V in a 9 V circuit and the phase was off by half a period.
+// Without an event the start is checked to rounding: rows at every tolerance within VCC times it
+// of a reference at --rtol 1e-10 (measured 1.6e-3, 2.1e-4, 1.5e-6 V), collectors below VCC.
+TEST(BjtAstable, HobbyAstableAtCoarseTolerancesStartsInItsConsistentMode) {
+  const fs::path deck = write_deck("bjt_astable_", "hobby_coarse",
+                                   "hobby astable\nVCC vcc 0 9\nRC1 vcc c1 1k\nRC2 vcc c2 1k\nRB1 vcc b1 47k\n"
+                                   "RB2 vcc b2 39k\nC1 c1 b2 10u IC=-5\nC2 c2 b1 10u\nQ1 c1 b1 0 q\nQ2 c2 b2 0 q\n"
+                                   ".model q NPN(BF=294 BR=7.9 VON=0.67 RON=2.5 CJE=13.6p CJC=3.7p)\n"
+                                   ".tran 1m 3 UIC\n.end\n");
+  const double vcc = 9;
+  const Csv ref = run_csv(deck, "event", "--rtol 1e-10");
+  for (double rtol : {1e-3, 1e-4, 1e-6}) {
+    char arg[32];
+    std::snprintf(arg, sizeof arg, "--rtol %g", rtol);
+    SCOPED_TRACE(arg);
+    const Csv csv = run_csv(deck, "event", arg);
+    ASSERT_FALSE(csv.rows.empty());
+    EXPECT_NEAR(csv.rows.back()[0], 3.0, 1e-12);
+    for (const char* v : {"v(c1)", "v(c2)", "v(b1)", "v(b2)"}) {
+      const double worst = worst_on_grid(csv, ref, v, 1e-3);
+      EXPECT_LE(worst, vcc * rtol) << v;
+      std::printf("[ hobby astable event --rtol %g ] %s worst %.2e V on the grid\n", rtol, v, worst);
+    }
+    for (const char* v : {"v(c1)", "v(c2)"})
+      for (double x : column(csv, v)) EXPECT_LE(x, vcc) << v;
+  }
+}
+
 TEST(BjtBoost, EventMethodAtCoarseTolerancesMatchesATightReference) {
   const Csv ref = run_csv(circuit("bjt_boost"), "event", "--rtol 1e-10");
   const size_t ref_events = ref.rows.size() - grid_rows(ref, 0.2e-6).size();
