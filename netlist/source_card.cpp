@@ -130,6 +130,21 @@ Waveform parse_source_waveform(const Card& card, std::size_t first, const ParamS
       if (fn->kind == Waveform::Kind::Pwl) {
         if (args.size() % 2 != 0)
           throw NetlistError(card.at(args.back()), "'pwl' needs time-value pairs (odd number of values)");
+        // LTspice's increment: a time written "+T" is T after the previous time point (the Qorvo
+        // forum's "increment operator"; cumulative). ngspice would read T as an absolute time,
+        // which here almost always decreases (an error there), so the LTspice reading is taken.
+        bool incremented = false;
+        for (std::size_t k = 2; k < w.params.size(); k += 2) {
+          const Token& time = card[args[k]];
+          if (time.is_word() && !time.text.empty() && time.text[0] == '+') {
+            w.params[k] += w.params[k - 2];
+            incremented = true;
+          }
+        }
+        if (incremented)
+          warnings.push_back(warning_line(card.at(t), "pwl times of " + quote(name) + " written '+T' are read as "
+                                                      "T after the previous time point (LTspice; ngspice reads "
+                                                      "them as absolute times)"));
         for (std::size_t k = 2; k < w.params.size(); k += 2)
           if (w.params[k] < w.params[k - 2])
             throw NetlistError(card.at(args[k]), "pwl times must not decrease");

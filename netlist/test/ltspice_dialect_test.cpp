@@ -54,6 +54,22 @@ TEST(LtspiceDialect, VendorDiodeFieldsAreDocumentationAndListed) {
             "t.cir:3:16: error: invalid number 'big'\n.model dx D(Is=big)\n               ^~~");
 }
 
+// LTspice's PWL increment: "+T" is T after the previous time point, cumulatively; a value written
+// "+5" is a value, and absolute times may follow increments.
+TEST(LtspiceDialect, PwlTimesWrittenWithAPlusAreIncrements) {
+  Netlist n = test::parse("t\nV1 a 0 PWL 0,0 10m,0 +1u,+5 +10m,5 +1u,0 30m,1\nR1 a 0 1\n");
+  const Waveform& w = test::element(n, "v1").waveform;
+  EXPECT_EQ(w.params, (std::vector<double>{0, 0, 10e-3, 0, 10e-3 + 1e-6, 5, 10e-3 + 1e-6 + 10e-3, 5,
+                                           10e-3 + 1e-6 + 10e-3 + 1e-6, 0, 30e-3, 1}));
+  ASSERT_EQ(n.warnings.size(), 1u);
+  EXPECT_EQ(n.warnings[0], "t.cir:2:8: warning: pwl times of 'v1' written '+T' are read as T after the previous "
+                           "time point (LTspice; ngspice reads them as absolute times)");
+  // Without a '+' a decreasing time is still the error it was.
+  EXPECT_EQ(test::diag("t\nV1 a 0 PWL(0 0 1m 1 +1m 2 0.5m 3)\nR1 a 0 1\n"),
+            "t.cir:2:27: error: pwl times must not decrease\nV1 a 0 PWL(0 0 1m 1 +1m 2 0.5m 3)\n"
+            "                          ^~~~");
+}
+
 TEST(LtspiceDialect, BackannoIsAcceptedSilently) {
   Netlist n = test::parse("t\nR1 a 0 1\nV1 a 0 1\n.backanno\n");
   EXPECT_TRUE(n.warnings.empty());
