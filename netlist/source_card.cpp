@@ -15,8 +15,8 @@ struct FunctionSpec {
 };
 
 const FunctionSpec kFunctions[] = {
-    {"sin", Waveform::Kind::Sin, 2, 6},
-    {"sine", Waveform::Kind::Sin, 2, 6},  // ngspice's other name for SIN
+    {"sin", Waveform::Kind::Sin, 2, 7},   // the 7th, NCYCLES, is LTspice's
+    {"sine", Waveform::Kind::Sin, 2, 7},  // ngspice's other name for SIN
     {"pulse", Waveform::Kind::Pulse, 2, 8},  // the 8th: NP, the number of pulses (ngspice 39, LTspice)
     {"pwl", Waveform::Kind::Pwl, 2, 0},
     {"exp", Waveform::Kind::Exp, 2, 6},
@@ -121,10 +121,7 @@ Waveform parse_source_waveform(const Card& card, std::size_t first, const ParamS
         throw NetlistError(card.at(t), quote(t.lower) + " needs at least " + plural(fn->min_params, "parameter"));
       if (fn->max_params && args.size() > fn->max_params)
         throw NetlistError(card.at(args[fn->max_params]),
-                           quote(t.lower) + " takes at most " + plural(fn->max_params, "parameter") +
-                               (fn->kind == Waveform::Kind::Sin && args.size() == 7
-                                    ? " (LTspice's 7th, Ncycles, is not read)"
-                                    : ""));
+                           quote(t.lower) + " takes at most " + plural(fn->max_params, "parameter"));
       w.kind = fn->kind;
       for (std::size_t a : args) w.params.push_back(value_of(card, a, scope));
       if (fn->kind == Waveform::Kind::Pwl) {
@@ -156,6 +153,8 @@ Waveform parse_source_waveform(const Card& card, std::size_t first, const ParamS
           throw NetlistError(card.at(args[2]), "sin frequency is too large: 2*pi*FREQ is not a finite number");
         if (w.params.size() > 5 && !std::isfinite(two_pi * w.params[5] / 360))
           throw NetlistError(card.at(args[5]), "sin phase is too large: 2*pi*PHASE/360 is not a finite number");
+        if (w.params.size() > 6 && !(w.params[6] >= 0))
+          throw NetlistError(card.at(args[6]), "sin cycle count NCYCLES must not be negative");
       }
       if (fn->kind == Waveform::Kind::Pulse) {
         const char* what[] = {nullptr, nullptr, nullptr, "rise time", "fall time", "width", "period", "count NP"};

@@ -214,22 +214,29 @@ void periodic_breakpoints(const PulseShape& s, double t0, double t1, std::size_t
 }
 
 // SIN: VO + VA exp(-THETA tau) sin(2 pi FREQ tau + PHASE), tau = t - TD >= 0.
+// LTspice's 7th parameter, Ncycles > 0: the sine stops at `end` = TD + NCYCLES/FREQ and holds
+// the value it has there (LTspice XVII's help: "the last voltage when Ncycles have completed";
+// Ncycles need not be whole). 0 or absent: it does not stop.
 struct SinShape {
   double vo, va, freq, td, theta, phase;  // phase in radians
+  double end = INFINITY;
   explicit SinShape(const std::vector<double>& p)
       : vo(param(p, 0)),
         va(param(p, 1)),
         freq(param(p, 2)),
         td(param(p, 3)),
         theta(param(p, 4)),
-        phase(param(p, 5) * kPi / 180.0) {}
+        phase(param(p, 5) * kPi / 180.0) {
+    const double ncycles = param(p, 6);
+    if (ncycles > 0 && freq > 0 && std::isfinite(td + ncycles / freq)) end = td + ncycles / freq;
+  }
   double value(double t) const {
     if (t < td) return vo + va * std::sin(phase);
-    double tau = t - td;
+    double tau = std::min(t, end) - td;
     return vo + va * std::exp(-theta * tau) * std::sin(2 * kPi * freq * tau + phase);
   }
   double derivative(double t) const {
-    if (t < td) return 0.0;
+    if (t < td || t >= end) return 0.0;
     double tau = t - td, w = 2 * kPi * freq, x = w * tau + phase;
     return va * std::exp(-theta * tau) * (w * std::cos(x) - theta * std::sin(x));
   }
@@ -326,7 +333,7 @@ void Waveform::resolve(double tstep, double tstop) {
     case Kind::Sin:
       if (params.size() < 2) params.resize(2, 0.0);
       if (params.size() < 3) params.push_back(tstop > 0 ? 1.0 / tstop : 0.0);
-      params.resize(6, 0.0);  // TD THETA PHASE
+      params.resize(std::max<std::size_t>(params.size(), 6), 0.0);  // TD THETA PHASE (NCYCLES kept)
       break;
     case Kind::Pulse: {
       if (params.size() < 2) params.resize(2, 0.0);
@@ -504,7 +511,9 @@ std::pair<double, double> Waveform::range(double t0, double t1) const {
       SinShape s(params);
       take(s.value(t0));
       take(s.value(t1));
-      if (t1 < s.td) break;
+      t1 = std::min(t1, s.end);  // held from `end` on: value(end) is taken above or below
+      take(s.value(t1));
+      if (t1 < s.td || t0 > t1) break;
       double a = std::max(t0, s.td);
       take(s.value(a));
       // Interior extremes: w cos(x) = theta sin(x), x = w tau + phase, i.e. x = atan2(w, theta) + k pi.
@@ -582,6 +591,7 @@ std::vector<double> Waveform::breakpoints(double t0, double t1) const {
       break;
     case Kind::Sin:
       add(SinShape(params).td);
+      add(SinShape(params).end);
       break;
     case Kind::Exp: {
       ExpShape e(params);
@@ -613,6 +623,8 @@ std::vector<double> Waveform::breakpoints(double t0, double t1) const {
   out.erase(std::unique(out.begin(), out.end()), out.end());
   return out;
 }
+
+double Waveform::sine_end() const { return kind == Kind::Sin ? SinShape(params).end : INFINITY; }
 
 std::string Waveform::describe() const {
   std::string out;

@@ -13,7 +13,8 @@ struct Waveform {
   Kind kind = Kind::Dc;
   double dc = 0.0;             // `DC value` (or a bare value); for Kind::Dc the value at all times
   // Parameters as written, in SPICE order; missing trailing ones are filled by resolve().
-  //   SIN(VO VA FREQ TD THETA PHASE)   PHASE in degrees
+  //   SIN(VO VA FREQ TD THETA PHASE [NCYCLES])  PHASE in degrees; NCYCLES > 0 (LTspice): the
+  //                                    sine stops at TD + NCYCLES/FREQ and holds its value there
   //   PULSE(V1 V2 TD TR TF PW PER [NP])  NP > 0: that many pulses, then V1 (ngspice 39, LTspice)
   //   PWL(t1 v1 t2 v2 ...) [r=T]       times non-decreasing; r=: repeat from the time point T on
   //   EXP(V1 V2 TD1 TAU1 TD2 TAU2)
@@ -46,6 +47,9 @@ struct Waveform {
   // Times in (t0, t1) where value or slope is not smooth (PULSE and PWL corners, SIN, SFFM and AM
   // start at TD, EXP at TD1 and TD2).
   std::vector<double> breakpoints(double t0, double t1) const;
+
+  // A SIN with NCYCLES > 0: TD + NCYCLES/FREQ, from which it holds its value; else infinity.
+  double sine_end() const;
 
   std::string describe() const;       // "SIN(0 10 50)" style, for reports
   // The same waveform times m (a current source's m= multiplier: m sources in parallel).

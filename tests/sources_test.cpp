@@ -213,6 +213,38 @@ TEST(PulseSource, CountOfPulsesAgreesWithNgspice) {
   }
 }
 
+// LTspice's SIN NCYCLES: 2.5 cycles of 1 kHz from TD = 0.5 ms with a 30 degree phase and damping
+// 200/s, then held at the value reached at TE = 3 ms: 1 + 2 e^{-0.5} sin(210 deg) = 1 - e^{-0.5}
+// (the sine before TE, exactly, in both methods; a fourth half-cycle would swing 2 V). ngspice gets
+// it as its SIN plus a cancelling SIN from TE on (independent_source.cpp) and agrees to 1e-3 of
+// the range, as a current source too (the load's voltage; behind the ammeter when i(i1) is probed).
+TEST(SinSource, NcyclesStopsTheSineAndHoldsItsLastValue) {
+  const fs::path dir = scratch_dir("sin_ncycles");
+  std::ofstream(dir / "burst.cir") << "burst\nV1 in 0 SIN(1 2 1k 0.5m 200 30 2.5)\nR1 in out 1k\nD1 out 0 dx\n"
+                                      "R2 out 0 10k\n.model dx D(VON=0.6 RON=0)\n.tran 10u 6m\n.end\n";
+  const double te = 3e-3, held = 1 - std::exp(-0.5);
+  auto sine = [](double t) {
+    if (t < 0.5e-3) return 1 + 2 * std::sin(kPi / 6);
+    const double tau = t - 0.5e-3;
+    return 1 + 2 * std::exp(-200 * tau) * std::sin(2 * kPi * 1e3 * tau + kPi / 6);
+  };
+  for (const char* method : {"event", "euler"}) {
+    SCOPED_TRACE(method);
+    const Csv csv = run_csv(dir / "burst.cir", method);
+    const std::vector<double> t = column(csv, "time"), v = column(csv, "v(in)");
+    ASSERT_NEAR(t.back(), 6e-3, 1e-15);
+    for (size_t i = 0; i < t.size(); ++i) EXPECT_NEAR(v[i], t[i] < te ? sine(t[i]) : held, 1e-12) << t[i];
+  }
+  Result r = run_lcspice("validate '" + (dir / "burst.cir").string() + "' --tol 1e-3", dir);
+  EXPECT_EQ(r.code, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("PASS: every probe within"), std::string::npos) << r.out;
+  std::ofstream(dir / "iburst.cir") << "iburst\nI1 0 in SIN(0 1m 2k 0 0 90 3.25)\nR1 in 0 1k\nD1 in 0 dx\n"
+                                       ".model dx D(VON=0.5 RON=10)\n.tran 5u 4m\n.end\n";
+  Result ri = run_lcspice("validate '" + (dir / "iburst.cir").string() + "' --tol 1e-3 --probe 'v(in),i(i1)'", dir);
+  EXPECT_EQ(ri.code, 0) << ri.out << ri.err;
+  EXPECT_NE(ri.out.find("PASS: every probe within"), std::string::npos) << ri.out;
+}
+
 // ngspice's PWL r= with td=: the stretch from 1 ms to 2.5 ms (a ramp down from 1 V, then 0 V)
 // repeats from 2.7 ms on (shifted by TD), jumping back to 1 V each 1.5 ms; ngspice repeats it too.
 TEST(PwlSource, RepeatAgreesWithNgspice) {

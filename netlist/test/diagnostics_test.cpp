@@ -142,9 +142,11 @@ TEST(ParseDiagnostics, Sources) {
   check({
       {"t\nV1 a 0 SIN(0 1 1k\n", "t.cir:2:11: error: missing ')'\nV1 a 0 SIN(0 1 1k\n          ^"},
       {"t\nV1 a 0 SIN(0)\n", "t.cir:2:8: error: 'sin' needs at least 2 parameters\nV1 a 0 SIN(0)\n       ^~~"},
-      {"t\nV1 a 0 SIN(0 1 2 3 4 5 6)\n",
-       "t.cir:2:24: error: 'sin' takes at most 6 parameters (LTspice's 7th, Ncycles, is not read)\nV1 a 0 SIN(0 1 2 3 "
-       "4 5 6)\n                       ^"},
+      {"t\nV1 a 0 SIN(0 1 2 3 4 5 6 7)\n",
+       "t.cir:2:26: error: 'sin' takes at most 7 parameters\nV1 a 0 SIN(0 1 2 3 4 5 6 7)\n                         ^"},
+      {"t\nV1 a 0 SIN(0 1 2 3 4 5 -6)\n",
+       "t.cir:2:24: error: sin cycle count NCYCLES must not be negative\nV1 a 0 SIN(0 1 2 3 4 5 -6)\n"
+       "                       ^~"},
       {"t\nV1 a 0 PULSE(0 1 0 -1n)\n",
        "t.cir:2:20: error: pulse rise time must not be negative\nV1 a 0 PULSE(0 1 0 -1n)\n                   ^~~"},
       {"t\nI1 a 0 PWL(0 0 1 1 0.5 2)\n",

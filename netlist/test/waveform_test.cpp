@@ -110,6 +110,37 @@ TEST(WaveformSin, RangeBeforeDelay) {
   EXPECT_NEAR(r.second, 2.5, 1e-12);
 }
 
+// LTspice's NCYCLES: SIN(1 2 1k TD=1m THETA=0 PHASE=30 NCYCLES=2.5) stops at TE = 3.5 ms and
+// holds 1 + 2 sin(2.5 * 360 + 30 deg) = 1 + 2 sin(210 deg) = 0; with THETA = 100 the held value
+// carries the envelope at TE, e^{-0.25}.
+TEST(WaveformSin, NcyclesStopsAndHoldsTheLastValue) {
+  Waveform w = make(Waveform::Kind::Sin, {1, 2, 1e3, 1e-3, 0, 30, 2.5});
+  ASSERT_EQ(w.params.size(), 7u);
+  EXPECT_EQ(w.sine_end(), 3.5e-3);
+  EXPECT_NEAR(w.value(0), 2.0, 1e-12);  // before TD: VO + VA sin(PHASE)
+  EXPECT_NEAR(w.value(1.25e-3), 1 + 2 * std::sin(kPi / 2 + kPi / 6), 1e-12);
+  EXPECT_NEAR(w.value(3.25e-3), 1 + 2 * std::sin(kPi / 2 + kPi / 6), 1e-12);  // the last half-cycle
+  for (double t : {3.5e-3, 3.75e-3, 10.0}) {
+    EXPECT_NEAR(w.value(t), 0.0, 1e-12) << t;
+    EXPECT_EQ(w.derivative(t), 0.0) << t;
+  }
+  EXPECT_NEAR(w.derivative(3.4e-3), 2 * 2 * kPi * 1e3 * std::cos(2 * kPi * 2.4 + kPi / 6), 1e-6);
+  expect_times(w.breakpoints(0, 1), {1e-3, 3.5e-3});
+  auto r = w.range(3.6e-3, 1);
+  EXPECT_NEAR(r.first, 0.0, 1e-12);
+  EXPECT_NEAR(r.second, 0.0, 1e-12);
+  r = w.range(3e-3, 1);  // the phase runs from 30 to 210 deg: through the peak (3), down to the held 0
+  EXPECT_NEAR(r.first, 0.0, 1e-12);
+  EXPECT_NEAR(r.second, 3.0, 1e-12);
+  EXPECT_EQ(w.describe(), "SIN(1 2 1000 0.001 0 30 2.5)");
+  Waveform damped = make(Waveform::Kind::Sin, {0, 1, 1e3, 0, 100, 90, 2.5});
+  EXPECT_NEAR(damped.value(1.0), std::exp(-0.25) * std::sin(5 * kPi + kPi / 2), 1e-12);
+  // 0 (LTspice's default): no end.
+  Waveform endless = make(Waveform::Kind::Sin, {0, 1, 1e3, 0, 0, 0, 0});
+  EXPECT_TRUE(std::isinf(endless.sine_end()));
+  EXPECT_NEAR(endless.value(10.25e-3), 1.0, 1e-9);
+}
+
 TEST(WaveformPulse, Defaults) {
   Waveform w = make(Waveform::Kind::Pulse, {0, 5}, 1e-3, 1);
   EXPECT_EQ(w.params, (std::vector<double>{0, 5, 0, 1e-3, 1e-3, 1, 1}));

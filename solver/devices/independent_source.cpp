@@ -1,6 +1,7 @@
 #include "solver/devices/independent_source.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 #include "solver/devices/two_terminal_cards.h"
@@ -76,6 +77,45 @@ std::string gate_pulse(double td, double tstop) {
 
 }  // namespace
 
+// LTspice's SIN with NCYCLES (which ngspice does not read) as ngspice's SIN plus a second SIN that
+// starts at TE = TD + NCYCLES/FREQ and cancels it: amplitude -VA' (VA' = VA exp(-THETA (TE - TD)),
+// the envelope at TE), phase PHASE + 360 NCYCLES (the first's phase at TE), offset VA' sin of that
+// phase. Before TE the second is its offset plus -VA' sin(phase) (ngspice's value before a TD):
+// zero; from TE on the sines cancel and the offset is the held value's VA' sin(...). In series
+// for a voltage source, in parallel (behind the ammeter) for a current source.
+NgspiceCards IndependentSource::stopped_sine_cards(const NgspiceDeckContext& context) const {
+  Waveform main = element_.waveform;
+  main.params.resize(6);
+  const std::vector<double>& p = element_.waveform.params;
+  const double te = element_.waveform.sine_end();
+  const double va_end = p[1] * std::exp(-p[4] * (te - p[3]));
+  const double phase_end = std::fmod(p[5] + 360.0 * p[6], 360.0);
+  Waveform cancel = main;
+  cancel.params = {va_end * std::sin(phase_end * 3.14159265358979323846 / 180.0), -va_end, p[2], te, p[4], phase_end};
+  const std::string plus = element_.nodes.at(0), minus = element_.nodes.at(1);
+  NgspiceCards cards;
+  if (voltage_) {
+    const std::string deck = deck_name('v', name()), mid = context.fresh("lcs_" + name() + "_ncycles");
+    cards.lines.push_back(deck + " " + plus + " " + mid + " " + main.describe());
+    cards.lines.push_back(context.fresh(deck_name('v', name() + "_ncycles")) + " " + mid + " " + minus + " " +
+                          cancel.describe());
+    cards.probes["i(" + name() + ")"] = {deck + "#branch", ""};
+    return cards;
+  }
+  // Both current sources behind one ammeter (two_terminal_cards' for a single card).
+  std::string a = plus;
+  if (context.current_probed) {
+    const std::string meter = context.fresh("v_amm_" + name()), mid = context.fresh("lcs_" + name() + "_amm");
+    cards.lines.push_back(meter + " " + plus + " " + mid + " DC 0");
+    cards.probes["i(" + name() + ")"] = {meter + "#branch", ""};
+    a = mid;
+  }
+  cards.lines.push_back(deck_name('i', name()) + " " + a + " " + minus + " " + main.describe());
+  cards.lines.push_back(context.fresh(deck_name('i', name() + "_ncycles")) + " " + a + " " + minus + " " +
+                        cancel.describe());
+  return cards;
+}
+
 IndependentSource::IndependentSource(const Element& element, const Netlist& netlist,
                                      const DeviceOptions&)
     : Device(element), voltage_(element.kind == ElementKind::VoltageSource) {}
@@ -121,6 +161,7 @@ NgspiceCards IndependentSource::ngspice(const NgspiceDeckContext& context) const
     cards.probes["i(" + name() + ")"] = {deck + "#branch", ""};
     return with_gate(cards);
   }
+  if (std::isfinite(element_.waveform.sine_end())) return stopped_sine_cards(context);
   const std::string wave = ngspice_waveform(element_.waveform, context.tstop);
   if (!voltage_)
     return two_terminal_cards(deck_name('i', name()), element_.nodes.at(0), element_.nodes.at(1),

@@ -15,6 +15,8 @@ class IndependentSource : public Device {
   NgspiceCards ngspice(const NgspiceDeckContext& context) const override;
 
  private:
+  NgspiceCards stopped_sine_cards(const NgspiceDeckContext& context) const;
+
   bool voltage_;
 };
 

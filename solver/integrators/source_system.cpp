@@ -124,6 +124,7 @@ SourceSystem::SourceSystem(const LcsProblem& model, double tstop) : provider_(&m
         in.omega = kTwoPi * w.params.at(2);
         in.td = w.params.at(3);
         in.theta = w.params.at(4);
+        in.end = w.sine_end();
       }
       if (w.kind == Waveform::Kind::Exp) {
         in.td = w.params.at(2);
@@ -155,7 +156,7 @@ char SourceSystem::kind(const Input& in, double t) const {
     case Waveform::Kind::Dc:
       return 'c';
     case Waveform::Kind::Sin:
-      if (t < in.td || (w.params.at(1) == 0)) return 'c';
+      if (t < in.td || t >= in.end || (w.params.at(1) == 0)) return 'c';  // held from `end` on
       return (in.omega == 0 && in.theta == 0) ? 'c' : 's';
     case Waveform::Kind::Pulse:
     case Waveform::Kind::Pwl:

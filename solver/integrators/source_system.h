@@ -22,6 +22,7 @@
 // values live in σ, which is reset from the waveform at every breakpoint and grid time.
 #pragma once
 
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -77,6 +78,7 @@ class SourceSystem {
   struct Input {
     const Waveform* waveform = nullptr;  // nullptr: the constant input u[0] = 1
     double omega = 0, theta = 0, vo = 0, td = 0;
+    double end = std::numeric_limits<double>::infinity();      // SIN with NCYCLES: a constant from here on (Waveform::sine_end)
     double rate1 = 0, rate2 = 0;  // EXP: -1/TAU1, -1/TAU2 (0: a jump, the mode already gone)
     double am_omega[3] = {0, 0, 0};  // AM: FC, FC - FM, FC + FM as angular rates
     bool history = false;
