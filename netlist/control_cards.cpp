@@ -73,9 +73,16 @@ TranSpec parse_tran(const Card& card, const ParamScope& scope, std::vector<std::
     if (values.size() == 4) throw NetlistError(card.at(t), "unexpected extra token " + quote(t.text));
     values.push_back(i);
   }
+  // LTspice's `.tran TSTOP` (its dialog with only the stop time filled in): `.tran 0 TSTOP`. Not
+  // in a .control block, where ngspice's `tran` needs both.
+  const bool dot_card = !card[0].lower.empty() && card[0].lower[0] == '.';
+  if (values.size() == 1 && dot_card) {
+    spec.stop_only = true;
+    values.insert(values.begin(), 0);  // no token: TSTEP 0, picked below
+  }
   if (values.size() < 2) throw NetlistError(card.after_last(), "'.tran' needs TSTEP and TSTOP");
   double v[4] = {0, 0, 0, 0};
-  for (std::size_t k = 0; k < values.size(); ++k) v[k] = value_of(card, values[k], scope);
+  for (std::size_t k = spec.stop_only ? 1 : 0; k < values.size(); ++k) v[k] = value_of(card, values[k], scope);
   spec.tstep = v[0];
   spec.tstop = v[1];
   spec.tstart = v[2];

@@ -212,7 +212,8 @@ class Elaborator {
         net_.tran = parse_tran(card, *in.scope, net_.warnings);
         if (net_.tran->step_picked)
           net_.warnings.push_back(warning_line(
-              card.at(0), "'.tran 0 TSTOP' (LTspice/PSpice): lcspice picks TSTEP = TSTOP/" +
+              card.at(0), std::string(net_.tran->stop_only ? "'.tran TSTOP' (LTspice)" : "'.tran 0 TSTOP' (LTspice/PSpice)") +
+                              ": lcspice picks TSTEP = TSTOP/" +
                               std::to_string(kPickedStepsPerSpan) + " = " + short_number(net_.tran->tstep) +
                               " s, the print step and the fixed-step methods' default step"));
         return;

@@ -121,10 +121,11 @@ struct SwitchModel {
 struct TranSpec {
   double tstep = 0, tstop = 0, tstart = 0, tmax = 0;  // tmax 0: not given
   bool uic = false;
-  bool step_picked = false;  // written as `.tran 0 TSTOP`: tstep is lcspice's choice
+  bool step_picked = false;  // written as `.tran 0 TSTOP` or `.tran TSTOP`: tstep is lcspice's choice
+  bool stop_only = false;    // written as LTspice's `.tran TSTOP`
   SourceLocation loc;
 };
-constexpr int kPickedStepsPerSpan = 1000;  // `.tran 0 TSTOP`: TSTEP = (TSTOP - TSTART) / 1000
+constexpr int kPickedStepsPerSpan = 1000;  // `.tran [0] TSTOP`: TSTEP = (TSTOP - TSTART) / 1000
 
 struct NodeIc {                        // one entry of `.ic v(node)=value`
   std::string node;                    // lower-case, "0" for ground

@@ -237,7 +237,8 @@ TEST(ParseDiagnostics, Subcircuits) {
 TEST(ParseDiagnostics, ControlCards) {
   check({
       {"t\n.tran -1u 1m\n", "t.cir:2:7: error: '.tran' step must be positive\n.tran -1u 1m\n      ^~~"},
-      {"t\n.tran 1u\n", "t.cir:2:9: error: '.tran' needs TSTEP and TSTOP\n.tran 1u\n        ^"},
+      {"t\n.tran\n", "t.cir:2:6: error: '.tran' needs TSTEP and TSTOP\n.tran\n     ^"},
+      {"t\n.tran -1u\n", "t.cir:2:7: error: '.tran' stop time must be positive\n.tran -1u\n      ^~~"},
       {"t\n.tran 1u 1m 2m\n",
        "t.cir:2:10: error: '.tran' stop time must be greater than the start time\n.tran 1u 1m 2m\n         ^~"},
       {"t\n.tran 1u 0\n", "t.cir:2:10: error: '.tran' stop time must be positive\n.tran 1u 0\n         ^"},

@@ -392,5 +392,23 @@ TEST(ParseControl, TranWithZeroStepPicksTheStep) {
   EXPECT_TRUE(written.warnings.empty());
 }
 
+// LTspice's `.tran TSTOP` (its simulation dialog with only the stop time): `.tran 0 TSTOP`, said so.
+TEST(ParseControl, TranWithOnlyTheStopTimePicksTheStep) {
+  Netlist n = parse("t\nV1 a 0 SIN(0 1 1k)\nR1 a 0 1k\n.tran 100m\n");
+  ASSERT_TRUE(n.tran);
+  EXPECT_DOUBLE_EQ(n.tran->tstop, 0.1);
+  EXPECT_DOUBLE_EQ(n.tran->tstep, 1e-4);
+  EXPECT_EQ(n.tran->tstart, 0.0);
+  EXPECT_TRUE(n.tran->step_picked);
+  EXPECT_TRUE(n.tran->stop_only);
+  EXPECT_FALSE(n.tran->uic);
+  ASSERT_EQ(n.warnings.size(), 1u);
+  EXPECT_EQ(n.warnings[0], "t.cir:4:1: warning: '.tran TSTOP' (LTspice): lcspice picks TSTEP = TSTOP/1000 = "
+                           "0.0001 s, the print step and the fixed-step methods' default step");
+  Netlist uic = parse("t\nR1 a 0 1k\n.tran 5m uic\n");
+  EXPECT_DOUBLE_EQ(uic.tran->tstop, 5e-3);
+  EXPECT_TRUE(uic.tran->uic);
+}
+
 }  // namespace
 }  // namespace lcs
