@@ -74,8 +74,9 @@ std::size_t section_end(const std::vector<Card>& cards, std::size_t begin) {
 
 class Reader {
  public:
-  Reader(std::vector<std::string>& warnings, std::vector<ControlBlock>& controls)
-      : warnings_(warnings), controls_(controls) {}
+  Reader(std::vector<std::string>& warnings, std::vector<ControlBlock>& controls,
+         std::vector<NetlistError>& unopened)
+      : warnings_(warnings), controls_(controls), unopened_(unopened) {}
 
   void expand(const SourceFilePtr& file, bool has_title, std::vector<Card>& out) {
     stack_.push_back(identity(file->path));
@@ -101,11 +102,24 @@ class Reader {
           continue;
         }
         if (card.size() == 2 && (card[1].is_word() || card[1].is(Token::Kind::Quoted))) {
+          // A name with an extension or a directory is a file (LTspice's libraries: standard.dio,
+          // ...\lib\cmp\standard.bjt); a bare word is more likely a section missing its .endl.
+          const std::string& name = card[1].text;
+          const bool file_like = name.find_first_of("./\\") != std::string::npos;
           std::string text;
+          bool missing = false;
           const std::string path =
-              open_nested(file, card[1].text, card.at(1), "library", text,
+              open_nested(file, name, card.at(1), "library", text,
                           " ('.lib FILE' reads FILE, as LTspice does; a section '.lib " + card[1].lower +
-                              "' ends at '.endl')");
+                              "' ends at '.endl')",
+                          file_like ? &missing : nullptr);
+          if (missing) {
+            warnings_.push_back(warning_line(card.at(1), "cannot open library file " + quote(card[1].text) +
+                                                             ": lcspice goes on with the models and subcircuits the "
+                                                             "deck defines itself (LTspice writes its own library's "
+                                                             "path into every deck)"));
+            continue;
+          }
           expand(make_source_file(path, text), false, out);
           continue;
         }
@@ -127,8 +141,11 @@ class Reader {
   }
 
   // Checks the bounds and reads the file `name` names relative to `file`; returns its path.
+  // With `missing`, a file that cannot be read is not an error: its error is kept in unopened_,
+  // *missing is set and the path returned is empty.
   std::string open_nested(const SourceFilePtr& file, const std::string& name, const SourceLocation& loc,
-                          const char* what, std::string& text, const std::string& unopened_hint = "") {
+                          const char* what, std::string& text, const std::string& unopened_hint = "",
+                          bool* missing = nullptr) {
     std::string path = resolve_relative(file->path, name);
     std::string id = identity(path);
     for (const std::string& open : stack_)
@@ -137,8 +154,13 @@ class Reader {
     if (++opens_ > kMaxIncludeOpens)
       throw NetlistError(loc, "more than " + std::to_string(kMaxIncludeOpens) +
                                   " .include files read for one netlist (includes that repeat each other?)");
-    if (!read_file(path, text, true))
-      throw NetlistError(loc, "cannot open " + std::string(what) + " file " + quote(name) + unopened_hint);
+    if (!read_file(path, text, true)) {
+      NetlistError error(loc, "cannot open " + std::string(what) + " file " + quote(name) + unopened_hint);
+      if (!missing) throw error;
+      unopened_.push_back(std::move(error));
+      *missing = true;
+      return "";
+    }
     bytes_ += text.size();
     if (bytes_ > kMaxIncludedBytes)
       throw NetlistError(loc, "included text exceeds " + std::to_string(kMaxIncludedBytes >> 20) +
@@ -178,6 +200,7 @@ class Reader {
 
   std::vector<std::string>& warnings_;
   std::vector<ControlBlock>& controls_;
+  std::vector<NetlistError>& unopened_;
   std::vector<std::string> stack_;  // identities of the files (and library sections) being read, outermost first
   std::size_t opens_ = 0, bytes_ = 0;
 };
@@ -204,7 +227,7 @@ bool read_file(const std::string& path, std::string& text, bool regular_only) {
 Deck read_deck(const SourceFilePtr& top, std::vector<std::string>& warnings) {
   Deck deck;
   if (!top->lines.empty()) deck.title = top->lines.front();
-  Reader(warnings, deck.controls).expand(top, true, deck.cards);
+  Reader(warnings, deck.controls, deck.unopened_libraries).expand(top, true, deck.cards);
   return deck;
 }
 

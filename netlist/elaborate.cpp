@@ -354,7 +354,7 @@ class Elaborator {
     const std::string& sub = card[name_token].lower;
 
     const SubcktDef* def = in.def->find(sub);
-    if (!def) throw NetlistError(card.at(name_token), "subcircuit " + quote(sub) + " is not defined");
+    if (!def) throw UndefinedNameError(card.at(name_token), "subcircuit " + quote(sub) + " is not defined");
     for (const Instance* p = &in; p; p = p->parent)
       if (p->def == def) throw NetlistError(card.at(name_token), "recursive instantiation of subcircuit " + quote(sub));
     if (in.depth >= kMaxInstanceDepth) throw NetlistError(card.at(0), "subcircuit instances nested too deeply");
@@ -408,7 +408,7 @@ class Elaborator {
   std::string resolve_bjt_model(const Instance& in, const Card& card, std::size_t token) const {
     const std::string& name = card[token].lower;
     const std::string flat = find_model(in, name);
-    if (flat.empty()) throw NetlistError(card.at(token), "transistor model " + quote(name) + " is not defined");
+    if (flat.empty()) throw UndefinedNameError(card.at(token), "transistor model " + quote(name) + " is not defined");
     const std::string& type = model_types_.at(flat);
     refuse_unsimulated(card, token, type);
     if (type != "npn" && type != "pnp")
@@ -419,7 +419,7 @@ class Elaborator {
   std::string resolve_line_model(const Instance& in, const Card& card, std::size_t token) const {
     const std::string& name = card[token].lower;
     const std::string flat = find_model(in, name);
-    if (flat.empty()) throw NetlistError(card.at(token), "line model " + quote(name) + " is not defined");
+    if (flat.empty()) throw UndefinedNameError(card.at(token), "line model " + quote(name) + " is not defined");
     const std::string& type = model_types_.at(flat);
     refuse_unsimulated(card, token, type);
     if (type != "ltra")
@@ -432,7 +432,7 @@ class Elaborator {
     const std::string flat = find_model(in, name);
     const char* wanted = current ? "csw" : "sw";
     const char* pspice = current ? "iswitch" : "vswitch";
-    if (flat.empty()) throw NetlistError(card.at(token), "switch model " + quote(name) + " is not defined");
+    if (flat.empty()) throw UndefinedNameError(card.at(token), "switch model " + quote(name) + " is not defined");
     const std::string& type = model_types_.at(flat);
     if (type != wanted && type != pspice)
       throw NetlistError(card.at(token), "model " + quote(name) + " is not a" + (current ? " CSW" : "n SW") +
@@ -452,7 +452,7 @@ class Elaborator {
         throw NetlistError(card.at(token), "model " + quote(name) + " is not a diode model (it is " + to_upper(type) + ")");
       return it->second;
     }
-    throw NetlistError(card.at(token), "diode model " + quote(name) + " is not defined");
+    throw UndefinedNameError(card.at(token), "diode model " + quote(name) + " is not defined");
   }
 
   static void refuse_unsimulated(const Card& card, std::size_t token, const std::string& type) {

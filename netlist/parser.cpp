@@ -20,7 +20,17 @@ Netlist parse_netlist_string(const std::string& text, const std::string& file_na
   const parse::Card* control_tran = parse::choose_transient(deck, options.require_transient, netlist.warnings);
   std::unique_ptr<parse::SubcktDef> top = parse::build_definitions(deck.cards, netlist.warnings);
   parse::refuse_out_of_scope_elements(*top);
-  parse::elaborate(*top, netlist, control_tran);
+  try {
+    parse::elaborate(*top, netlist, control_tran);
+  } catch (const parse::UndefinedNameError& e) {
+    // What is missing was most likely in the library that could not be opened: the error is that
+    // library's, at its `.lib` line (issue 13: not a derived "not defined").
+    if (deck.unopened_libraries.empty()) throw;
+    const NetlistError& lib = deck.unopened_libraries.front();
+    const SourceLocation& at = e.location();
+    throw NetlistError(lib.location(), lib.message() + "; the deck needs it: " + e.message() + " (" + at.file + ":" +
+                                           std::to_string(at.line) + ":" + std::to_string(at.column) + ")");
+  }
   return netlist;
 }
 

@@ -102,9 +102,10 @@ TEST(ParseDiagnostics, UnsupportedCards) {
       {"t\nO1 a 0 b 0 lmod\n", "t.cir:2:12: error: line model 'lmod' is not defined\nO1 a 0 b 0 lmod\n           ^~~~"},
       {"t\n.model lm ltra(l=1u c=1p len=-1)\n",
        "t.cir:2:30: error: line parameter 'len' must be positive\n.model lm ltra(l=1u c=1p len=-1)\n                             ^~"},
-      {"t\n.lib foo.lib\n",
-       "t.cir:2:6: error: cannot open library file 'foo.lib' ('.lib FILE' reads FILE, as LTspice does; a section "
-       "'.lib foo.lib' ends at '.endl')\n.lib foo.lib\n     ^~~~~~~"},
+      {"t\nD1 a 0 dx\n.lib foo.lib\n",
+       "t.cir:3:6: error: cannot open library file 'foo.lib' ('.lib FILE' reads FILE, as LTspice does; a section "
+       "'.lib foo.lib' ends at '.endl'); the deck needs it: diode model 'dx' is not defined (t.cir:2:8)\n"
+       ".lib foo.lib\n     ^~~~~~~"},
       {"t\n.endc\n", "t.cir:2:1: error: '.endc' without '.control'\n.endc\n^~~~~"},
   });
 }

@@ -28,9 +28,31 @@ TEST(LtspiceDialect, LibOfAMissingFileNamesTheFile) {
     FAIL() << "no error";
   } catch (const NetlistError& e) {
     EXPECT_EQ(e.formatted(), kData + "/lt_lib_missing.cir:4:6: error: cannot open library file 'standard.dio' ('.lib FILE' "
-                                     "reads FILE, as LTspice does; a section '.lib standard.dio' ends at '.endl')\n"
-                                     ".lib standard.dio\n     ^~~~~~~~~~~~");
+                                     "reads FILE, as LTspice does; a section '.lib standard.dio' ends at '.endl'); the "
+                                     "deck needs it: diode model '1n4148' is not defined (" +
+                                     kData + "/lt_lib_missing.cir:3:8)\n.lib standard.dio\n     ^~~~~~~~~~~~");
   }
+}
+
+// LTspice writes its install's library path into a deck (`.lib C:\...\standard.dio`) also when the
+// deck defines the models it uses: the deck runs, with a warning at the path.
+TEST(LtspiceDialect, LibOfAMissingFileIsAWarningWhenTheDeckDefinesWhatItUses) {
+  Netlist n = test::parse("t\nV1 a 0 1\nD1 a 0 D\nR1 a 0 1k\n.model D D\n"
+                          ".lib C:\\Users\\me\\Documents\\LTspiceXVII\\lib\\cmp\\standard.dio\n.tran 1u 1m\n");
+  EXPECT_EQ(n.elements.size(), 3u);
+  ASSERT_EQ(n.warnings.size(), 1u);
+  EXPECT_EQ(n.warnings[0], "t.cir:6:6: warning: cannot open library file "
+                           "'C:\\Users\\me\\Documents\\LTspiceXVII\\lib\\cm...': lcspice goes on "
+                           "with the models and subcircuits the deck defines itself (LTspice writes its own library's "
+                           "path into every deck)");
+  // A subcircuit it lacks: the library's error, at the .lib line.
+  EXPECT_EQ(test::diag("t\nX1 a 0 opamp\nR1 a 0 1k\n.lib lt.lib\n"),
+            "t.cir:4:6: error: cannot open library file 'lt.lib' ('.lib FILE' reads FILE, as LTspice does; a section "
+            "'.lib lt.lib' ends at '.endl'); the deck needs it: subcircuit 'opamp' is not defined (t.cir:2:8)\n"
+            ".lib lt.lib\n     ^~~~~~");
+  // ngspice's `.lib FILE SECTION` of a missing file is still an error at once.
+  EXPECT_EQ(test::diag("t\nR1 a 0 1k\n.lib models.lib fast\n"),
+            "t.cir:3:6: error: cannot open library file 'models.lib'\n.lib models.lib fast\n     ^~~~~~~~~~");
 }
 
 TEST(LtspiceDialect, SectionDefinitionsAreStillSkipped) {  // `.lib NAME` ... `.endl` (ngspice)
