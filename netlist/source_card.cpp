@@ -100,20 +100,32 @@ Waveform parse_source_waveform(const Card& card, std::size_t first, const ParamS
     if (fn) {
       if (have_function) throw NetlistError(card.at(t), "more than one transient function for " + quote(name));
       have_function = true;
-      // Arguments: a parenthesised list, or the numbers that follow.
+      // Arguments: a parenthesised list, or the numbers that follow. A "+" written against a
+      // {expression} is LTspice's PWL increment of an expression (`+{t_rise}`): one argument,
+      // the expression, marked in `plus_before`.
       std::vector<std::size_t> args;
+      std::vector<bool> plus_before;
+      auto plus_of_expression = [&](std::size_t k) {
+        return card[k].is_word("+") && k + 1 < n && card[k + 1].is_expression() && card[k].end == card[k + 1].begin;
+      };
+      auto take = [&](std::size_t& k) {
+        const bool plus = plus_of_expression(k);
+        if (plus) ++k;
+        args.push_back(k);
+        plus_before.push_back(plus);
+      };
       std::size_t j = i + 1;
       if (j < n && card[j].is(Token::Kind::LParen)) {
         std::size_t open = j++;
         while (j < n && !card[j].is(Token::Kind::RParen)) {
-          if (!card[j].is(Token::Kind::Comma)) args.push_back(j);
+          if (!card[j].is(Token::Kind::Comma)) take(j);
           ++j;
         }
         if (j >= n) throw NetlistError(card.at(open), "missing ')'");
         ++j;
       } else {
-        while (j < n && (looks_numeric(card[j]) || card[j].is(Token::Kind::Comma))) {
-          if (!card[j].is(Token::Kind::Comma)) args.push_back(j);
+        while (j < n && (looks_numeric(card[j]) || card[j].is(Token::Kind::Comma) || plus_of_expression(j))) {
+          if (!card[j].is(Token::Kind::Comma)) take(j);
           ++j;
         }
       }
@@ -133,7 +145,7 @@ Waveform parse_source_waveform(const Card& card, std::size_t first, const ParamS
         bool incremented = false;
         for (std::size_t k = 2; k < w.params.size(); k += 2) {
           const Token& time = card[args[k]];
-          if (time.is_word() && !time.text.empty() && time.text[0] == '+') {
+          if (plus_before[k] || (time.is_word() && !time.text.empty() && time.text[0] == '+')) {
             w.params[k] += w.params[k - 2];
             incremented = true;
           }

@@ -86,6 +86,12 @@ TEST(LtspiceDialect, PwlTimesWrittenWithAPlusAreIncrements) {
   ASSERT_EQ(n.warnings.size(), 1u);
   EXPECT_EQ(n.warnings[0], "t.cir:2:8: warning: pwl times of 'v1' written '+T' are read as T after the previous "
                            "time point (LTspice; ngspice reads them as absolute times)");
+  // "+{expression}" (LTspice's increment of a parameter expression), in a list with or without
+  // parentheses.
+  for (const char* list : {"PWL 0 0 +{tr} 1 +{2*tr} 1 +1m 0", "PWL(0,0 +{tr},1 +{2*tr},1 +1m,0)"}) {
+    Netlist p = test::parse(std::string("t\n.param tr=1m\nV1 a 0 ") + list + "\nR1 a 0 1\n");
+    EXPECT_EQ(test::element(p, "v1").waveform.params, (std::vector<double>{0, 0, 1e-3, 1, 3e-3, 1, 4e-3, 0})) << list;
+  }
   // Without a '+' a decreasing time is still the error it was.
   EXPECT_EQ(test::diag("t\nV1 a 0 PWL(0 0 1m 1 +1m 2 0.5m 3)\nR1 a 0 1\n"),
             "t.cir:2:27: error: pwl times must not decrease\nV1 a 0 PWL(0 0 1m 1 +1m 2 0.5m 3)\n"
