@@ -34,6 +34,47 @@ std::string plural(std::size_t n, const char* what) {
   return std::to_string(n) + " " + what + (n == 1 ? "" : "s");
 }
 
+struct LtspiceRepeat {
+  std::size_t at = 0;        // the REPEAT token
+  std::size_t count_at = 0;  // FOR N's N (0: FOREVER)
+  double count = 0;
+};
+
+// LTspice's PWL REPEAT: the points' times are relative to each repetition's start, a repetition
+// lasts until the last point's time P, and the next starts there (from the last value to the first
+// point, as a PWL interpolates). FOR N is written out as N copies (then the last value holds);
+// FOREVER is ngspice's r= from the first point, with the ramp from the last value back to the
+// first point appended when the first point is after 0 (a period of P).
+void apply_ltspice_repeat(const Card& card, const LtspiceRepeat& repeat, const std::vector<std::size_t>& args,
+                          std::vector<double>& params, std::optional<double>& repeat_from, std::size_t& repeat_from_at) {
+  constexpr double kMaxRepeatedValues = 1e6;
+  const std::size_t values = params.size();
+  const double first = params[0], period = params[values - 2];
+  if (first < 0) throw NetlistError(card.at(args[0]), "pwl REPEAT times must not be negative (they count from each repetition's start)");
+  if (!(period > 0)) throw NetlistError(card.at(args[values - 2]), "pwl REPEAT needs a last time point after 0 (the repetition's length)");
+  if (!repeat.count_at) {
+    if (first > 0) {
+      params.push_back(period + first);
+      params.push_back(params[1]);
+    }
+    repeat_from = first;
+    repeat_from_at = repeat.at;
+    return;
+  }
+  const double n = repeat.count;
+  if (!(n >= 1) || n != std::floor(n)) throw NetlistError(card.at(repeat.count_at), "REPEAT FOR count must be a whole number of at least 1");
+  if (n * static_cast<double>(values) > kMaxRepeatedValues)
+    throw NetlistError(card.at(repeat.count_at), "REPEAT FOR " + card[repeat.count_at].text + " writes out more than 1e6 values; use REPEAT FOREVER and a TSTOP that ends it");
+  const std::vector<double> block = params;
+  for (long k = 1; k < static_cast<long>(n); ++k)
+    for (std::size_t v = 0; v < values; v += 2) {
+      const double t = block[v] + static_cast<double>(k) * period;
+      if (t == params[params.size() - 2] && block[v + 1] == params.back()) continue;  // the same point
+      params.push_back(t);
+      params.push_back(block[v + 1]);
+    }
+}
+
 }  // namespace
 
 Waveform parse_source_waveform(const Card& card, std::size_t first, const ParamScope& scope,
@@ -86,6 +127,9 @@ Waveform parse_source_waveform(const Card& card, std::size_t first, const ParamS
       i += 3;
       continue;
     }
+    if (have_function && w.kind == Waveform::Kind::Pwl && t.is_word("repeat"))
+      throw NetlistError(card.at(t), "LTspice's REPEAT is read as the whole PWL only ('PWL REPEAT FOR N (...) "
+                                     "ENDREPEAT' or 'PWL REPEAT FOREVER (...) ENDREPEAT'), not after other points");
     if (t.is_word("ac")) {
       warnings.push_back(warning_line(card.at(t), "AC specification of " + quote(name) + " is ignored"));
       ++i;
@@ -115,7 +159,32 @@ Waveform parse_source_waveform(const Card& card, std::size_t first, const ParamS
         plus_before.push_back(plus);
       };
       std::size_t j = i + 1;
-      if (j < n && card[j].is(Token::Kind::LParen)) {
+      // LTspice's `PWL REPEAT FOR N (points) ENDREPEAT` / `PWL REPEAT FOREVER (points) ENDREPEAT`
+      // (parentheses optional), as the whole PWL: read below (ltspice_repeat).
+      std::optional<LtspiceRepeat> repeat;
+      if (fn->kind == Waveform::Kind::Pwl && j < n && card[j].is_word("repeat")) {
+        repeat = LtspiceRepeat{};
+        repeat->at = j;
+        if (j + 1 < n && card[j + 1].is_word("forever")) {
+          j += 2;
+        } else if (j + 2 < n && card[j + 1].is_word("for") && looks_numeric(card[j + 2])) {
+          repeat->count_at = j + 2;
+          j += 3;
+        } else {
+          throw NetlistError(card.at(j), "expected 'REPEAT FOREVER' or 'REPEAT FOR N' (LTspice)");
+        }
+        const bool paren = j < n && card[j].is(Token::Kind::LParen);
+        const std::size_t open = paren ? j++ : j;
+        while (j < n && !(paren ? card[j].is(Token::Kind::RParen) : card[j].is_word("endrepeat"))) {
+          if (!card[j].is(Token::Kind::Comma)) take(j);
+          ++j;
+        }
+        if (paren && j >= n) throw NetlistError(card.at(open), "missing ')'");
+        if (paren) ++j;
+        if (j >= n || !card[j].is_word("endrepeat"))
+          throw NetlistError(j < n ? card.at(j) : card.after_last(), "expected 'ENDREPEAT' (LTspice's PWL REPEAT)");
+        ++j;
+      } else if (j < n && card[j].is(Token::Kind::LParen)) {
         std::size_t open = j++;
         while (j < n && !card[j].is(Token::Kind::RParen)) {
           if (!card[j].is(Token::Kind::Comma)) take(j);
@@ -157,6 +226,10 @@ Waveform parse_source_waveform(const Card& card, std::size_t first, const ParamS
         for (std::size_t k = 2; k < w.params.size(); k += 2)
           if (w.params[k] < w.params[k - 2])
             throw NetlistError(card.at(args[k]), "pwl times must not decrease");
+        if (repeat) {
+          if (repeat->count_at) repeat->count = value_of(card, repeat->count_at, scope);
+          apply_ltspice_repeat(card, *repeat, args, w.params, pwl_repeat, pwl_repeat_at);
+        }
       }
       if (fn->kind == Waveform::Kind::Sin) {
         // value = VO + VA exp(-THETA (t - TD)) sin(2 pi FREQ (t - TD) + 2 pi PHASE / 360)

@@ -264,6 +264,18 @@ TEST(PwlSource, RepeatAgreesWithNgspice) {
   }
 }
 
+// LTspice's PWL REPEAT through validate: FOR 3 written out, FOREVER as r= from its first point
+// (with the ramp back appended for a first point after 0); ngspice gets the same points.
+TEST(PwlSource, LtspiceRepeatAgreesWithNgspice) {
+  const fs::path dir = scratch_dir("pwl_ltspice_repeat");
+  std::ofstream(dir / "rep.cir") << "rep\nV1 a 0 PWL REPEAT FOR 3 (0 0 1m 5 2m 5 3m 0 4m 0) ENDREPEAT\n"
+                                    "V2 b 0 PWL REPEAT FOREVER (1m 0 2m 5 3m 0) ENDREPEAT\nR1 a x 1k\nC1 x 0 1u\n"
+                                    "R2 b y 1k\nD1 y 0 dx\n.model dx D(VON=0.7 RON=10)\n.tran 10u 20m\n.end\n";
+  Result r = run_lcspice("validate '" + (dir / "rep.cir").string() + "' --tol 1e-3", dir);
+  EXPECT_EQ(r.code, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("PASS: every probe within"), std::string::npos) << r.out;
+}
+
 TEST(SffmSource, AgreesWithNgspiceThroughItsJumpAtTd) {
   const fs::path dir = scratch_dir("sffm_validate");
   std::ofstream(dir / "fm.cir") << "fm\nV2 in 0 SFFM(0.1 2 10k 0.5 200 0.1m 30 60)\nR2 in 0 1k\n.tran 1u 1m\n.end\n";

@@ -98,6 +98,40 @@ TEST(LtspiceDialect, PwlTimesWrittenWithAPlusAreIncrements) {
             "                          ^~~~");
 }
 
+// LTspice's PWL REPEAT: times count from each repetition's start, a repetition lasts until the
+// last point. FOR N is written out (then the last value holds); FOREVER is ngspice's r= from the
+// first point, with the ramp back to the first point appended when that point is after 0.
+TEST(LtspiceDialect, PwlRepeatForAndForever) {
+  Netlist n = test::parse(
+      "t\nV1 a 0 PWL REPEAT FOR 3 (0 0 1m 5 2m 0) ENDREPEAT\nV2 b 0 PWL REPEAT FOREVER 0,0 +1m,5 +1m,0 ENDREPEAT\n"
+      "V3 c 0 PWL REPEAT FOREVER (1m 0 2m 5 3m 0) ENDREPEAT\nR1 a 0 1\nR2 b 0 1\nR3 c 0 1\n");
+  const Waveform& a = test::element(n, "v1").waveform;
+  EXPECT_EQ(a.params, (std::vector<double>{0, 0, 1e-3, 5, 2e-3, 0, 3e-3, 5, 4e-3, 0, 5e-3, 5, 6e-3, 0}));
+  EXPECT_FALSE(a.repeat_from.has_value());
+  EXPECT_EQ(a.value(100), 0.0);
+  const Waveform& b = test::element(n, "v2").waveform;
+  EXPECT_EQ(b.params, (std::vector<double>{0, 0, 1e-3, 5, 2e-3, 0}));
+  ASSERT_TRUE(b.repeat_from.has_value());
+  EXPECT_EQ(*b.repeat_from, 0.0);
+  EXPECT_NEAR(b.value(10.5e-3), 2.5, 1e-9);  // 0.5 ms into the sixth repetition
+  const Waveform& c = test::element(n, "v3").waveform;
+  EXPECT_EQ(c.params, (std::vector<double>{1e-3, 0, 2e-3, 5, 3e-3, 0, 4e-3, 0}));
+  EXPECT_EQ(*c.repeat_from, 1e-3);
+  EXPECT_NEAR(c.value(0.5e-3), 0.0, 1e-12);   // before the first point: its value
+  EXPECT_NEAR(c.value(4.5e-3), 2.5, 1e-9);    // the second repetition's rise, 1.5 ms into it
+  EXPECT_NEAR(c.value(300.5e-3 + 1e-3), 2.5, 1e-9);  // the 101st
+  EXPECT_EQ(test::diag("t\nV1 a 0 PWL REPEAT FOR 2.5 (0 0 1m 1) ENDREPEAT\n"),
+            "t.cir:2:23: error: REPEAT FOR count must be a whole number of at least 1\n"
+            "V1 a 0 PWL REPEAT FOR 2.5 (0 0 1m 1) ENDREPEAT\n                      ^~~");
+  EXPECT_EQ(test::diag("t\nV1 a 0 PWL REPEAT FOR 3 (0 0 1m 1)\n"),
+            "t.cir:2:35: error: expected 'ENDREPEAT' (LTspice's PWL REPEAT)\nV1 a 0 PWL REPEAT FOR 3 (0 0 1m 1)\n"
+            "                                  ^");
+  EXPECT_EQ(test::diag("t\nV1 a 0 PWL(0 0 1m 1) REPEAT FOREVER (0 0 1m 1) ENDREPEAT\n"),
+            "t.cir:2:22: error: LTspice's REPEAT is read as the whole PWL only ('PWL REPEAT FOR N (...) ENDREPEAT' or "
+            "'PWL REPEAT FOREVER (...) ENDREPEAT'), not after other points\n"
+            "V1 a 0 PWL(0 0 1m 1) REPEAT FOREVER (0 0 1m 1) ENDREPEAT\n                     ^~~~~~");
+}
+
 TEST(LtspiceDialect, BackannoIsAcceptedSilently) {
   Netlist n = test::parse("t\nR1 a 0 1\nV1 a 0 1\n.backanno\n");
   EXPECT_TRUE(n.warnings.empty());
