@@ -21,6 +21,9 @@ class CsvSink : public OutputSink {
   void finish() override;
   const std::string& path() const { return path_; }
   long rows() const { return rows_; }
+  // A regular file, written through a temporary and renamed: a later sink on the same path
+  // replaces what this one wrote (standard output and devices or pipes cannot be rewritten).
+  bool replaceable() const { return !to_stdout_ && !in_place_; }
 
  private:
   std::string path_, final_path_, temp_path_;

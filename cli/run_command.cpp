@@ -2,6 +2,7 @@
 #include <cstdio>
 #include <iostream>
 #include <memory>
+#include <optional>
 
 #include "cli/commands.h"
 #include "cli/csv_writer.h"
@@ -112,6 +113,20 @@ void apply_diode_model(const RunArgs& args, TransientOptions& options) {
   throw CliError(kExitUsage, "error: unknown diode model '" + d + "' (known: ideal, shockley, auto)");
 }
 
+// A sink whose finish() is left to its owner: the fallback run's rows replace the failed default
+// run's CSV only when it succeeds (run_transient finishes its sink also on a numerical failure,
+// with the rows so far; unfinished, CsvSink removes its temporary file).
+class FinishOnSuccess : public OutputSink {
+ public:
+  explicit FinishOnSuccess(OutputSink& sink) : sink_(sink) {}
+  void begin(const std::vector<std::string>& names) override { sink_.begin(names); }
+  void row(double t, const Eigen::VectorXd& values) override { sink_.row(t, values); }
+  void finish() override {}
+
+ private:
+  OutputSink& sink_;
+};
+
 ModelOptions refit_model_options(double tstop) {
   ModelOptions o;
   o.t1 = tstop;
@@ -176,7 +191,8 @@ int run_command(const RunArgs& args) {
   CircuitModel model = build_model(netlist, 0.0, options.tstop);
   // SPEC §1: event wherever it applies, unless a method is named (--method, .options method=,
   // --diode shockley).
-  if (args.method.empty() && args.diode != "shockley" && !deck_names_method) {
+  const bool method_defaulted = args.method.empty() && args.diode != "shockley" && !deck_names_method;
+  if (method_defaulted) {
     std::string why;
     options.method = default_method_for(model, &why).name;
     if (!why.empty()) note("method " + options.method + ": the default method does not apply (" + why + ")");
@@ -248,41 +264,68 @@ int run_command(const RunArgs& args) {
   const std::vector<Probe> probes = probes_for(netlist, model, args.probes);
   OutputMap outputs = output_map_or_exit(model, probes);
   for (const std::string& w : floating_probe_warnings(model, probes)) warn(w);
-  CsvSink sink(args.output);
-  RecordedRows nominal;
-  RowTee sink_and_nominal(sink, nominal);
-  TransientSummary failed;  // the summary up to a numerical failure
-  try {
-    TransientSummary summary;
-    {
-      ProgressLine progress("run " + options.method);
-      if (progress.enabled()) options.progress = [&progress](double f) { progress.update(f); };
-      summary = run_transient(model, outputs, options, lowered ? static_cast<OutputSink&>(sink_and_nominal) : sink,
-                              &failed);
+  // The default method (event) failing is not the end of a run nobody asked a method of: the
+  // fixed-step default runs it again, with a warning, where the CSV can be written afresh (a file,
+  // not standard output or a pipe). Its rows replace the CSV only if it gets to TSTOP; else the
+  // default method's rows and failure stand. A method that was named fails as named.
+  const bool may_fall_back = method_defaulted && options.method == exact_reference_method().name &&
+                             !method_of(options).smooth_model;
+  std::optional<NumericalFailure> default_failure;
+  std::string default_where;
+  for (;;) {
+    CsvSink sink(args.output);
+    FinishOnSuccess deferred(sink);
+    OutputSink& out = default_failure ? static_cast<OutputSink&>(deferred) : sink;
+    RecordedRows nominal;
+    RowTee sink_and_nominal(out, nominal);
+    TransientSummary failed;  // the summary up to a numerical failure
+    try {
+      TransientSummary summary;
+      {
+        ProgressLine progress("run " + options.method);
+        if (progress.enabled()) options.progress = [&progress](double f) { progress.update(f); };
+        summary = run_transient(model, outputs, options, lowered ? static_cast<OutputSink&>(sink_and_nominal) : out,
+                                &failed);
+      }
+      if (default_failure) sink.finish();
+      for (const std::string& w : summary.warnings) warn(w);
+      if (lowered) {
+        FitSensitivity s;
+        s.failure = lowered_failure;
+        if (lowered_failure.empty()) s = compare_with_lowered(nominal, *lowered, options.step);
+        if (args.stats) std::cerr << "fit sensitivity: " << s.Describe(sensitivity_options) << "\n";
+        if (s.exceeds(sensitivity_options))
+          warn("the ideal answer depends on the junctions' curves below the currents they carry (" +
+               s.Describe(sensitivity_options) + "): use --diode auto (the Shockley junctions where it does), "
+               "--diode shockley, or give VON/RON on the cards");
+      }
+      if (args.stats) std::cerr << summary.BriefReport() << "\n";
+      if (!sink.path().empty() && sink.path() != "-")
+        std::cerr << "lcspice: wrote " << summary.rows << " rows to " << sink.path() << "\n";
+      return kExitOk;
+    } catch (const NumericalFailure& e) {
+      if (args.stats) std::cerr << failed.BriefReport() << "\n";
+      std::string where;
+      if (!sink.path().empty() && sink.path() != "-")
+        where = sink.rows() > 0 ? "; rows computed so far are in " + sink.path()
+                                : "; no row was computed (" + sink.path() + " holds the header only)";
+      if (default_failure)
+        throw CliError(kExitNumerical, std::string("lcspice: error: numerical failure ") + default_failure->what() +
+                                           " (--method " + options.method + ", tried next, failed too " + e.what() +
+                                           ")" + default_where);
+      if (may_fall_back && sink.replaceable()) {
+        default_failure = e;
+        default_where = where;
+        warn(std::string("method ") + options.method + " failed " + e.what() + "; running --method " +
+             fixed_step_default_method().name + " (the fixed-step default) instead");
+        options.method = fixed_step_default_method().name;
+        guard_source_sampling(netlist, args, options);
+        lowered.reset();  // judged against the event run's rows: not this run's
+        continue;
+      }
+      throw CliError(kExitNumerical, std::string("lcspice: error: numerical failure ") + e.what() + where);
     }
-    for (const std::string& w : summary.warnings) warn(w);
-    if (lowered) {
-      FitSensitivity s;
-      s.failure = lowered_failure;
-      if (lowered_failure.empty()) s = compare_with_lowered(nominal, *lowered, options.step);
-      if (args.stats) std::cerr << "fit sensitivity: " << s.Describe(sensitivity_options) << "\n";
-      if (s.exceeds(sensitivity_options))
-        warn("the ideal answer depends on the junctions' curves below the currents they carry (" +
-             s.Describe(sensitivity_options) + "): use --diode auto (the Shockley junctions where it does), "
-             "--diode shockley, or give VON/RON on the cards");
-    }
-    if (args.stats) std::cerr << summary.BriefReport() << "\n";
-    if (!sink.path().empty() && sink.path() != "-")
-      std::cerr << "lcspice: wrote " << summary.rows << " rows to " << sink.path() << "\n";
-  } catch (const NumericalFailure& e) {
-    if (args.stats) std::cerr << failed.BriefReport() << "\n";
-    std::string where;
-    if (!sink.path().empty() && sink.path() != "-")
-      where = sink.rows() > 0 ? "; rows computed so far are in " + sink.path()
-                              : "; no row was computed (" + sink.path() + " holds the header only)";
-    throw CliError(kExitNumerical, std::string("lcspice: error: numerical failure ") + e.what() + where);
   }
-  return kExitOk;
 }
 
 }  // namespace lcs

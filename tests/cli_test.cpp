@@ -151,13 +151,52 @@ TEST(BadNetlists, NumericalFailureKeepsTheStatistics) {
   EXPECT_EQ(event.err_line(k + 4).rfind("CPU time: setup ", 0), 0u) << event.err;
   EXPECT_EQ(event.err_line(k + 5).rfind("lcspice: error: numerical failure at t = 0.001 s: no next mode", 0), 0u)
       << event.err;
-  // Without --stats: only the error.
+  fs::copy_file(csv_path, csv_path.string() + ".event", fs::copy_options::overwrite_existing);
+  // Without --stats and without --method: the default method's failure, the fixed-step default
+  // tried next (a warning), its failure too, and the default method's rows kept (they end at 1 ms).
   Result quiet = run_lcspice("run '" + source_path("tests/bad_netlists/97-current-into-reverse-diode.cir").string() +
                                  "' -o '" + csv_path.string() + "'",
                              dir);
   ASSERT_EQ(quiet.code, 3);
-  EXPECT_EQ(quiet.err_line(k).rfind("lcspice: error: numerical failure at t = 0.001 s: no next mode", 0), 0u)
+  EXPECT_EQ(quiet.err_line(k), "lcspice: warning: method event failed at t = 0.001 s: no next mode: the switching LCP "
+                               "has no solution (Lemke: ray termination); running --method euler (the fixed-step "
+                               "default) instead")
       << quiet.err;
+  EXPECT_EQ(quiet.err_line(k + 1).rfind("lcspice: error: numerical failure at t = 0.001 s: no next mode", 0), 0u)
+      << quiet.err;
+  EXPECT_NE(quiet.err_line(k + 1).find("(--method euler, tried next, failed too at t = 0.00101 s: "), std::string::npos)
+      << quiet.err;
+  EXPECT_EQ(read_file(csv_path), read_file(csv_path.string() + ".event")) << "the event run's rows";
+}
+
+// The default method failing where the fixed-step default does not: that run's rows, with a
+// warning, and exit 0. Two RON = 0 diodes across a capacitor loop (C1, C2) that UIC leaves at
+// zero voltage at t = 0: the event method finds no consistent mode there (a random circuit, seed
+// 300 of a generator with transistors, RON = 0 diodes and inductors), implicit Euler steps on.
+TEST(DefaultMethod, FailureOfTheEventMethodFallsBackToTheFixedStepDefault) {
+  const fs::path dir = scratch_dir("default_method_fallback");
+  const fs::path deck = dir / "degenerate.cir";
+  std::ofstream(deck) << "degenerate start\nVCC vcc 0 12\nVIN in 0 SIN(0 10 10000)\nR0 n1 in 10k\nR1 n2 vcc 1k\n"
+                         "R2 n3 0 10k\nR3 n4 in 4.7k\nR4 n5 n2 1k\nC1 n2 in 1n IC=3\nC2 n2 n3 100n IC=3\n"
+                         "D0 n2 n5 dx\nD1 n5 0 dx\nL0 n1 0 10u\nDZ0 n4 in dz\nDZ1 in n3 dz\nQ0 n5 n2 n1 qn\n"
+                         ".model dx D(VON=0.7 RON=0)\n.model dz D(VON=0 RON=0)\n"
+                         ".model qn NPN(BF=100 BR=2 VON=0.7 RON=10 CJE=10p CJC=3p)\n.tran 1e-05 0.0005 UIC\n.end\n";
+  const fs::path out = dir / "out.csv", euler = dir / "euler.csv";
+  Result r = run_lcspice("run '" + deck.string() + "' -o '" + out.string() + "'", dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(r.err_line(0), "lcspice: warning: method event failed at t = 0 s: no consistent mode after a switching "
+                           "event (pairs at zero: d0, dz0, dz1, q0:bc); running --method euler (the fixed-step "
+                           "default) instead")
+      << r.err;
+  Result e = run_lcspice("run '" + deck.string() + "' --method euler -o '" + euler.string() + "'", dir);
+  ASSERT_EQ(e.code, 0) << e.err;
+  EXPECT_EQ(read_file(out), read_file(euler));  // the fallback is euler's run, byte for byte
+  EXPECT_EQ(parse_csv(read_file(out)).rows.size(), 51u);
+  // Named, the method fails as named (exit 3); to standard output there is no second run either.
+  Result named = run_lcspice("run '" + deck.string() + "' --method event -o '" + out.string() + "'", dir);
+  EXPECT_EQ(named.code, 3) << named.err;
+  Result piped = run_lcspice("run '" + deck.string() + "' -o -", dir);
+  EXPECT_EQ(piped.code, 3) << piped.err;
 }
 
 // A bad `.options` value is a located netlist error (exit 2) for every command that reads it.
