@@ -197,15 +197,6 @@ int run_command(const RunArgs& args) {
     options.method = default_method_for(model, &why).name;
     if (!why.empty()) note("method " + options.method + ": the default method does not apply (" + why + ")");
   }
-  // Judged against the method that runs, so after the default is picked.
-  if (args.theta && !method_of(options).uses_theta)
-    warn("--theta is used only by --method theta; method " + options.method + " ignores it");
-  if ((args.rtol || args.atol) && !method_of(options).adaptive())
-    warn("--rtol/--atol are used by the adaptive methods (" + adaptive_method_names() + "); " +
-         options.method + " has a fixed step (--step)");
-  if (args.emission && !method_of(options).smooth_model)
-    warn("--emission is used only by --method " + smooth_method_name() + "; method " + options.method +
-         " ignores it");
   // A method that cannot integrate this circuit is a usage error (the netlist is fine, as another
   // method shows), like --diode shockley with a complementarity method.
   std::string not_applicable;
@@ -261,6 +252,15 @@ int run_command(const RunArgs& args) {
       warn(poor);
     }
   }
+  // Judged against the method that runs: after the default is picked and --diode auto's switch.
+  if (args.theta && !method_of(options).uses_theta)
+    warn("--theta is used only by --method theta; method " + options.method + " ignores it");
+  if ((args.rtol || args.atol) && !method_of(options).adaptive())
+    warn("--rtol/--atol are used by the adaptive methods (" + adaptive_method_names() + "); " +
+         options.method + " has a fixed step (--step)");
+  if (args.emission && !method_of(options).smooth_model)
+    warn("--emission is used only by --method " + smooth_method_name() + "; method " + options.method +
+         " ignores it");
   const std::vector<Probe> probes = probes_for(netlist, model, args.probes);
   OutputMap outputs = output_map_or_exit(model, probes);
   for (const std::string& w : floating_probe_warnings(model, probes)) warn(w);

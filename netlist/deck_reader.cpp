@@ -110,12 +110,13 @@ class Reader {
           bool missing = false;
           const std::string path =
               open_nested(file, name, card.at(1), "library", text,
-                          " ('.lib FILE' reads FILE, as LTspice does; a section '.lib " + card[1].lower +
-                              "' ends at '.endl')",
+                          file_like ? std::string()
+                                    : " ('.lib FILE' reads FILE, as LTspice does; a section '.lib " + card[1].lower +
+                                          "' ends at '.endl')",
                           file_like ? &missing : nullptr);
           if (missing) {
-            warnings_.push_back(warning_line(card.at(1), "cannot open library file " + quote(card[1].text) +
-                                                             ": lcspice goes on with the models and subcircuits the "
+            warnings_.push_back(warning_line(card.at(1), "cannot open library file '" + name +
+                                                             "': lcspice goes on with the models and subcircuits the "
                                                              "deck defines itself (LTspice writes its own library's "
                                                              "path into every deck)"));
             continue;
@@ -155,7 +156,7 @@ class Reader {
       throw NetlistError(loc, "more than " + std::to_string(kMaxIncludeOpens) +
                                   " .include files read for one netlist (includes that repeat each other?)");
     if (!read_file(path, text, true)) {
-      NetlistError error(loc, "cannot open " + std::string(what) + " file " + quote(name) + unopened_hint);
+      NetlistError error(loc, "cannot open " + std::string(what) + " file '" + name + "'" + unopened_hint);
       if (!missing) throw error;
       unopened_.push_back(std::move(error));
       *missing = true;

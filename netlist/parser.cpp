@@ -25,11 +25,17 @@ Netlist parse_netlist_string(const std::string& text, const std::string& file_na
   } catch (const parse::UndefinedNameError& e) {
     // What is missing was most likely in the library that could not be opened: the error is that
     // library's, at its `.lib` line (issue 13: not a derived "not defined").
-    if (deck.unopened_libraries.empty()) throw;
-    const NetlistError& lib = deck.unopened_libraries.front();
-    const SourceLocation& at = e.location();
-    throw NetlistError(lib.location(), lib.message() + "; the deck needs it: " + e.message() + " (" + at.file + ":" +
-                                           std::to_string(at.line) + ":" + std::to_string(at.column) + ")");
+    const std::vector<NetlistError>& libs = deck.unopened_libraries;
+    if (libs.empty()) throw;
+    auto where = [](const SourceLocation& at, bool column) {
+      return at.file + ":" + std::to_string(at.line) + (column ? ":" + std::to_string(at.column) : "");
+    };
+    std::string message = libs.front().message();
+    for (std::size_t k = 1; k < libs.size(); ++k)
+      message += (k == 1 ? "; nor " : ", nor ") + libs[k].message().substr(std::string("cannot open ").size()) +
+                 " (" + where(libs[k].location(), false) + ")";
+    throw NetlistError(libs.front().location(), message + (libs.size() == 1 ? "; the deck needs it: " : "; the deck needs one of them: ") +
+                                                    e.message() + " (" + where(e.location(), true) + ")");
   }
   return netlist;
 }

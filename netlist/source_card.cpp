@@ -240,6 +240,9 @@ Waveform parse_source_waveform(const Card& card, std::size_t first, const ParamS
           throw NetlistError(card.at(args[5]), "sin phase is too large: 2*pi*PHASE/360 is not a finite number");
         if (w.params.size() > 6 && !(w.params[6] >= 0))
           throw NetlistError(card.at(args[6]), "sin cycle count NCYCLES must not be negative");
+        if (w.params.size() > 6 && w.params[6] > 0 && w.params[2] < 0)
+          throw NetlistError(card.at(args[2]), "sin NCYCLES needs a positive frequency (the cycles of FREQ " +
+                                                   card[args[2]].text + " do not end)");
       }
       if (fn->kind == Waveform::Kind::Pulse) {
         const char* what[] = {nullptr, nullptr, nullptr, "rise time", "fall time", "width", "period", "count NP"};

@@ -319,6 +319,7 @@ struct AmShape {
 
 void Waveform::reresolve(double tstep, double tstop) {
   if (written >= 0) params.resize(written);
+  if (frequency_defaulted) params[2] = 0.0;
   resolved = false;
   resolve(tstep, tstop);
 }
@@ -333,6 +334,10 @@ void Waveform::resolve(double tstep, double tstop) {
     case Kind::Sin:
       if (params.size() < 2) params.resize(2, 0.0);
       if (params.size() < 3) params.push_back(tstop > 0 ? 1.0 / tstop : 0.0);
+      if (params[2] == 0.0 && tstop > 0) {  // ngspice reads a written 0 as its default too
+        params[2] = 1.0 / tstop;
+        frequency_defaulted = true;
+      }
       params.resize(std::max<std::size_t>(params.size(), 6), 0.0);  // TD THETA PHASE (NCYCLES kept)
       break;
     case Kind::Pulse: {

@@ -26,9 +26,11 @@ struct Waveform {
   // repeats (T is one of the points, the TD= shift included); none: no repeat.
   std::optional<double> repeat_from;
   bool resolved = false;
+  bool frequency_defaulted = false;  // a SIN written with FREQ 0: ngspice's 1/TSTOP (resolve())
   int written = -1;            // how many params the card wrote (set by the first resolve())
 
-  // Fills ngspice defaults that depend on the analysis: SIN FREQ = 1/TSTOP; PULSE TR = TF = TSTEP,
+  // Fills ngspice defaults that depend on the analysis: SIN FREQ = 1/TSTOP (also for a written 0,
+  // as ngspice's vsrcload.c reads it); PULSE TR = TF = TSTEP,
   // PW = PER = TSTOP (TD = THETA = PHASE = 0); EXP TAU1 = TAU2 = TSTEP, TD2 = TD1 + TSTEP;
   // SFFM FC = 5/TSTOP, MDI = 90, FS = 500/TSTOP (MDI then limited to [0, FC/FS], as ngspice);
   // AM VMA = 1, FM = 5/TSTOP, FC = 500/TSTOP. Called by the parser once .tran is known

@@ -607,6 +607,14 @@ TEST(MethodTraits, OptionWarningsFollowTheTraits) {
     EXPECT_FALSE(warned(r, "--rtol/--atol are used")) << m << "\n" << r.err;
   }
 
+  // --diode auto that switches to the smooth method: --emission is used, and said to be.
+  const fs::path mixed = dir / "mixed.cir";
+  std::ofstream(mixed) << "auto diode mixed\nV1 in 0 SIN(0 0.7 1k)\nD1 in 0 DS\n.model DS D(IS=1e-14 N=1)\nR1 in 0 1k\n"
+                          "V2 in2 0 SIN(0 2 1k)\nR2 in2 x 100\nD2 x 0 DV\n.model DV D(VON=0.7 RON=1)\n.tran 10u 3m\n.end\n";
+  Result switched = run_lcspice("run '" + mixed.string() + "' --diode auto --emission 0.02" + csv, dir);
+  EXPECT_EQ(switched.code, 0) << switched.err;
+  EXPECT_TRUE(warned(switched, "--diode auto: ")) << switched.err;
+  EXPECT_FALSE(warned(switched, "--emission is used only")) << switched.err;
   // Without --method the default (event, SPEC §1) runs: the warnings are judged against it, not
   // against the fixed-step method the options start from.
   Result default_rtol = run("--rtol 1e-6 --stats");

@@ -245,6 +245,17 @@ TEST(SinSource, NcyclesStopsTheSineAndHoldsItsLastValue) {
   EXPECT_NE(ri.out.find("PASS: every probe within"), std::string::npos) << ri.out;
 }
 
+// SIN with FREQ 0: ngspice's 1/TSTOP (a sine over the run), not a constant.
+TEST(SinSource, ZeroFrequencyAgreesWithNgspice) {
+  const fs::path dir = scratch_dir("sin_zero_frequency");
+  std::ofstream(dir / "zf.cir") << "zf\nV1 in 0 SIN(0 1 0)\nR1 in out 1k\nC1 out 0 1u\n.tran 10u 4m\n.end\n";
+  Result r = run_lcspice("validate '" + (dir / "zf.cir").string() + "' --tol 1e-3", dir);
+  EXPECT_EQ(r.code, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("PASS: every probe within"), std::string::npos) << r.out;
+  const Csv csv = run_csv(dir / "zf.cir", "");
+  EXPECT_NEAR(column(csv, "v(in)")[100], 1.0, 1e-12);  // 1 ms: a quarter of the 4 ms period
+}
+
 // ngspice's PWL r= with td=: the stretch from 1 ms to 2.5 ms (a ramp down from 1 V, then 0 V)
 // repeats from 2.7 ms on (shifted by TD), jumping back to 1 V each 1.5 ms; ngspice repeats it too.
 TEST(PwlSource, RepeatAgreesWithNgspice) {

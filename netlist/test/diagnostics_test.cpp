@@ -103,8 +103,8 @@ TEST(ParseDiagnostics, UnsupportedCards) {
       {"t\n.model lm ltra(l=1u c=1p len=-1)\n",
        "t.cir:2:30: error: line parameter 'len' must be positive\n.model lm ltra(l=1u c=1p len=-1)\n                             ^~"},
       {"t\nD1 a 0 dx\n.lib foo.lib\n",
-       "t.cir:3:6: error: cannot open library file 'foo.lib' ('.lib FILE' reads FILE, as LTspice does; a section "
-       "'.lib foo.lib' ends at '.endl'); the deck needs it: diode model 'dx' is not defined (t.cir:2:8)\n"
+       "t.cir:3:6: error: cannot open library file 'foo.lib'; the deck needs it: diode model 'dx' is not defined "
+       "(t.cir:2:8)\n"
        ".lib foo.lib\n     ^~~~~~~"},
       {"t\n.endc\n", "t.cir:2:1: error: '.endc' without '.control'\n.endc\n^~~~~"},
   });
@@ -145,6 +145,9 @@ TEST(ParseDiagnostics, Sources) {
       {"t\nV1 a 0 SIN(0)\n", "t.cir:2:8: error: 'sin' needs at least 2 parameters\nV1 a 0 SIN(0)\n       ^~~"},
       {"t\nV1 a 0 SIN(0 1 2 3 4 5 6 7)\n",
        "t.cir:2:26: error: 'sin' takes at most 7 parameters\nV1 a 0 SIN(0 1 2 3 4 5 6 7)\n                         ^"},
+      {"t\nV1 a 0 SIN(0 1 -2 3 4 5 6)\n",
+       "t.cir:2:16: error: sin NCYCLES needs a positive frequency (the cycles of FREQ -2 do not end)\n"
+       "V1 a 0 SIN(0 1 -2 3 4 5 6)\n               ^~"},
       {"t\nV1 a 0 SIN(0 1 2 3 4 5 -6)\n",
        "t.cir:2:24: error: sin cycle count NCYCLES must not be negative\nV1 a 0 SIN(0 1 2 3 4 5 -6)\n"
        "                       ^~"},

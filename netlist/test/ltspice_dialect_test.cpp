@@ -27,8 +27,7 @@ TEST(LtspiceDialect, LibOfAMissingFileNamesTheFile) {
     parse_netlist_file(kData + "/lt_lib_missing.cir");
     FAIL() << "no error";
   } catch (const NetlistError& e) {
-    EXPECT_EQ(e.formatted(), kData + "/lt_lib_missing.cir:4:6: error: cannot open library file 'standard.dio' ('.lib FILE' "
-                                     "reads FILE, as LTspice does; a section '.lib standard.dio' ends at '.endl'); the "
+    EXPECT_EQ(e.formatted(), kData + "/lt_lib_missing.cir:4:6: error: cannot open library file 'standard.dio'; the "
                                      "deck needs it: diode model '1n4148' is not defined (" +
                                      kData + "/lt_lib_missing.cir:3:8)\n.lib standard.dio\n     ^~~~~~~~~~~~");
   }
@@ -42,14 +41,18 @@ TEST(LtspiceDialect, LibOfAMissingFileIsAWarningWhenTheDeckDefinesWhatItUses) {
   EXPECT_EQ(n.elements.size(), 3u);
   ASSERT_EQ(n.warnings.size(), 1u);
   EXPECT_EQ(n.warnings[0], "t.cir:6:6: warning: cannot open library file "
-                           "'C:\\Users\\me\\Documents\\LTspiceXVII\\lib\\cm...': lcspice goes on "
+                           "'C:\\Users\\me\\Documents\\LTspiceXVII\\lib\\cmp\\standard.dio': lcspice goes on "
                            "with the models and subcircuits the deck defines itself (LTspice writes its own library's "
                            "path into every deck)");
   // A subcircuit it lacks: the library's error, at the .lib line.
   EXPECT_EQ(test::diag("t\nX1 a 0 opamp\nR1 a 0 1k\n.lib lt.lib\n"),
-            "t.cir:4:6: error: cannot open library file 'lt.lib' ('.lib FILE' reads FILE, as LTspice does; a section "
-            "'.lib lt.lib' ends at '.endl'); the deck needs it: subcircuit 'opamp' is not defined (t.cir:2:8)\n"
-            ".lib lt.lib\n     ^~~~~~");
+            "t.cir:4:6: error: cannot open library file 'lt.lib'; the deck needs it: subcircuit 'opamp' is not defined "
+            "(t.cir:2:8)\n.lib lt.lib\n     ^~~~~~");
+  // Several that could not be opened: all named, at the first.
+  EXPECT_EQ(test::diag("t\n.lib standard.dio\n.lib standard.bjt\nQ1 c b 0 2N3904\nR1 c 0 1k\n"),
+            "t.cir:2:6: error: cannot open library file 'standard.dio'; nor library file 'standard.bjt' (t.cir:3); "
+            "the deck needs one of them: transistor model '2n3904' is not defined (t.cir:4:10)\n.lib standard.dio\n"
+            "     ^~~~~~~~~~~~");
   // ngspice's `.lib FILE SECTION` of a missing file is still an error at once.
   EXPECT_EQ(test::diag("t\nR1 a 0 1k\n.lib models.lib fast\n"),
             "t.cir:3:6: error: cannot open library file 'models.lib'\n.lib models.lib fast\n     ^~~~~~~~~~");

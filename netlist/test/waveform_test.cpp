@@ -48,6 +48,16 @@ TEST(WaveformSin, DefaultsFromTran) {
   EXPECT_EQ(w.params[2], 2.0);
 }
 
+// A written FREQ of 0 is ngspice's default too (vsrcload.c: FREQ = 1/TSTOP when 0), again after
+// a reresolve() for another TSTOP.
+TEST(WaveformSin, ZeroFrequencyIsTheDefault) {
+  Waveform w = make(Waveform::Kind::Sin, {0, 1, 0}, 1e-3, 0.5);
+  EXPECT_EQ(w.params[2], 2.0);
+  EXPECT_NEAR(w.value(0.125), 1.0, 1e-12);
+  w.reresolve(1e-3, 0.25);
+  EXPECT_EQ(w.params[2], 4.0);
+}
+
 TEST(WaveformSin, PlainSine) {
   Waveform w = make(Waveform::Kind::Sin, {0, 10, 50}, 1e-4, 0.1);
   EXPECT_NEAR(w.value(0), 0.0, 1e-12);
