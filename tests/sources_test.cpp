@@ -191,6 +191,13 @@ TEST(SffmSource, TheEventMethodRefusesItNamingTheSourceAndEulerRunsIt) {
   EXPECT_TRUE(event_method_applies(CircuitModel::build(plain, mo).inputs(), nullptr));
 }
 
+// `lcspice validate DECK FLAGS` exits 0 with its PASS line.
+void expect_validate_passes(const fs::path& deck, const std::string& flags, const fs::path& dir) {
+  Result r = run_lcspice("validate '" + deck.string() + "' " + flags, dir);
+  EXPECT_EQ(r.code, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("PASS: every probe within"), std::string::npos) << r.out;
+}
+
 // SFFM with a delay, phases and an offset (so it jumps from 0 at TD) through `validate` with
 // radau5: ngspice gets it as a behavioural source of time gated by a PULSE at TD (its
 // breakpoint). Measured: 2.4e-4 of the range outside the tube (the jump itself is inside it:
@@ -202,9 +209,7 @@ TEST(PulseSource, CountOfPulsesAgreesWithNgspice) {
   const fs::path dir = scratch_dir("pulse_np_validate");
   std::ofstream(dir / "np.cir") << "np\nV1 in 0 PULSE(0 1 0.1m 1u 1u 0.2m 0.5m 3)\nR1 in out 1k\nC1 out 0 100n\n"
                                    ".tran 1u 3m\n.end\n";
-  Result r = run_lcspice("validate '" + (dir / "np.cir").string() + "' --tol 1e-3", dir);
-  EXPECT_EQ(r.code, 0) << r.out << r.err;
-  EXPECT_NE(r.out.find("PASS: every probe within"), std::string::npos) << r.out;
+  expect_validate_passes(dir / "np.cir", "--tol 1e-3", dir);
   Csv csv = run_csv(dir / "np.cir", "");
   for (const std::vector<double>& row : csv.rows) {
     if (row[0] > 1.6e-3) {
@@ -235,23 +240,17 @@ TEST(SinSource, NcyclesStopsTheSineAndHoldsItsLastValue) {
     ASSERT_NEAR(t.back(), 6e-3, 1e-15);
     for (size_t i = 0; i < t.size(); ++i) EXPECT_NEAR(v[i], t[i] < te ? sine(t[i]) : held, 1e-12) << t[i];
   }
-  Result r = run_lcspice("validate '" + (dir / "burst.cir").string() + "' --tol 1e-3", dir);
-  EXPECT_EQ(r.code, 0) << r.out << r.err;
-  EXPECT_NE(r.out.find("PASS: every probe within"), std::string::npos) << r.out;
+  expect_validate_passes(dir / "burst.cir", "--tol 1e-3", dir);
   std::ofstream(dir / "iburst.cir") << "iburst\nI1 0 in SIN(0 1m 2k 0 0 90 3.25)\nR1 in 0 1k\nD1 in 0 dx\n"
                                        ".model dx D(VON=0.5 RON=10)\n.tran 5u 4m\n.end\n";
-  Result ri = run_lcspice("validate '" + (dir / "iburst.cir").string() + "' --tol 1e-3 --probe 'v(in),i(i1)'", dir);
-  EXPECT_EQ(ri.code, 0) << ri.out << ri.err;
-  EXPECT_NE(ri.out.find("PASS: every probe within"), std::string::npos) << ri.out;
+  expect_validate_passes(dir / "iburst.cir", "--tol 1e-3 --probe 'v(in),i(i1)'", dir);
 }
 
 // SIN with FREQ 0: ngspice's 1/TSTOP (a sine over the run), not a constant.
 TEST(SinSource, ZeroFrequencyAgreesWithNgspice) {
   const fs::path dir = scratch_dir("sin_zero_frequency");
   std::ofstream(dir / "zf.cir") << "zf\nV1 in 0 SIN(0 1 0)\nR1 in out 1k\nC1 out 0 1u\n.tran 10u 4m\n.end\n";
-  Result r = run_lcspice("validate '" + (dir / "zf.cir").string() + "' --tol 1e-3", dir);
-  EXPECT_EQ(r.code, 0) << r.out << r.err;
-  EXPECT_NE(r.out.find("PASS: every probe within"), std::string::npos) << r.out;
+  expect_validate_passes(dir / "zf.cir", "--tol 1e-3", dir);
   const Csv csv = run_csv(dir / "zf.cir", "");
   EXPECT_NEAR(column(csv, "v(in)")[100], 1.0, 1e-12);  // 1 ms: a quarter of the 4 ms period
 }
@@ -262,9 +261,7 @@ TEST(PwlSource, RepeatAgreesWithNgspice) {
   const fs::path dir = scratch_dir("pwl_repeat_validate");
   std::ofstream(dir / "pwl.cir") << "pwl repeat\nV1 a 0 PWL(0 0 1m 1 2m 0 2.5m 0) r=1m td=0.2m\nR1 a b 1k\n"
                                     "C1 b 0 1u\n.tran 10u 10m\n.end\n";
-  Result r = run_lcspice("validate '" + (dir / "pwl.cir").string() + "' --tol 1e-3", dir);
-  EXPECT_EQ(r.code, 0) << r.out << r.err;
-  EXPECT_NE(r.out.find("PASS: every probe within"), std::string::npos) << r.out;
+  expect_validate_passes(dir / "pwl.cir", "--tol 1e-3", dir);
   Csv csv = run_csv(dir / "pwl.cir", "");
   for (const std::vector<double>& row : csv.rows) {
     const double t = row[0];
@@ -282,17 +279,13 @@ TEST(PwlSource, LtspiceRepeatAgreesWithNgspice) {
   std::ofstream(dir / "rep.cir") << "rep\nV1 a 0 PWL REPEAT FOR 3 (0 0 1m 5 2m 5 3m 0 4m 0) ENDREPEAT\n"
                                     "V2 b 0 PWL REPEAT FOREVER (1m 0 2m 5 3m 0) ENDREPEAT\nR1 a x 1k\nC1 x 0 1u\n"
                                     "R2 b y 1k\nD1 y 0 dx\n.model dx D(VON=0.7 RON=10)\n.tran 10u 20m\n.end\n";
-  Result r = run_lcspice("validate '" + (dir / "rep.cir").string() + "' --tol 1e-3", dir);
-  EXPECT_EQ(r.code, 0) << r.out << r.err;
-  EXPECT_NE(r.out.find("PASS: every probe within"), std::string::npos) << r.out;
+  expect_validate_passes(dir / "rep.cir", "--tol 1e-3", dir);
 }
 
 TEST(SffmSource, AgreesWithNgspiceThroughItsJumpAtTd) {
   const fs::path dir = scratch_dir("sffm_validate");
   std::ofstream(dir / "fm.cir") << "fm\nV2 in 0 SFFM(0.1 2 10k 0.5 200 0.1m 30 60)\nR2 in 0 1k\n.tran 1u 1m\n.end\n";
-  Result r = run_lcspice("validate '" + (dir / "fm.cir").string() + "' --method radau5 --tol 1e-3", dir);
-  EXPECT_EQ(r.code, 0) << r.out << r.err;
-  EXPECT_NE(r.out.find("PASS: every probe within"), std::string::npos) << r.out;
+  expect_validate_passes(dir / "fm.cir", "--method radau5 --tol 1e-3", dir);
 }
 
 // Two inductors with k = -0.5: L1 = 1 mH driven by 1 V, L2 = 4 mH loaded by R2 = 100 ohm, from

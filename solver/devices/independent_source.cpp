@@ -102,18 +102,9 @@ NgspiceCards IndependentSource::stopped_sine_cards(const NgspiceDeckContext& con
     cards.probes["i(" + name() + ")"] = {deck + "#branch", ""};
     return cards;
   }
-  // Both current sources behind one ammeter (two_terminal_cards' for a single card).
-  std::string a = plus;
-  if (context.current_probed) {
-    const std::string meter = context.fresh("v_amm_" + name()), mid = context.fresh("lcs_" + name() + "_amm");
-    cards.lines.push_back(meter + " " + plus + " " + mid + " DC 0");
-    cards.probes["i(" + name() + ")"] = {meter + "#branch", ""};
-    a = mid;
-  }
-  cards.lines.push_back(deck_name('i', name()) + " " + a + " " + minus + " " + main.describe());
-  cards.lines.push_back(context.fresh(deck_name('i', name() + "_ncycles")) + " " + a + " " + minus + " " +
-                        cancel.describe());
-  return cards;
+  return parallel_two_terminal_cards({{deck_name('i', name()), main.describe()},
+                                      {context.fresh(deck_name('i', name() + "_ncycles")), cancel.describe()}},
+                                     plus, minus, name(), context);
 }
 
 IndependentSource::IndependentSource(const Element& element, const Netlist& netlist,

@@ -3,6 +3,10 @@
 // branch current, in the direction of SPEC §3).
 #pragma once
 
+#include <string>
+#include <utility>
+#include <vector>
+
 #include "solver/devices/device.h"
 
 namespace lcs {
@@ -10,5 +14,11 @@ namespace lcs {
 NgspiceCards two_terminal_cards(const std::string& deck_name, const std::string& plus,
                                 const std::string& minus, const std::string& value_text,
                                 const std::string& element_name, const NgspiceDeckContext& context);
+
+// Several cards (deck name, value text) in parallel between the same terminals, behind one
+// ammeter when the element's current is probed: one element written as a sum of sources.
+NgspiceCards parallel_two_terminal_cards(const std::vector<std::pair<std::string, std::string>>& cards,
+                                         const std::string& plus, const std::string& minus,
+                                         const std::string& element_name, const NgspiceDeckContext& context);
 
 }  // namespace lcs
