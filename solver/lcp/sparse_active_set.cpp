@@ -229,18 +229,26 @@ bool SparseActiveSetLcp::solve_updated(const std::vector<char>& mode, const Eige
     changed.clear();
   }
   if (!base_->f->usable) return false;
-  x = r;
-  if (!lu_solve(*base_->f, x)) return false;
-  if (changed.empty()) return x.allFinite();
+  if (base_->column.size() > static_cast<std::size_t>(4 * max_rank_ + 16)) base_->column.clear();
+  // M_0^-1 r and the columns not yet solved, in one multi-right-hand-side solve: KLU traverses
+  // L and U once for up to four of them (memory-bound here, so each costs less than alone).
+  std::vector<int> missing;
+  for (int j : changed)
+    if (!base_->column.count(j)) missing.push_back(j);
+  if (missing.empty()) {
+    x = r;
+    if (!lu_solve(*base_->f, x)) return false;
+  } else {
+    Eigen::MatrixXd block = Eigen::MatrixXd::Zero(n_ + m_, 1 + static_cast<Eigen::Index>(missing.size()));
+    block.col(0) = r;
+    for (std::size_t c = 0; c < missing.size(); ++c) block(n_ + missing[c], 1 + c) = 1.0;
+    if (!lu_solve_block(*base_->f, block)) return false;
+    x = block.col(0);
+    for (std::size_t c = 0; c < missing.size(); ++c) base_->column.emplace(missing[c], block.col(1 + c));
+  }
+  if (changed.empty()) return true;
   ++stats_.updates;
   const int k = static_cast<int>(changed.size());
-  if (base_->column.size() > static_cast<std::size_t>(4 * max_rank_ + 16)) base_->column.clear();
-  for (int j : changed) {
-    if (base_->column.count(j)) continue;
-    Eigen::VectorXd column = Eigen::VectorXd::Unit(n_ + m_, n_ + j);
-    if (!lu_solve(*base_->f, column)) return false;
-    base_->column.emplace(j, std::move(column));
-  }
   Eigen::MatrixXd small = Eigen::MatrixXd::Identity(k, k);
   for (int a = 0; a < k; ++a) {
     const int i = changed[a];
@@ -278,6 +286,12 @@ void SparseActiveSetLcp::refine_updated(const std::vector<char>& mode, const Eig
 
 bool SparseActiveSetLcp::lu_solve(const Factorisation& f, Eigen::VectorXd& x) const {
   return f.usable && klu_solve(symbolic_->symbolic, f.numeric, n_ + m_, 1, x.data(), &symbolic_->common) &&
+         x.allFinite();
+}
+
+bool SparseActiveSetLcp::lu_solve_block(const Factorisation& f, Eigen::MatrixXd& x) const {
+  return f.usable &&
+         klu_solve(symbolic_->symbolic, f.numeric, n_ + m_, static_cast<int>(x.cols()), x.data(), &symbolic_->common) &&
          x.allFinite();
 }
 

@@ -126,6 +126,7 @@ class SparseActiveSetLcp {
   Sparse mode_matrix(const std::vector<char>& mode) const;
   std::unique_ptr<Factorisation> factorise(const std::vector<char>& mode);  // not cached
   bool lu_solve(const Factorisation& f, Eigen::VectorXd& x) const;           // in place
+  bool lu_solve_block(const Factorisation& f, Eigen::MatrixXd& x) const;     // in place, column by column
   Factorisation* factorisation(const std::vector<char>& mode);               // cached
   Factorisation* cached_factorisation(const std::vector<char>& mode);
   bool solve_mode(const std::vector<char>& mode, const Eigen::VectorXd& a, const Eigen::VectorXd& b,
