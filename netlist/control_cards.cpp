@@ -32,7 +32,7 @@ DotCard classify_dot_card(const std::string& k) {
   if (k == ".ic") return DotCard::Ic;
   if (k == ".nodeset") return DotCard::Nodeset;
   if (k == ".print" || k == ".plot") return DotCard::Print;
-  if (k == ".save" || k == ".probe") return DotCard::Save;
+  if (k == ".save" || k == ".probe" || k == ".probe64") return DotCard::Save;  // .PROBE64: PSpice's
   if (k == ".options" || k == ".option" || k == ".opt") return DotCard::Options;
   if (k == ".op" || k == ".backanno") return DotCard::Op;
   if (k == ".global") return DotCard::Global;
@@ -134,7 +134,8 @@ std::vector<NodeIc> parse_ic(const Card& card, const ParamScope& scope) {
 std::vector<Probe> parse_probe_card(const Card& card, std::vector<std::string>& warnings) {
   std::vector<Probe> out;
   const std::size_t n = card.size();
-  const bool save = card.keyword() == ".save" || card.keyword() == ".probe";
+  const bool save = card.keyword() == ".save" || card.keyword() == ".probe" || card.keyword() == ".probe64";
+  std::vector<std::string> pspice_other;  // W(alias(*)), D(alias(*)), NOISE(alias(*))
   std::size_t i = 1;
   if (!save && i < n && card[i].is_word() && !(i + 1 < n && card[i + 1].is(Token::Kind::LParen))) {
     if (card[i].lower == "tran") {
@@ -171,6 +172,25 @@ std::vector<Probe> parse_probe_card(const Card& card, std::vector<std::string>& 
       ++end;
     } while (end < n && (depth > 0 || (card[end].begin == card[end - 1].end && !card[end].is(Token::Kind::Comma)) ||
                          (card[end].is(Token::Kind::LParen) && card[end - 1].is_word())));
+    // PSpice writes `.PROBE64 V(alias(*)) I(alias(*)) W(alias(*)) D(alias(*)) NOISE(alias(*))` into
+    // every deck it exports: every voltage and current (lcspice's default probes), and power,
+    // digital and noise waveforms, which lcspice does not compute.
+    if (save) {
+      const std::string entry = to_lower(card.text(t.begin, card[end - 1].end));
+      const std::size_t open = entry.find('(');
+      const std::string kind = entry.substr(0, open), inside = open == std::string::npos ? "" : entry.substr(open);
+      if (inside == "(alias(*))" || inside == "(*)") {
+        if (kind == "v" || kind == "i") {
+          i = end;
+          continue;
+        }
+        if (kind == "w" || kind == "d" || kind == "noise") {
+          pspice_other.push_back(card.text(t.begin, card[end - 1].end));
+          i = end;
+          continue;
+        }
+      }
+    }
     const bool device_parameter = !t.text.empty() && t.text[0] == '@';
     const bool power = t.is_word("p") && groups == 1;
     const bool expression = t.is_expression() || groups > 1 || (groups == 1 && !card[end - 1].is(Token::Kind::RParen)) ||
@@ -193,6 +213,12 @@ std::vector<Probe> parse_probe_card(const Card& card, std::vector<std::string>& 
     int b = t.begin, e = card[end - 1].end;
     out.push_back(parse_probe(card.text(b, e), card.span(b, e)));
     i = end;
+  }
+  if (!pspice_other.empty()) {
+    std::string list;
+    for (const std::string& e : pspice_other) list += (list.empty() ? "" : ", ") + e;
+    warnings.push_back(warning_line(card.at(0), quote(card[0].lower) + ": " + list +
+                                                    " (PSpice's power, digital and noise waveforms) not written by lcspice"));
   }
   return out;
 }

@@ -117,8 +117,8 @@ class Reader {
           if (missing) {
             warnings_.push_back(warning_line(card.at(1), "cannot open library file '" + name +
                                                              "': lcspice goes on with the models and subcircuits the "
-                                                             "deck defines itself (LTspice writes its own library's "
-                                                             "path into every deck)"));
+                                                             "deck defines itself (LTspice and PSpice write their own libraries' "
+                                                             "paths into every deck)"));
             continue;
           }
           expand(make_source_file(path, text), false, out);

@@ -213,8 +213,12 @@ class Elaborator {
         if (net_.tran->step_picked)
           net_.warnings.push_back(warning_line(
               card.at(0), std::string(net_.tran->stop_only ? "'.tran TSTOP' (LTspice)" : "'.tran 0 TSTOP' (LTspice/PSpice)") +
-                              ": lcspice picks TSTEP = TSTOP/" +
-                              std::to_string(kPickedStepsPerSpan) + " = " + short_number(net_.tran->tstep) +
+                              ": lcspice picks TSTEP = " +
+                              (net_.tran->tmax > 0 && net_.tran->tstep == net_.tran->tmax
+                                   ? std::string("TMAX")
+                                   : (net_.tran->tstart > 0 ? "(TSTOP - TSTART)/" : "TSTOP/") +
+                                         std::to_string(kPickedStepsPerSpan)) +
+                              " = " + short_number(net_.tran->tstep) +
                               " s, the print step and the fixed-step methods' default step"));
         return;
       case DotCard::Ic:

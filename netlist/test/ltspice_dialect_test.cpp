@@ -42,8 +42,8 @@ TEST(LtspiceDialect, LibOfAMissingFileIsAWarningWhenTheDeckDefinesWhatItUses) {
   ASSERT_EQ(n.warnings.size(), 1u);
   EXPECT_EQ(n.warnings[0], "t.cir:6:6: warning: cannot open library file "
                            "'C:\\Users\\me\\Documents\\LTspiceXVII\\lib\\cmp\\standard.dio': lcspice goes on "
-                           "with the models and subcircuits the deck defines itself (LTspice writes its own library's "
-                           "path into every deck)");
+                           "with the models and subcircuits the deck defines itself (LTspice and PSpice write their own libraries' "
+                           "paths into every deck)");
   // A subcircuit it lacks: the library's error, at the .lib line.
   EXPECT_EQ(test::diag("t\nX1 a 0 opamp\nR1 a 0 1k\n.lib lt.lib\n"),
             "t.cir:4:6: error: cannot open library file 'lt.lib'; the deck needs it: subcircuit 'opamp' is not defined "

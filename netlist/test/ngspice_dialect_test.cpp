@@ -183,5 +183,22 @@ TEST(PspiceDialect, TranOpSkipbpAndTemperatureCoefficients) {
             "t.cir:2:14: error: invalid number 'x'\nR1 a 0 1k TC=x\n             ^");
 }
 
+// Every deck PSpice exports carries `.PROBE64 V(alias(*)) I(alias(*)) W(alias(*)) D(alias(*))
+// NOISE(alias(*))` (or `.PROBE`): every voltage and current, lcspice's default probes; power,
+// digital and noise waveforms are named in one warning.
+TEST(PspiceDialect, ProbeOfEveryAliasIsTheDefaultProbes) {
+  Netlist n = test::parse("t\nR1 a 0 1\nV1 a 0 1\n.PROBE64 V(alias(*)) I(alias(*)) W(alias(*)) D(alias(*)) NOISE(alias(*))\n");
+  EXPECT_TRUE(n.probes.empty());
+  ASSERT_EQ(n.warnings.size(), 1u);
+  EXPECT_EQ(n.warnings[0], "t.cir:4:1: warning: '.probe64': W(alias(*)), D(alias(*)), NOISE(alias(*)) (PSpice's power, "
+                           "digital and noise waveforms) not written by lcspice");
+  n = test::parse("t\nR1 a 0 1\nV1 a 0 1\n.probe V(*) I(*) v(a)\n");
+  EXPECT_EQ(names(n.probes), "v(a) ");
+  EXPECT_TRUE(n.warnings.empty());
+  EXPECT_EQ(test::diag("t\nR1 a 0 1\nV1 a 0 1\n.probe V(alias(a))\n"),
+            "t.cir:4:8: error: invalid probe 'V(alias(a))': expected v(node), v(node1,node2), i(element), "
+            "ic/ib/ie(transistor) or i2(line)\n.probe V(alias(a))\n       ^~~~~~~~~~~");
+}
+
 }  // namespace
 }  // namespace lcs

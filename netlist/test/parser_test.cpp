@@ -383,10 +383,16 @@ TEST(ParseControl, TranWithZeroStepPicksTheStep) {
   EXPECT_DOUBLE_EQ(n.tran->tstep, 1e-6);
   EXPECT_TRUE(n.tran->step_picked);
   ASSERT_EQ(n.warnings.size(), 1u);
-  EXPECT_EQ(n.warnings[0], "t.cir:4:1: warning: '.tran 0 TSTOP' (LTspice/PSpice): lcspice picks TSTEP = TSTOP/1000 = "
-                           "1e-06 s, the print step and the fixed-step methods' default step");
-  Netlist capped = parse("t\nR1 a 0 1k\n.tran 0 1 0 1m\n");  // TMAX bounds the picked step
+  EXPECT_EQ(n.warnings[0], "t.cir:4:1: warning: '.tran 0 TSTOP' (LTspice/PSpice): lcspice picks TSTEP = (TSTOP - "
+                           "TSTART)/1000 = 1e-06 s, the print step and the fixed-step methods' default step");
+  Netlist capped = parse("t\nR1 a 0 1k\n.tran 0 2 0 1m\n");  // TMAX bounds the picked step
   EXPECT_DOUBLE_EQ(capped.tran->tstep, 1e-3);
+  ASSERT_EQ(capped.warnings.size(), 1u);
+  EXPECT_EQ(capped.warnings[0], "t.cir:3:1: warning: '.tran 0 TSTOP' (LTspice/PSpice): lcspice picks TSTEP = TMAX = "
+                                "0.001 s, the print step and the fixed-step methods' default step");
+  Netlist plain = parse("t\nR1 a 0 1k\n.tran 0 2\n");
+  EXPECT_EQ(plain.warnings[0], "t.cir:3:1: warning: '.tran 0 TSTOP' (LTspice/PSpice): lcspice picks TSTEP = TSTOP/1000 = "
+                               "0.002 s, the print step and the fixed-step methods' default step");
   Netlist written = parse("t\nR1 a 0 1k\n.tran 1u 1m\n");
   EXPECT_FALSE(written.tran->step_picked);
   EXPECT_TRUE(written.warnings.empty());

@@ -160,6 +160,24 @@ TEST(RestPoint, TheRunStartsAtTheSmoothCircuitsOwnOperatingPoint) {
   EXPECT_NEAR(h.sink.rows.back()(0), exact, 1e-6 * V);  // and charges to the operating point
 }
 
+// (b3) The rest point's pull (which makes a state with no DC equation unique) is each state's own:
+// a 1 pF capacitor on the diode's node (A's entries 2e9 s^-1) beside a 100 uF one behind 1 kohm
+// (10 s^-1). One pull for all, 1e-9 of A's largest entry, held v(b) 0.115 V toward the ideal
+// diodes' operating point (a sixth of the 0.69 V between them); the slow capacitor carries no DC
+// current, so every row is the fast node's Lambert W value.
+TEST(RestPoint, ASlowCapacitorBesideAFastOneStartsAtTheOperatingPoint) {
+  const double V = 5, VON = 0.7, R = 1e3, IS = 1e-14;
+  NetlistBuilder b;
+  b.v("v1", "in", "0", NetlistBuilder::dc(V)).r("r1", "in", "a", R).d("d1", "a", "0", VON, 0);
+  b.c("c1", "a", "0", 1e-12).r("r2", "a", "b", 1e3).c("c2", "b", "0", 100e-6);
+  SmoothRun r = simulate(shockley(b.build(), 1.0, IS), {"v(b)"}, 1e-4, 1e-3, false);
+  const double exact = V - R * series_current(V - VON, R, IS, kThermalVoltage);
+  ASSERT_GT(exact, VON + 0.5);
+  ASSERT_EQ(r.sink.times.size(), 11u);
+  for (size_t k = 0; k < r.sink.times.size(); ++k)
+    EXPECT_NEAR(r.sink.rows[k](0), exact, 1e-8 * V) << "row " << k;
+}
+
 // (c) As N -> 0 the smooth diode tends to the ideal one. Half-wave rectifier into R (no states):
 // ideal v(out) = max(0, v_in - VON) R / (R + RON). The smooth diode needs N Vt ln(1 + i/IS) more,
 // so the error is proportional to N, largest at the peak current.
