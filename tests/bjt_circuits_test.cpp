@@ -611,6 +611,36 @@ TEST(BjtAstable, HobbyAstableAtCoarseTolerancesStartsInItsConsistentMode) {
   }
 }
 
+// A hobby astable with PSpice's Q2N2222 (IS, BF, BR and the junction capacitances read): at DC
+// both transistors saturate, and with Shockley junctions that rest point is an unstable
+// equilibrium (a deviation grows at 5.8e9/s). `--method smooth` (which `--diode auto` picks here)
+// sat on it for the whole run: IDA's long implicit steps damp the rounding that starts the
+// circuit in another simulator. It now starts 1e-6 of the states' size along the growing
+// direction, says so, and oscillates at ngspice's period: 0.6926 ms, the mean of ngspice's
+// last three periods of v(c1) at its default TMAX (`lcspice validate --method smooth --report`).
+TEST(BjtAstable, SmoothLeavesTheUnstableBothSaturatedRestPoint) {
+  const fs::path deck = write_deck("bjt_astable_", "both_saturated",
+                                   "astable\nVCC vcc 0 DC 9\nRC1 vcc c1 1k\nRC2 vcc c2 1k\nRB1 vcc b1 47k\n"
+                                   "RB2 vcc b2 50k\nC1 c1 b2 10n\nC2 c2 b1 10n\nQ1 c1 b1 0 Q2N2222\n"
+                                   "Q2 c2 b2 0 Q2N2222\n.model Q2N2222 NPN(Is=14.34f Bf=255.9 Br=6.092 "
+                                   "Cjc=7.306p Cje=22.01p)\n.tran 10u 5m\n.end\n");
+  const fs::path dir = deck.parent_path();
+  const Result r = run_lcspice("run '" + deck.string() + "' --method smooth -o '" + (dir / "out.csv").string() + "'", dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find("warning: the operating point is an unstable equilibrium of the Shockley junctions (a "
+                       "deviation grows at 5.77e+09/s)"),
+            std::string::npos)
+      << r.err;
+  const Csv csv = parse_csv(read_file(dir / "out.csv"));
+  const std::vector<double> t = column(csv, "time"), v = column(csv, "v(c1)");
+  std::vector<double> rising;  // v(c1) up through VCC/2, interpolated
+  for (size_t k = 1; k < v.size(); ++k)
+    if (v[k - 1] < 4.5 && v[k] >= 4.5) rising.push_back(t[k - 1] + (4.5 - v[k - 1]) / (v[k] - v[k - 1]) * (t[k] - t[k - 1]));
+  ASSERT_GE(rising.size(), 6u);  // before: none, v(c1) 0.064 V throughout
+  const double period = (rising.back() - rising[2]) / static_cast<double>(rising.size() - 3);
+  EXPECT_NEAR(period, 0.6926e-3, 0.003 * 0.6926e-3);
+}
+
 TEST(BjtBoost, EventMethodAtCoarseTolerancesMatchesATightReference) {
   const Csv ref = run_csv(circuit("bjt_boost"), "event", "--rtol 1e-10");
   const size_t ref_events = ref.rows.size() - grid_rows(ref, 0.2e-6).size();

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cfloat>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <functional>
 #include <string>
@@ -453,6 +454,53 @@ void SmoothMethod::rest_point(double t, Eigen::VectorXd& x, Eigen::VectorXd& s) 
                    "converge from the ideal diodes' one): the run starts from the ideal diodes' operating point");
 }
 
+// A rest point can be an unstable equilibrium (an astable multivibrator with both transistors
+// saturated: its loop gain above one). Exactly there the circuit stays forever, and IDA's implicit
+// steps, long once nothing moves, damp any rounding that would start it (BDF is stable for
+// h Re(lambda) > 2); ngspice leaves by its own Newton tolerance and its trapezoidal ringing, at a
+// time and in a direction that are arbitrary. The linearisation at the rest point (the states'
+// rates with the pairs on their curves: A_eff = -(J_xx - J_xs J_ss^-1 J_sx), J the residual's
+// Jacobian at cj = 0) shows such a point; the run is started 1e-6 of the states' size along its
+// fastest-growing direction (its largest component positive), and says so.
+void SmoothMethod::leave_unstable_rest(double t, double tstop, Eigen::VectorXd& x, Eigen::VectorXd& s) {
+  const int n = dae_.states(), m = dae_.pairs();
+  if (n == 0 || n > kMaxUnstableCheckStates || n + m > 2 * kMaxUnstableCheckStates) return;
+  Eigen::VectorXd y(n + m);
+  y << x, s;
+  Eigen::MatrixXd J(n + m, n + m);
+  if (dae_.sparse())
+    J = Eigen::MatrixXd(dae_.sparse_jacobian(y, 0.0));
+  else
+    dae_.jacobian(t, y, 0.0, J);
+  Eigen::MatrixXd rates = -J.topLeftCorner(n, n);
+  if (m > 0) {
+    const Eigen::FullPivLU<Eigen::MatrixXd> pairs(J.bottomRightCorner(m, m));
+    if (!pairs.isInvertible()) return;
+    rates += J.topRightCorner(n, m) * pairs.solve(J.bottomLeftCorner(m, n));
+  }
+  if (!rates.allFinite()) return;
+  const Eigen::EigenSolver<Eigen::MatrixXd> eigen(rates);
+  if (eigen.info() != Eigen::Success) return;
+  Eigen::Index fastest = 0;
+  eigen.eigenvalues().real().maxCoeff(&fastest);
+  const double growth = eigen.eigenvalues()(fastest).real();
+  if (!(growth * (tstop - t) > kVisibleGrowth)) return;
+  Eigen::VectorXd direction = eigen.eigenvectors().col(fastest).real();
+  if (direction.cwiseAbs().maxCoeff() == 0) direction = eigen.eigenvectors().col(fastest).imag();
+  Eigen::Index largest = 0;
+  const double size = direction.cwiseAbs().maxCoeff(&largest);
+  if (!(size > 0)) return;
+  direction *= (direction(largest) > 0 ? 1.0 : -1.0) / size;
+  x += (kDeparture * std::max(x.cwiseAbs().maxCoeff(), 1.0)) * direction;
+  dae_.solve_pairs(t, x, s, &stats_.newton_iterations);
+  char rate[32];
+  std::snprintf(rate, sizeof rate, "%.3g", growth);
+  notes_.push_back(std::string("the operating point is an unstable equilibrium of the Shockley junctions (a deviation "
+                               "grows at ") + rate + "/s): the run starts from it displaced by 1e-6 of the states' "
+                               "size along the growing direction, as rounding would in another simulator (which way "
+                               "is arbitrary); give .ic values that start the circuit for a reproducible answer");
+}
+
 void SmoothMethod::set_guards(const SwitchGuards& guards) {
   guards_ = guards;
   guard_count_ = static_cast<int>(guards.threshold.size());
@@ -528,7 +576,10 @@ std::optional<GuardCrossing> SmoothMethod::RunSegment(const SegmentStart& start,
       s.setZero();
     }
     consistent_pairs(t0, x0, s, schedule.tstep);
-    if (t0 == 0 && start_at_rest_ && n > 0) rest_point(t0, x0, s);
+    if (t0 == 0 && start_at_rest_ && n > 0) {
+      rest_point(t0, x0, s);
+      leave_unstable_rest(t0, stops.back(), x0, s);
+    }
     at_rest(s);
   }
 

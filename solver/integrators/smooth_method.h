@@ -52,6 +52,10 @@ class SmoothMethod : public ContinuousMethod, public GuardedMethod {
   void consistent_pairs(double t, const Eigen::VectorXd& x, Eigen::VectorXd& s, double tstep);
   void at_rest(Eigen::VectorXd& s) const;
   void rest_point(double t, Eigen::VectorXd& x, Eigen::VectorXd& s);
+  void leave_unstable_rest(double t, double tstop, Eigen::VectorXd& x, Eigen::VectorXd& s);
+  static constexpr int kMaxUnstableCheckStates = 200;  // a dense eigenproblem of the states
+  static constexpr double kVisibleGrowth = 36;          // e^36 * 1e-16: rounding grown to 0.4
+  static constexpr double kDeparture = 1e-6;            // the displacement, of the states' size
   static bool switched(const Eigen::VectorXd& s, const Eigen::VectorXd& s_next);
   // No states: a Newton solve per output time; emit_state(t, s, event).
   void run_algebraic(const Schedule& schedule, Eigen::VectorXd s,
