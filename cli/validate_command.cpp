@@ -401,22 +401,31 @@ std::string why_not_judged(const CircuitModel& model, const Probe& probe) {
   const int node = g.node_index(probe.a);
   // A transistor's junctions and the transfer currents they drive count as diodes: while its
   // junctions are off they carry nothing either (a switch's collector on an inductor).
-  bool inductor = false, diode = false, transistor = false, other = false;
+  // A switch counts too: open, it is ROFF, and with the diodes off the node then hangs on the
+  // inductor's current through it (L / ROFF: 1e-10 s for 100 uH and 1 Mohm), far below either
+  // simulator's step (a boost converter's switch node in discontinuous conduction: ngspice's
+  // trapezoidal steps ring there between -1.8 and 11.7 V where the circuit sits at VIN).
+  bool inductor = false, diode = false, transistor = false, switched = false, other = false;
   for (const Branch& b : g.branches) {
     if (b.from != node && b.to != node) continue;
-    const bool of_transistor = model.netlist().elements.at(b.element).kind == ElementKind::Bjt;
+    const ElementKind kind = model.netlist().elements.at(b.element).kind;
+    const bool of_transistor = kind == ElementKind::Bjt;
     if (b.cls == BranchClass::Inductor) inductor = true;
     else if (b.cls == BranchClass::Diode) diode = true, transistor = transistor || of_transistor;
     else if (b.cls == BranchClass::CurrentSource && of_transistor) transistor = true;
+    else if (kind == ElementKind::VSwitch || kind == ElementKind::CSwitch) switched = true;
     else other = true;
   }
-  if (inductor && diode && !other && !transistor)
+  if (!inductor || !diode || other) return "";
+  if (switched)
+    return std::string("the node joins only inductors, diodes") + (transistor ? ", transistor junctions" : "") +
+           " and switches: while they are off the node hangs on the inductor's current through the open switch's "
+           "ROFF, faster than either simulator's step (compare the inductor's current instead)";
+  if (!transistor)
     return "the node joins only inductors and diodes: while they are off the witness (no junction "
            "capacitance) spikes there (compare the inductor's current instead)";
-  if (inductor && diode && !other)
-    return "the node joins only inductors, diodes and transistor junctions: while they are off the "
-           "witness (no junction capacitance) spikes there (compare the inductor's current instead)";
-  return "";
+  return "the node joins only inductors, diodes and transistor junctions: while they are off the "
+         "witness (no junction capacitance) spikes there (compare the inductor's current instead)";
 }
 
 }  // namespace

@@ -341,6 +341,24 @@ S1 c 0 c 0 swr
   }
 }
 
+// smooth on a switched circuit starts at the smoothed circuit's own operating point, as it does
+// without switches: circuits/switch_boost.cir at t = 0 (switch open, the diode carrying VIN into
+// the load) has v(out) = RL i with VIN - RL i = N Vt ln(1 + i / IS) + RS i, 4.7376 V (ngspice's
+// operating point too). Before, a switched circuit started at the ideal diode's operating point
+// (4.998 V) and relaxed from there.
+TEST(EventSwitches, SmoothStartsSwitchedCircuitsAtTheirOwnOperatingPoint) {
+  const Csv csv = run_csv(circuit("switch_boost"), "smooth", "--probe 'v(out)'");
+  ASSERT_FALSE(csv.rows.empty());
+  const double vin = 5, rl = 50, is = 1e-5, nvt = 1.1 * (1.38064852e-23 * 300.15 / 1.6021766208e-19), rs = 0.02;
+  double i = 0.09;
+  for (int k = 0; k < 50; ++k) {  // Newton on f(i) = VIN - RL i - N Vt ln(1 + i/IS) - RS i
+    const double f = vin - rl * i - nvt * std::log1p(i / is) - rs * i, df = -rl - nvt / (is + i) - rs;
+    i -= f / df;
+  }
+  EXPECT_NEAR(csv.rows[0][0], 0.0, 0.0);
+  EXPECT_NEAR(csv.rows[0][1], rl * i, 1e-6);
+}
+
 // smooth's guards are IDA's roots: a circuit without states (no IDA run) is refused with the
 // reason and the methods that handle it (a usage error, the netlist is fine).
 TEST(EventSwitches, SmoothRefusesSwitchesWithoutStates) {

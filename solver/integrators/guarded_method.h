@@ -56,6 +56,12 @@ class GuardedMethod {
                                                   const ContinuousMethod::Emit& emit,
                                                   const ContinuousMethod::Progress& progress) = 0;
   virtual StepperStats stats() const = 0;
+  // The first segment starts at the circuit's DC operating point (not UIC); `held` marks the
+  // states IC= or .ic set (ContinuousMethod::StartAtOperatingPoint). Methods of the ideal
+  // circuit start from the state they are given.
+  virtual void start_at_operating_point(std::vector<bool> /*held*/) {}
+  // What the run's warnings should say about how the method ran.
+  virtual std::vector<std::string> run_notes() const { return {}; }
 };
 
 }  // namespace lcs

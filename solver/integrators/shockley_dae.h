@@ -113,15 +113,18 @@ class ShockleyDae {
   // The smoothed circuit's own DC operating point near the ideal one: y = [x; s] with dx/dt = 0
   // and the pair rows on their curves, by damped Newton from y (as solve_pairs, on the whole
   // system). States marked `held` (set by IC= or .ic) keep their value. A state the DC equations
-  // leave free (a capacitor with no DC path) is pulled toward its value in y by a conductance
-  // 1e-9 of A's scale, as the ideal operating point's regularisation does. Returns false (y
-  // unchanged) when Newton's method does not converge. Needs set_tolerances first.
+  // leave free (a capacitor with no DC path) is pulled toward its value in y (see the .cpp), and
+  // the pull's error taken out again where the circuit is small enough for a dense polish.
+  // Returns false (y unchanged) when Newton's method does not converge. Needs set_tolerances first.
   bool solve_rest_point(double t, Eigen::VectorXd& y, const std::vector<bool>& held, long* iterations) const;
   // The sources at t; at the segment's end their values before it (a jump there is the next
   // segment's).
   Eigen::VectorXd inputs(double t) const;
 
  private:
+  void polish_rest_point(double t, Eigen::VectorXd& y, const std::vector<bool>& held, const Eigen::VectorXd& y0,
+                         long* iterations) const;
+  static constexpr int kPolishMaxUnknowns = 400;  // dense: O(size^3) an iteration
   // The diodes' part of error_weights, at states x and parameters s.
   void pair_weights(const Eigen::Ref<const Eigen::VectorXd>& x,
                     const Eigen::Ref<const Eigen::VectorXd>& s, Eigen::Ref<Eigen::VectorXd> w) const;

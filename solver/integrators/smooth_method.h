@@ -31,6 +31,8 @@ class SmoothMethod : public ContinuousMethod, public GuardedMethod {
   SmoothMethod(const LcsProblem& model, const MethodOptions& options);
   ~SmoothMethod() override;
   StepperStats stats() const override { return stats_; }
+  void start_at_operating_point(std::vector<bool> held) override { StartAtOperatingPoint(std::move(held)); }
+  std::vector<std::string> run_notes() const override { return notes(); }
 
   // Switches (switched_adaptive.h): the guards are IDA root functions after the pairs', falling
   // through zero only; a root among them ends the segment. Circuits with states only.

@@ -52,8 +52,9 @@ SwitchGuards guards_of(const SwitchFamily& family, const CircuitModel& model, co
 }  // namespace
 
 void run_switched_adaptive(SwitchFamily& family, const SwitchConfig& start_config, const OutputMap& outputs,
-                           const TransientOptions& options, const MethodEntry& entry, const Eigen::VectorXd& x0,
+                           const TransientOptions& options, const MethodEntry& entry, const InitialState& init,
                            OutputSink& sink, TransientSummary& summary, double cpu0) {
+  const Eigen::VectorXd& x0 = init.x;
   std::vector<Probe> probes;
   for (const std::string& name : outputs.names) probes.push_back(parse_probe(name, {}));
   // One guarded method per configuration visited: the event method's modes and exponentials
@@ -101,10 +102,15 @@ void run_switched_adaptive(SwitchFamily& family, const SwitchConfig& start_confi
     }
     total.mode_switches += changes;  // a configuration change is a mode change
     summary.stepper = total;
+    for (const auto& [c, v] : visited)
+      for (const std::string& note : v->method->run_notes())
+        if (std::find(summary.warnings.begin(), summary.warnings.end(), note) == summary.warnings.end())
+          summary.warnings.push_back(note);
   };
 
   SwitchConfig config = start_config;
   Configuration* cur = &configuration(config);
+  if (!options.uic) cur->method->start_at_operating_point(init.held);
   DistinctRows rows([&](double t, const Eigen::VectorXd& x, const Eigen::VectorXd& z) {
     cur->writer->write(t, x, z);
     ++summary.rows;

@@ -14,16 +14,18 @@
 #include "solver/integrators/method_registry.h"
 #include "solver/integrators/output_sink.h"
 #include "solver/integrators/transient.h"
+#include "solver/model/initial_state.h"
 #include "solver/model/switch_family.h"
 
 namespace lcs {
 
-// From configuration `config` and state x0 at t = 0 to options.tstop, rows of the probes named in
-// `outputs` (each configuration writes them through its own output map). `entry` makes the
-// guarded method of each configuration (MethodEntry::make_guarded). Throws NumericalFailure;
-// `summary` then holds the statistics so far.
+// From configuration `config` and state init.x at t = 0 to options.tstop, rows of the probes named
+// in `outputs` (each configuration writes them through its own output map). `entry` makes the
+// guarded method of each configuration (MethodEntry::make_guarded); without UIC the first starts
+// at the operating point (a smoothed circuit's own). Throws NumericalFailure; `summary` then holds
+// the statistics so far. The methods' notes are added to summary.warnings.
 void run_switched_adaptive(SwitchFamily& family, const SwitchConfig& config, const OutputMap& outputs,
-                           const TransientOptions& options, const MethodEntry& entry, const Eigen::VectorXd& x0,
+                           const TransientOptions& options, const MethodEntry& entry, const InitialState& init,
                            OutputSink& sink, TransientSummary& summary, double cpu0);
 
 }  // namespace lcs

@@ -399,7 +399,7 @@ TransientSummary run_transient(const CircuitModel& model, const OutputMap& outpu
       InitialState init = initial_state(switches.model(start), options.uic, 0.0);
       summary.warnings = init.warnings;
       if (entry.make_guarded)
-        run_switched_adaptive(switches, start, outputs, options, entry, init.x, sink, summary, cpu0);
+        run_switched_adaptive(switches, start, outputs, options, entry, init, sink, summary, cpu0);
       else
         run_switched_fixed_step(switches, start, outputs, options, entry, init.x, init.z, sink, summary, cpu0);
       sink.finish();
