@@ -540,7 +540,24 @@ int validate_with_faults(const ValidateArgs& args, const NgspiceDeckFaults& faul
   }
   require_ngspice("validate needs ngspice");
 
-  const MemorySink ours = run_ours(ours_model, outputs, run);
+  // As `run`: when the default method (event) stops with a numerical failure, the fixed-step
+  // default runs instead, with a warning (a differential pair with a current-mirror load and no
+  // junction capacitance stopped event at a degenerate switching; euler runs it and passes).
+  MemorySink ours;
+  try {
+    ours = run_ours(ours_model, outputs, run);
+  } catch (const CliError& e) {
+    if (!args.method.empty() || e.code() != kExitNumerical || run.method == fixed_step_default_method().name ||
+        find_method(run.method)->smooth_model)
+      throw;
+    std::string what = e.what();
+    const std::string prefix = "lcspice: error: numerical failure ";
+    if (what.compare(0, prefix.size(), prefix) == 0) what = what.substr(prefix.size());
+    std::cerr << "lcspice: warning: method " << run.method << " failed " << what << "; running --method "
+              << fixed_step_default_method().name << " (the fixed-step default) instead\n";
+    run.method = fixed_step_default_method().name;
+    ours = run_ours(ours_model, outputs, run);
+  }
   // The gap of each ideal diode at its own peak current, and lcspice again with every such
   // threshold raised by it: the far wall of the tube. `smooth` integrates the deck's own Shockley
   // diodes: no gap, the tube is lcspice's answer.

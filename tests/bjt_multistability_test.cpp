@@ -4,7 +4,10 @@
 // unstable, a transient keeps the state it starts in (hysteresis), `analyze` names the
 // transistors that make the LCP matrices fail to be P-matrices, and a source driving current
 // against a junction is an error naming it.
+#include <algorithm>
+#include <cmath>
 #include <fstream>
+#include <vector>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -72,6 +75,38 @@ TEST(BjtMultistability, OpAllListsTheThreeSolutionsAndMarksTheBalancedOneUnstabl
   EXPECT_NEAR(value_of(r.out.substr(s2, s3 - s2), "v(c2)"), vc, 1e-12);
   EXPECT_NEAR(value_of(r.out.substr(s3), "v(c1)"), 0.0, 1e-12);
   EXPECT_NEAR(value_of(r.out.substr(s3), "v(c2)"), kHigh, 1e-12);
+}
+
+// A Darlington switch with its input low: both transistors off, and their shared node e1 reached
+// only through their junctions, free between -VON and +VON. Its two ends are one operating
+// point (the same states, every pair current zero); `op --all` counted two ("transistor q1 on in
+// some, off in others", from pair currents of 1e-17 A against the circuit's 1.2 mA) and `run`
+// stopped at t = 0 with exit 3. Now one, and the transient switches the relay coil.
+TEST(BjtMultistability, AFloatingNodeBetweenOffJunctionsIsOnePoint) {
+  const fs::path f = write("darlington",
+                           "darlington relay driver\nVCC vcc 0 12\nVIN in 0 PULSE(0 5 1m 1u 1u 2m 5m)\n"
+                           "RB in b 10k\nQ1 vcc b e1 QN\nQ2 c e1 0 QN\nLR vcc c 100m\nDF c vcc dflyback\n"
+                           ".model QN NPN(IS=1e-14 BF=100)\n.model dflyback D(IS=2.52n RS=.568 N=1.752)\n"
+                           ".tran 10u 10m\n.end\n");
+  const Result op = run_lcspice("op --all '" + f.string() + "'", f.parent_path());
+  ASSERT_EQ(op.code, 0) << op.err;
+  EXPECT_NE(op.out.find("* 1 solution\n"), std::string::npos) << op.out;
+  const fs::path csv = f.parent_path() / "out.csv";
+  const Result run = run_lcspice("run '" + f.string() + "' --probe 'i(lr)' -o '" + csv.string() + "'", f.parent_path());
+  ASSERT_EQ(run.code, 0) << run.err;
+  const Csv c = parse_csv(read_file(csv));
+  const std::vector<double> t = column(c, "time"), i = column(c, "i(lr)");
+  ASSERT_EQ(t.size(), i.size());
+  double before = 0, peak = 0;
+  for (size_t k = 0; k < t.size(); ++k) {
+    if (t[k] < 1e-3) before = std::max(before, std::abs(i[k]));
+    if (t[k] > 1e-3 && t[k] < 3e-3) peak = std::max(peak, i[k]);
+  }
+  EXPECT_LT(before, 1e-12);  // off until the input rises at 1 ms
+  // On: the coil charges toward (VCC - v(c)) / 0 through L alone, di/dt = (12 - VCE)/L, for 2 ms:
+  // between 0.2 A (VCE 2 V) and 0.24 A (VCE 0).
+  EXPECT_GT(peak, 0.2);
+  EXPECT_LT(peak, 0.24);
 }
 
 TEST(BjtMultistability, NodesetChoosesTheNearestAndATransientHoldsIt) {

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <fstream>
 #include <map>
 #include <set>
 #include <sstream>
@@ -200,6 +201,31 @@ TEST(ValidationCanFail, ProbesTheWitnessCannotJudgeAreSaidAndLeftOut) {
                      "either simulator's step (compare the inductor's current instead)"),
             std::string::npos)
       << out;
+}
+
+// validate's default method falls back as run's does: a differential pair with a current-mirror
+// load and no junction capacitance stops the event method at a degenerate switching (t = 0.52
+// ms, four pairs at zero); euler runs it, and the comparison is made (it FAILs: the fitted lines'
+// slope is not the exponential's transconductance, which sets this amplifier's gain, as `run`
+// warns). Before, validate stopped with exit 3.
+TEST(ValidateDefaultMethod, FallsBackToTheFixedStepDefaultWhenEventFails) {
+  const fs::path dir = scratch_dir("validate_fallback");
+  const fs::path deck = dir / "mirror.cir";
+  std::ofstream(deck) << "differential pair, current-mirror load\nVCC vcc 0 10\nVEE vee 0 -10\n"
+                         "VIN1 in1 0 SIN(0 20m 1k)\nVIN2 in2 0 0\nQ1 c1 in1 e QN\nQ2 out in2 e QN\n"
+                         "Q3 c1 c1 vcc QP\nQ4 out c1 vcc QP\nQ5 e bias vee QN\nQ6 bias bias vee QN\n"
+                         "RB vcc bias 18.6k\nRL out 0 100k\n.model QN NPN(IS=1e-15 BF=150)\n"
+                         ".model QP PNP(IS=1e-15 BF=80)\n.tran 10u 3m\n.end\n";
+  const Result r = run_lcspice("validate '" + deck.string() + "'", dir);
+  EXPECT_EQ(r.code, 4) << r.out << r.err;
+  EXPECT_NE(r.err.find("lcspice: warning: method event failed at t = 0.000519446311 s: no consistent mode after a "
+                       "switching event (pairs at zero: q1:be, q3:be, q4:be, q1:bc); running --method euler (the "
+                       "fixed-step default) instead"),
+            std::string::npos)
+      << r.err;
+  EXPECT_NE(r.out.find("  lcspice: ideal diodes, euler, h = 1e-06 s, 3001 rows"), std::string::npos) << r.out;
+  const Result named = run_lcspice("validate '" + deck.string() + "' --method event", dir);
+  EXPECT_EQ(named.code, 3) << named.err;  // a named method does not fall back
 }
 
 // --converge: the disagreement with ngspice halves with N on a rectifier (rates near 1, the

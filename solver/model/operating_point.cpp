@@ -257,23 +257,58 @@ std::vector<Eigen::VectorXd> exact_solutions(const CircuitModel& model, double t
   std::vector<Eigen::VectorXd> exact;
   std::vector<OperatingPoint> points;
   // Entry by entry, to 1e-9 of the entry, above a floor of 1e-12 of the largest (the rounding a
-  // degenerate vertex leaves): a floor of 1e-9 of the largest let a -1e10 V source elsewhere in
-  // the deck merge a flip-flop's two latch states.
-  auto same = [](const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
+  // degenerate vertex leaves) and of each entry's own rounding (`rounding`, where given): a floor
+  // of 1e-9 of the largest let a -1e10 V source elsewhere in the deck merge a flip-flop's two
+  // latch states.
+  auto same = [](const Eigen::VectorXd& a, const Eigen::VectorXd& b, const Eigen::VectorXd& rounding) {
     if (a.size() != b.size()) return false;
     if (a.size() == 0) return true;
     const double floor = 1e-12 * std::max({1e-300, max_abs(a), max_abs(b)});
-    for (Eigen::Index i = 0; i < a.size(); ++i)
-      if (std::abs(a(i) - b(i)) > 1e-9 * std::max(std::abs(a(i)), std::abs(b(i))) + floor) return false;
+    for (Eigen::Index i = 0; i < a.size(); ++i) {
+      const double level = i < rounding.size() ? std::max(floor, rounding(i)) : floor;
+      if (std::abs(a(i) - b(i)) > 1e-9 * std::max(std::abs(a(i)), std::abs(b(i))) + level) return false;
+    }
     return true;
+  };
+  // Two points with the same states and the same pair currents are one: they differ only in the
+  // potential of a node reached only through pairs that carry nothing (a Darlington's middle node
+  // with both transistors off, anywhere between its junctions' thresholds), which the run warns
+  // about on its own. A pair's current is z, or w for a voltage-type (tree) pair, w = M z + q; its
+  // rounding there, 1e-12 of the terms that make it. Before, such a node at either end of its
+  // range read as two operating points, and the run stopped.
+  const std::vector<PairInfo>& pairs = model.pairs();
+  auto currents = [&](const Eigen::VectorXd& z, Eigen::VectorXd& rounding) {
+    Eigen::VectorXd c = z;
+    rounding = Eigen::VectorXd::Zero(z.size());
+    if (p.M.rows() != z.size() || static_cast<Eigen::Index>(pairs.size()) != z.size()) return c;
+    const Eigen::VectorXd w = p.M * z + p.q;
+    for (Eigen::Index i = 0; i < z.size(); ++i)
+      if (pairs[i].voltage_type) {
+        c(i) = w(i);
+        rounding(i) = 1e-12 * (std::abs(p.q(i)) + p.M.row(i).cwiseAbs().dot(z.cwiseAbs()));
+      }
+    return c;
+  };
+  std::vector<std::pair<Eigen::VectorXd, Eigen::VectorXd>> point_currents;  // per kept point, with rounding
+  // A state's rounding, x = XofZ z + x0: 1e-12 of the terms that make it.
+  auto state_rounding = [&](const Eigen::VectorXd& z) -> Eigen::VectorXd {
+    if (p.XofZ.cols() != z.size() || p.XofZ.rows() != p.x0.size()) return {};
+    return 1e-12 * (p.XofZ.cwiseAbs() * z.cwiseAbs() + p.x0.cwiseAbs());
   };
   for (const Eigen::VectorXd& z : zs) {
     OperatingPoint op = point_from(p, z);
     if (!polish(model, t, op) && !p.undetermined.empty()) continue;  // regular: the solution stands as it is
-    if (std::any_of(points.begin(), points.end(),
-                    [&](const OperatingPoint& o) { return same(o.x, op.x) && same(o.z, op.z); }))
-      continue;
+    Eigen::VectorXd rounding;
+    const Eigen::VectorXd c = currents(op.z, rounding);
+    bool seen = false;
+    for (std::size_t k = 0; k < points.size() && !seen; ++k) {
+      const Eigen::VectorXd both = rounding.cwiseMax(point_currents[k].second);
+      seen = same(points[k].x, op.x, state_rounding(op.z).cwiseMax(state_rounding(points[k].z))) &&
+             (same(points[k].z, op.z, {}) || same(point_currents[k].first, c, both));
+    }
+    if (seen) continue;
     points.push_back(op);
+    point_currents.push_back({c, rounding});
     exact.push_back(z);
   }
   return exact.empty() ? zs : exact;
