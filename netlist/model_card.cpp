@@ -15,7 +15,8 @@ const char* const kIgnoredDiodeParams[] = {
     "jsw", "isw", "ns", "cjp", "cjsw", "php", "mjsw", "fc", "fcs", "eg", "xti", "kf", "af",
     "tnom", "tref", "level", "area", "pj", "temp", "dtemp", "tlev", "tlevc", "tm1", "tm2",
     "trs", "trs1", "trs2", "tbv1", "tbv2", "tcv", "tpb", "tphp", "tcj", "tcjsw", "gap1", "gap2",
-    "rsw", "isr", "nr", "vp", "bvj", "jbv", "xom", "xoi", "lm", "lp", "wm", "wp", "xm", "xp", "d"};
+    "rsw", "isr", "nr", "vp", "bvj", "jbv", "xom", "xoi", "lm", "lp", "wm", "wp", "xm", "xp", "d",
+    "ibvl", "nbvl", "tikf"};  // PSpice's: the low-level breakdown knee, IKF's temperature coefficient
 
 // Gummel–Poon (ngspice level 1 BJT) parameters that lcspice accepts and does not use, and the
 // vendor extras found on manufacturers' cards (VCEO, ICRATING, MFG, ...), whose values may be words.

@@ -183,6 +183,16 @@ TEST(PspiceDialect, TranOpSkipbpAndTemperatureCoefficients) {
             "t.cir:2:14: error: invalid number 'x'\nR1 a 0 1k TC=x\n             ^");
 }
 
+// PSpice's Zener cards (its libraries' 1N47xx) carry IBVL and NBVL, the low-level breakdown knee:
+// read and listed with the other parameters lcspice does not use (was "unknown diode model
+// parameter 'IBVL'"); BV and IBV are the breakdown lcspice models.
+TEST(PspiceDialect, ZenerLowLevelBreakdownParametersAreReadAndListed) {
+  Netlist n = test::parse("t\nV1 a 0 1\nD1 0 a dz\n.model dz D(IS=1.214E-16 RS=0.8 N=1 BV=5.1 IBV=0.049 NBV=1.2 "
+                          "IBVL=1E-3 NBVL=2 TBV1=-1E-4 TIKF=0.005)\n");
+  ASSERT_EQ(n.warnings.size(), 1u);
+  EXPECT_EQ(n.warnings[0], "t.cir:4:54: warning: diode model 'dz': parameters nbv, ibvl, nbvl, tbv1, tikf ignored by lcspice");
+}
+
 // Every deck PSpice exports carries `.PROBE64 V(alias(*)) I(alias(*)) W(alias(*)) D(alias(*))
 // NOISE(alias(*))` (or `.PROBE`): every voltage and current, lcspice's default probes; power,
 // digital and noise waveforms are named in one warning.
