@@ -35,7 +35,14 @@ const char* const kIgnoredBjtParams[] = {
     "mjc", "mc", "xcjc", "tr", "cjs", "ccs", "vjs", "ps", "mjs", "ms", "xtb", "eg", "xti", "kf",
     "af", "fc", "tnom", "tref", "level", "subs", "iss", "ns", "nkf", "quasimod", "rco", "vo",
     "gamma", "qco", "tlev", "tlevc", "temp", "dtemp", "vceo", "icrating", "icrate", "mfg", "type", "bvcbo",
-    "bvebo", "bvceo", "iave", "vpk", "isub", "xcjc2", "vg", "cn", "d", "vbe", "vce"};
+    "bvebo", "bvceo", "iave", "vpk", "isub", "xcjc2", "vg", "cn", "d", "vbe", "vce",
+    // PSpice's NK (ngspice's NKF) and the temperature coefficients of PSpice and ngspice's
+    // level 1 (TBF1 ... TTR2): no temperature model here, nominal values only.
+    "nk", "trb1", "trb2", "trm1", "trm2", "tre1", "tre2", "trc1", "trc2", "tbf1", "tbf2", "tbr1",
+    "tbr2", "tikf1", "tikf2", "tikr1", "tikr2", "tis1", "tis2", "tise1", "tise2", "tisc1", "tisc2",
+    "tiss1", "tiss2", "tnf1", "tnf2", "tnr1", "tnr2", "tne1", "tne2", "tnc1", "tnc2", "tns1",
+    "tns2", "tvaf1", "tvaf2", "tvar1", "tvar2", "titf1", "titf2", "ttf1", "ttf2", "ttr1", "ttr2",
+    "tmje1", "tmje2", "tmjc1", "tmjc2", "tmjs1", "tmjs2"};
 
 template <std::size_t N>
 bool listed(const char* const (&list)[N], const std::string& key) {

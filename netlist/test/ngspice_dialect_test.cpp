@@ -193,6 +193,15 @@ TEST(PspiceDialect, ZenerLowLevelBreakdownParametersAreReadAndListed) {
   EXPECT_EQ(n.warnings[0], "t.cir:4:54: warning: diode model 'dz': parameters nbv, ibvl, nbvl, tbv1, tikf ignored by lcspice");
 }
 
+// PSpice's transistor cards: NK (ngspice's NKF) and the temperature coefficients TRB1 ... (also
+// ngspice level 1's TBF1 ...) are read and listed (was "unknown transistor model parameter 'Nk'").
+TEST(PspiceDialect, TransistorTemperatureCoefficientsAndNkAreReadAndListed) {
+  Netlist n = test::parse("t\nV1 c 0 5\nV2 b 0 0.7\nQ1 c b 0 qx\n.model qx NPN(Is=1e-14 Bf=100 Nk=.5 Trb1=0 "
+                          "Tre1=0 Tbf1=1e-3)\n");
+  ASSERT_EQ(n.warnings.size(), 1u);
+  EXPECT_EQ(n.warnings[0], "t.cir:5:31: warning: transistor model 'qx': parameters nk, trb1, tre1, tbf1 ignored by lcspice");
+}
+
 // Every deck PSpice exports carries `.PROBE64 V(alias(*)) I(alias(*)) W(alias(*)) D(alias(*))
 // NOISE(alias(*))` (or `.PROBE`): every voltage and current, lcspice's default probes; power,
 // digital and noise waveforms are named in one warning.
