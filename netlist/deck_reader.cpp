@@ -6,6 +6,8 @@
 #include <sstream>
 #include <system_error>
 
+#include "netlist/text_encoding.h"
+
 namespace lcs::parse {
 namespace {
 
@@ -222,6 +224,7 @@ bool read_file(const std::string& path, std::string& text, bool regular_only) {
     text.append(buf, static_cast<std::size_t>(in.gcount()));
     if (text.size() > kMaxBytes) return false;
   }
+  text = to_utf8(text);
   return true;
 }
 
