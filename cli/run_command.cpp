@@ -10,6 +10,7 @@
 #include "cli/load_circuit.h"
 #include "cli/progress.h"
 #include "cli/source_sampling.h"
+#include "graph/components.h"
 #include "solver/integrators/diode_refit.h"
 #include "solver/integrators/fit_sensitivity.h"
 #include "solver/integrators/transient.h"
@@ -207,7 +208,14 @@ int run_command(const RunArgs& args) {
   // (fit_sensitivity.h): made where lines were fitted and nothing else has judged them.
   std::unique_ptr<RecordedRows> lowered;
   std::string lowered_failure;
-  const FitSensitivityOptions sensitivity_options;
+  FitSensitivityOptions sensitivity_options;
+  {
+    const NodePartition h = h_components(model.graph());  // once: the default probes are every node
+    for (const Probe& p : probes_for(netlist, model, args.probes)) {
+      const int n = p.kind == Probe::Kind::NodeVoltage && p.b.empty() ? model.graph().node_index(p.a) : -1;
+      if (n >= 0 && h.component[n] != h.component[0]) sensitivity_options.unjudged.push_back(p.name());
+    }
+  }
   if (!method_of(options).smooth_model) {
     // Cards without VON/RON: their lines refitted to the currents this circuit carries.
     const DiodeRefitResult refit = refit_diodes(netlist, refit_model_options(options.tstop), options);
@@ -292,7 +300,7 @@ int run_command(const RunArgs& args) {
       if (lowered) {
         FitSensitivity s;
         s.failure = lowered_failure;
-        if (lowered_failure.empty()) s = compare_with_lowered(nominal, *lowered, options.step);
+        if (lowered_failure.empty()) s = compare_with_lowered(nominal, *lowered, options.step, sensitivity_options);
         if (args.stats) std::cerr << "fit sensitivity: " << s.Describe(sensitivity_options) << "\n";
         if (s.exceeds(sensitivity_options))
           warn("the ideal answer depends on the junctions' curves below the currents they carry (" +

@@ -68,7 +68,8 @@ std::string run_with_lowered_lines(const Netlist& netlist, const ModelOptions& m
   return std::string("with the lines fitted ") + decades + " decades lower: " + failure;
 }
 
-FitSensitivity compare_with_lowered(const RecordedRows& nominal, const RecordedRows& low, double step) {
+FitSensitivity compare_with_lowered(const RecordedRows& nominal, const RecordedRows& low, double step,
+                                    const FitSensitivityOptions& options) {
   FitSensitivity result;
   result.measured = true;
   // At every output time of the lowered run, its distance from the nominal run's values within
@@ -77,6 +78,7 @@ FitSensitivity compare_with_lowered(const RecordedRows& nominal, const RecordedR
   const double dt = step * (1 + 1e-9);
   const size_t columns = std::min(nominal.names.size(), low.names.size());
   for (size_t c = 0; c < columns; ++c) {
+    if (std::find(options.unjudged.begin(), options.unjudged.end(), nominal.names[c]) != options.unjudged.end()) continue;
     const double scale = scale_of(nominal, c);
     size_t first = 0;
     for (size_t k = 0; k < low.times.size(); ++k) {
@@ -112,7 +114,7 @@ FitSensitivity fit_sensitivity(const Netlist& netlist, const ModelOptions& model
   result.failure = run_into(netlist, model_options, options, probes, nominal);
   if (!result.failure.empty()) result.failure = "with the fitted lines: " + result.failure;
   else result.failure = run_with_lowered_lines(netlist, model_options, options, probes, sensitivity, low);
-  if (result.failure.empty()) result = compare_with_lowered(nominal, low, options.step);
+  if (result.failure.empty()) result = compare_with_lowered(nominal, low, options.step, sensitivity);
   result.cpu_seconds = process_cpu_seconds() - cpu0;
   return result;
 }

@@ -33,6 +33,10 @@ namespace lcs {
 struct FitSensitivityOptions {
   double decades = 2;    // how far below its range each fitted line is refitted
   double bound = 0.02;   // of a probe's range: validate's default tolerance
+  // Probes not compared: the potential of a node the circuit leaves free while no junction around
+  // it conducts (a Darlington's middle node), which any line puts somewhere else (run warns of it
+  // on its own).
+  std::vector<std::string> unjudged;
 };
 
 struct FitSensitivity {
@@ -81,7 +85,8 @@ std::string run_with_lowered_lines(const Netlist& netlist, const ModelOptions& m
 
 // The comparison of a nominal run with the lowered one (step: the output interval, the tube's
 // half-width in time).
-FitSensitivity compare_with_lowered(const RecordedRows& nominal, const RecordedRows& lowered, double step);
+FitSensitivity compare_with_lowered(const RecordedRows& nominal, const RecordedRows& lowered, double step,
+                                    const FitSensitivityOptions& options = {});
 
 // Whether any fitted junction carried current (else there is nothing to judge).
 bool has_fitted_ranges(const ModelOptions& model_options);
