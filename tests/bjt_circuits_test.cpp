@@ -641,6 +641,35 @@ TEST(BjtAstable, SmoothLeavesTheUnstableBothSaturatedRestPoint) {
   EXPECT_NEAR(period, 0.6926e-3, 0.003 * 0.6926e-3);
 }
 
+// A DTL NAND gate under --method smooth (which --diode auto picks for it: the ideal run's v(z)
+// moves 7.6 % with the lines fitted lower). The smoothed circuit's ideal start has its junctions
+// at VON = 0, RON = RS = 0: the two input diodes, both at 0 V, share the current in any split, and
+// that start has 2 operating points. The run stopped at t = 0 ("the operating point is not
+// unique"); it now seeks the Shockley operating point from the first, says so, and the gate
+// works: high with either input low, low (Q1 saturated) with both high.
+TEST(BjtDtl, SmoothStartsFromTheFirstOfTheSmoothedCircuitsTiedIdealStarts) {
+  const fs::path deck = write_deck("bjt_dtl_", "nand",
+                                   "DTL NAND\nVCC vcc 0 5\nVA a 0 PULSE(0 5 0 10n 10n 1u 2u)\n"
+                                   "VB b 0 PULSE(0 5 0 10n 10n 2u 4u)\nDA x a DN\nDB x b DN\nR1 vcc x 4.7k\n"
+                                   "D1 x y DN\nD2 y z DN\nR2 z 0 5k\nQ1 out z 0 QN\nRC vcc out 2.2k\n"
+                                   "CL out 0 10p\n.model DN D(IS=1e-14 N=1)\n"
+                                   ".model QN NPN(IS=1e-14 BF=50 BR=1 CJE=2p CJC=1p)\n.tran 10n 8u\n.end\n");
+  const fs::path dir = deck.parent_path();
+  for (const char* how : {"--method smooth", "--diode auto"}) {
+    SCOPED_TRACE(how);
+    const Result r = run_lcspice("run '" + deck.string() + "' " + how + " -o '" + (dir / "out.csv").string() + "'", dir);
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.err.find("warning: the ideal start of the smoothed circuit has 2 operating points"), std::string::npos)
+        << r.err;
+    const Csv csv = parse_csv(read_file(dir / "out.csv"));
+    const std::vector<double> t = column(csv, "time"), v = column(csv, "v(out)");
+    EXPECT_GT(v[row_at(t, 0.0)], 4.99);     // inputs low: Q1 off
+    EXPECT_LT(v[row_at(t, 0.5e-6)], 0.1);   // both high: Q1 saturated (0.051 V)
+    EXPECT_GT(v[row_at(t, 1.5e-6)], 4.99);  // A low again
+    EXPECT_LT(v[row_at(t, 4.5e-6)], 0.1);
+  }
+}
+
 TEST(BjtBoost, EventMethodAtCoarseTolerancesMatchesATightReference) {
   const Csv ref = run_csv(circuit("bjt_boost"), "event", "--rtol 1e-10");
   const size_t ref_events = ref.rows.size() - grid_rows(ref, 0.2e-6).size();
