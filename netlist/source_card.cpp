@@ -1,12 +1,19 @@
 #include "netlist/source_card.h"
 
+#include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <optional>
+#include <sstream>
+#include <string_view>
 
+#include "netlist/deck_reader.h"
 #include "netlist/number.h"
 
 namespace lcs::parse {
 namespace {
+
+namespace fs = std::filesystem;
 
 struct FunctionSpec {
   const char* name;
@@ -73,6 +80,46 @@ void apply_ltspice_repeat(const Card& card, const LtspiceRepeat& repeat, const s
       params.push_back(t);
       params.push_back(block[v + 1]);
     }
+}
+
+// LTspice's and PSpice's `PWL file=NAME` (PSpice also `PWL FILE NAME`): the time-value pairs
+// read from a text file, relative to the deck's directory; numbers with SPICE suffixes, separated
+// by blanks, commas or semicolons; lines starting with '*', '#' or ';' are comments. Errors name
+// the file and its line.
+std::vector<double> read_pwl_file(const Card& card, std::size_t name_at) {
+  const Token& name = card[name_at];
+  fs::path path(name.text);
+  const std::string& deck = card.at(name_at).file;
+  if (path.is_relative() && !deck.empty()) path = fs::path(deck).parent_path() / path;
+  std::string text;
+  if (!read_file(path.string(), text, true))
+    throw NetlistError(card.at(name_at), "cannot open PWL file '" + path.string() + "'");
+  std::vector<double> values;
+  std::istringstream lines(text);
+  std::string line;
+  for (int number = 1; std::getline(lines, line); ++number) {
+    std::size_t k = line.find_first_not_of(" \t\r");
+    if (k == std::string::npos || line[k] == '*' || line[k] == '#' || line[k] == ';') continue;
+    while (k < line.size()) {
+      k = line.find_first_not_of(" \t\r,;", k);
+      if (k == std::string::npos) break;
+      const std::size_t end = std::min(line.find_first_of(" \t\r,;", k), line.size());
+      const std::optional<double> v = parse_number(std::string_view(line).substr(k, end - k));
+      if (!v)
+        throw NetlistError(card.at(name_at), "PWL file '" + path.string() + "' line " + std::to_string(number) +
+                                                 ": invalid number '" + line.substr(k, end - k) + "'");
+      values.push_back(*v);
+      k = end;
+    }
+  }
+  if (values.size() < 2 || values.size() % 2 != 0)
+    throw NetlistError(card.at(name_at), "PWL file '" + path.string() + "' needs time-value pairs (" +
+                                             std::to_string(values.size()) + " numbers)");
+  for (std::size_t k = 2; k < values.size(); k += 2)
+    if (values[k] < values[k - 2])
+      throw NetlistError(card.at(name_at), "PWL file '" + path.string() + "': times must not decrease (pair " +
+                                               std::to_string(k / 2 + 1) + ")");
+  return values;
 }
 
 }  // namespace
@@ -162,6 +209,19 @@ Waveform parse_source_waveform(const Card& card, std::size_t first, const ParamS
       // LTspice's `PWL REPEAT FOR N (points) ENDREPEAT` / `PWL REPEAT FOREVER (points) ENDREPEAT`
       // (parentheses optional), as the whole PWL: read below (ltspice_repeat).
       std::optional<LtspiceRepeat> repeat;
+      // `PWL file=NAME` (LTspice, PSpice) or `PWL FILE NAME` (PSpice), NAME quoted or not.
+      const bool from_file = fn->kind == Waveform::Kind::Pwl && j + 1 < n && card[j].is_word("file") &&
+                             (card[j + 1].is(Token::Kind::Equals) || card[j + 1].is(Token::Kind::Quoted) ||
+                              (card[j + 1].is_word() && !looks_numeric(card[j + 1])));
+      if (from_file) {
+        if (card[j + 1].is(Token::Kind::Equals) && j + 2 >= n)
+          throw NetlistError(card.after_last(), "missing file name after 'file='");
+        const std::size_t name_at = card[j + 1].is(Token::Kind::Equals) ? j + 2 : j + 1;
+        w.kind = fn->kind;
+        w.params = read_pwl_file(card, name_at);
+        i = name_at + 1;
+        continue;
+      }
       if (fn->kind == Waveform::Kind::Pwl && j < n && card[j].is_word("repeat")) {
         repeat = LtspiceRepeat{};
         repeat->at = j;

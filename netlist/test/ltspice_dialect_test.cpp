@@ -1,6 +1,11 @@
 // Cards of LTspice-written decks (and ngspice's .global): `.lib FILE` as an include, the datasheet
 // fields of vendor diode cards, `.backanno`, `.global`, and the clear refusal of `.step`
 // (`.func` is read: user_function_test.cpp).
+#include <cstdio>
+#include <fstream>
+#include <string>
+#include <vector>
+
 #include <gtest/gtest.h>
 
 #include "netlist/netlist.h"
@@ -104,6 +109,38 @@ TEST(LtspiceDialect, PwlTimesWrittenWithAPlusAreIncrements) {
 // LTspice's PWL REPEAT: times count from each repetition's start, a repetition lasts until the
 // last point. FOR N is written out (then the last value holds); FOREVER is ngspice's r= from the
 // first point, with the ramp back to the first point appended when that point is after 0.
+// `PWL file=NAME` (LTspice, PSpice; PSpice also `PWL FILE NAME`): the pairs from a text file
+// beside the deck (blanks, commas or semicolons between numbers, SPICE suffixes, '*', '#' and ';'
+// comment lines); TD= and R= apply as to written points. Before: "'pwl' needs at least 2
+// parameters". Errors name the file (and its line).
+TEST(LtspiceDialect, PwlPointsReadFromAFile) {
+  Netlist n = parse_netlist_file(kData + "/pwl_file.cir");
+  const std::vector<double> points{0, 0, 1e-3, 5, 2e-3, 5, 3e-3, 0};
+  EXPECT_EQ(test::element(n, "v1").waveform.params, points);
+  const std::vector<double> delayed{1e-3, 0, 2e-3, 5, 3e-3, 5, 4e-3, 0};
+  EXPECT_EQ(test::element(n, "i1").waveform.params, delayed);
+  auto error_of = [](const std::string& card) {
+    const std::string deck = kData + "/pwl_error.cir";
+    std::ofstream(deck) << "t\n" << card << "\nR1 a 0 1\n.tran 1m 4m\n.end\n";
+    std::string message;
+    try {
+      parse_netlist_file(deck);
+    } catch (const NetlistError& e) {
+      message = e.message();
+    }
+    std::remove(deck.c_str());
+    return message;
+  };
+  EXPECT_EQ(error_of("V1 a 0 PWL file=pwl/nosuch.txt"), "cannot open PWL file '" + kData + "/pwl/nosuch.txt'");
+  EXPECT_EQ(error_of("V1 a 0 PWL file=pwl/bad_number.txt"),
+            "PWL file '" + kData + "/pwl/bad_number.txt' line 2: invalid number 'x'");
+  EXPECT_EQ(error_of("V1 a 0 PWL FILE pwl/odd.txt"),
+            "PWL file '" + kData + "/pwl/odd.txt' needs time-value pairs (3 numbers)");
+  EXPECT_EQ(error_of("V1 a 0 PWL file=pwl/decreasing.txt"),
+            "PWL file '" + kData + "/pwl/decreasing.txt': times must not decrease (pair 3)");
+  EXPECT_EQ(error_of("V1 a 0 PWL file="), "missing file name after 'file='");
+}
+
 TEST(LtspiceDialect, PwlRepeatForAndForever) {
   Netlist n = test::parse(
       "t\nV1 a 0 PWL REPEAT FOR 3 (0 0 1m 5 2m 0) ENDREPEAT\nV2 b 0 PWL REPEAT FOREVER 0,0 +1m,5 +1m,0 ENDREPEAT\n"
