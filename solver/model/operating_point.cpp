@@ -290,10 +290,17 @@ std::vector<Eigen::VectorXd> exact_solutions(const CircuitModel& model, double t
     return c;
   };
   std::vector<std::pair<Eigen::VectorXd, Eigen::VectorXd>> point_currents;  // per kept point, with rounding
-  // A state's rounding, x = XofZ z + x0: 1e-12 of the terms that make it.
+  std::vector<bool> free_state(model.state_count(), false);  // the states p.undetermined names
+  for (int j = 0; j < model.state_count(); ++j)
+    free_state[j] = std::find(p.undetermined.begin(), p.undetermined.end(), model.states()[j].label) !=
+                    p.undetermined.end();
+  // A state's rounding, x = XofZ z + x0: 1e-12 of the terms that make it, and of the sources'
+  // scale (a Zener reference's collector capacitance at 1.3e-15 V in one point, 0 in the other).
+  const double source_scale = std::max(p.q.size() > 0 ? max_abs(p.q) : 0.0, p.x0.size() > 0 ? max_abs(p.x0) : 0.0);
   auto state_rounding = [&](const Eigen::VectorXd& z) -> Eigen::VectorXd {
     if (p.XofZ.cols() != z.size() || p.XofZ.rows() != p.x0.size()) return {};
-    return 1e-12 * (p.XofZ.cwiseAbs() * z.cwiseAbs() + p.x0.cwiseAbs());
+    return 1e-12 * (p.XofZ.cwiseAbs() * z.cwiseAbs() + p.x0.cwiseAbs() +
+                    Eigen::VectorXd::Constant(p.x0.size(), source_scale));
   };
   for (const Eigen::VectorXd& z : zs) {
     OperatingPoint op = point_from(p, z);
@@ -303,8 +310,17 @@ std::vector<Eigen::VectorXd> exact_solutions(const CircuitModel& model, double t
     bool seen = false;
     for (std::size_t k = 0; k < points.size() && !seen; ++k) {
       const Eigen::VectorXd both = rounding.cwiseMax(point_currents[k].second);
-      seen = same(points[k].x, op.x, state_rounding(op.z).cwiseMax(state_rounding(points[k].z))) &&
-             (same(points[k].z, op.z, {}) || same(point_currents[k].first, c, both));
+      const Eigen::VectorXd x_rounding = state_rounding(op.z).cwiseMax(state_rounding(points[k].z));
+      if (same(points[k].x, op.x, x_rounding) && same(points[k].z, op.z, {})) {
+        seen = true;
+      } else if (same(point_currents[k].first, c, both)) {
+        // The same currents: the states the DC equations leave free (a junction capacitance on
+        // the floating node, which least energy sets from the node's potential) may differ too.
+        Eigen::VectorXd xa = points[k].x, xb = op.x;
+        for (Eigen::Index j = 0; j < xa.size() && j < static_cast<Eigen::Index>(free_state.size()); ++j)
+          if (free_state[j]) xa(j) = xb(j) = 0;
+        seen = same(xa, xb, x_rounding);
+      }
     }
     if (seen) continue;
     points.push_back(op);
