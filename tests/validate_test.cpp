@@ -209,13 +209,13 @@ TEST(ValidationCanFail, ProbesTheWitnessCannotJudgeAreSaidAndLeftOut) {
 // slope is not the exponential's transconductance, which sets this amplifier's gain, as `run`
 // warns). Before, validate stopped with exit 3.
 TEST(ValidateDefaultMethod, FallsBackToTheFixedStepDefaultWhenEventFails) {
-  const fs::path dir = scratch_dir("validate_fallback");
-  const fs::path deck = dir / "mirror.cir";
-  std::ofstream(deck) << "differential pair, current-mirror load\nVCC vcc 0 10\nVEE vee 0 -10\n"
-                         "VIN1 in1 0 SIN(0 20m 1k)\nVIN2 in2 0 0\nQ1 c1 in1 e QN\nQ2 out in2 e QN\n"
-                         "Q3 c1 c1 vcc QP\nQ4 out c1 vcc QP\nQ5 e bias vee QN\nQ6 bias bias vee QN\n"
-                         "RB vcc bias 18.6k\nRL out 0 100k\n.model QN NPN(IS=1e-15 BF=150)\n"
-                         ".model QP PNP(IS=1e-15 BF=80)\n.tran 10u 3m\n.end\n";
+  const fs::path deck = write_deck("validate_", "mirror",
+                                   "differential pair, current-mirror load\nVCC vcc 0 10\nVEE vee 0 -10\n"
+                                   "VIN1 in1 0 SIN(0 20m 1k)\nVIN2 in2 0 0\nQ1 c1 in1 e QN\nQ2 out in2 e QN\n"
+                                   "Q3 c1 c1 vcc QP\nQ4 out c1 vcc QP\nQ5 e bias vee QN\nQ6 bias bias vee QN\n"
+                                   "RB vcc bias 18.6k\nRL out 0 100k\n.model QN NPN(IS=1e-15 BF=150)\n"
+                                   ".model QP PNP(IS=1e-15 BF=80)\n.tran 10u 3m\n.end\n");
+  const fs::path dir = deck.parent_path();
   const Result r = run_lcspice("validate '" + deck.string() + "'", dir);
   EXPECT_EQ(r.code, 4) << r.out << r.err;
   EXPECT_NE(r.err.find("lcspice: warning: method event failed at t = 0.000519446311 s: no consistent mode after a "
@@ -237,13 +237,13 @@ TEST(ValidateDefaultMethod, FallsBackToTheFixedStepDefaultWhenEventFails) {
 // junctions then FAIL by the model gap (run warns: ib(q1) moves 6.7 % with the lines fitted
 // lower); the Shockley ones PASS.
 TEST(ValidateStart, AFloatingLedStringAtZeroSupplyIsOneOperatingPoint) {
-  const fs::path dir = scratch_dir("validate_zener_reference");
-  const fs::path deck = dir / "zref.cir";
-  std::ofstream(deck) << "zener referenced current source\nVCC vcc 0 PWL(0 0 1m 12 5m 12 6m 9 10m 9)\n"
-                         "RZ vcc z 1k\nDZ 0 z D1N750\nQ1 c z e Q2N3904\nRE e 0 220\nD1 vcc l1 LED\nD2 l1 c LED\n"
-                         ".model D1N750 D(Is=880.5E-18 Rs=.25 N=1 Bv=4.7 Ibv=20.245m)\n"
-                         ".model Q2N3904 NPN(Is=6.734f Bf=416.4 Br=.7371 Cjc=3.638p Cje=4.493p)\n"
-                         ".model LED D(IS=1e-19 N=2 RS=2)\n.tran 10u 10m\n.end\n";
+  const fs::path deck = write_deck("validate_", "zener_reference",
+                                   "zener referenced current source\nVCC vcc 0 PWL(0 0 1m 12 5m 12 6m 9 10m 9)\n"
+                                   "RZ vcc z 1k\nDZ 0 z D1N750\nQ1 c z e Q2N3904\nRE e 0 220\nD1 vcc l1 LED\n"
+                                   "D2 l1 c LED\n.model D1N750 D(Is=880.5E-18 Rs=.25 N=1 Bv=4.7 Ibv=20.245m)\n"
+                                   ".model Q2N3904 NPN(Is=6.734f Bf=416.4 Br=.7371 Cjc=3.638p Cje=4.493p)\n"
+                                   ".model LED D(IS=1e-19 N=2 RS=2)\n.tran 10u 10m\n.end\n");
+  const fs::path dir = deck.parent_path();
   const Result ideal = run_lcspice("validate '" + deck.string() + "'", dir);
   EXPECT_EQ(ideal.code, 4) << ideal.out << ideal.err;
   EXPECT_EQ(ideal.err.find("not unique"), std::string::npos) << ideal.err;
