@@ -114,6 +114,12 @@ TEST(BjtMultistability, AFloatingNodeBetweenOffJunctionsIsOnePoint) {
   ASSERT_EQ(all.code, 0) << all.err;
   EXPECT_NE(all.err.find("node 'e1' reaches ground only through diodes"), std::string::npos) << all.err;
   EXPECT_EQ(all.err.find("v(e1) moves"), std::string::npos) << all.err;
+  // Where an element reads that potential (a G source from e1), the two ends are two answers.
+  const fs::path g = write("darlington_g", read_file(f).substr(0, read_file(f).find(".tran")) +
+                                               "G1 o 0 e1 0 1m\nRO o 0 1k\n.tran 10u 10m\n.end\n");
+  const Result op_g = run_lcspice("op --all '" + g.string() + "'", g.parent_path());
+  ASSERT_EQ(op_g.code, 0) << op_g.err;
+  EXPECT_NE(op_g.out.find("* 2 solutions\n"), std::string::npos) << op_g.out;
 }
 
 TEST(BjtMultistability, NodesetChoosesTheNearestAndATransientHoldsIt) {

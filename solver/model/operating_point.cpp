@@ -290,6 +290,12 @@ std::vector<Eigen::VectorXd> exact_solutions(const CircuitModel& model, double t
     return c;
   };
   std::vector<std::pair<Eigen::VectorXd, Eigen::VectorXd>> point_currents;  // per kept point, with rounding
+  // Not where an element reads a node's potential (E, G, a switch's control): there the free
+  // potential is an input, and the points differ (a G source on a Darlington's middle node).
+  const bool reads_potentials =
+      std::any_of(model.netlist().elements.begin(), model.netlist().elements.end(), [](const Element& e) {
+        return e.kind == ElementKind::Vcvs || e.kind == ElementKind::Vccs || e.kind == ElementKind::VSwitch;
+      });
   std::vector<bool> free_state(model.state_count(), false);  // the states p.undetermined names
   for (int j = 0; j < model.state_count(); ++j)
     free_state[j] = std::find(p.undetermined.begin(), p.undetermined.end(), model.states()[j].label) !=
@@ -313,7 +319,7 @@ std::vector<Eigen::VectorXd> exact_solutions(const CircuitModel& model, double t
       const Eigen::VectorXd x_rounding = state_rounding(op.z).cwiseMax(state_rounding(points[k].z));
       if (same(points[k].x, op.x, x_rounding) && same(points[k].z, op.z, {})) {
         seen = true;
-      } else if (same(point_currents[k].first, c, both)) {
+      } else if (!reads_potentials && same(point_currents[k].first, c, both)) {
         // The same currents: the states the DC equations leave free (a junction capacitance on
         // the floating node, which least energy sets from the node's potential) may differ too.
         Eigen::VectorXd xa = points[k].x, xb = op.x;
