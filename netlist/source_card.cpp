@@ -95,6 +95,7 @@ std::vector<double> read_pwl_file(const Card& card, std::size_t name_at) {
   if (!read_file(path.string(), text, true))
     throw NetlistError(card.at(name_at), "cannot open PWL file '" + path.string() + "'");
   std::vector<double> values;
+  std::vector<int> value_lines;  // each value's line in the file
   std::istringstream lines(text);
   std::string line;
   for (int number = 1; std::getline(lines, line); ++number) {
@@ -109,6 +110,7 @@ std::vector<double> read_pwl_file(const Card& card, std::size_t name_at) {
         throw NetlistError(card.at(name_at), "PWL file '" + path.string() + "' line " + std::to_string(number) +
                                                  ": invalid number '" + line.substr(k, end - k) + "'");
       values.push_back(*v);
+      value_lines.push_back(number);
       k = end;
     }
   }
@@ -117,8 +119,8 @@ std::vector<double> read_pwl_file(const Card& card, std::size_t name_at) {
                                              std::to_string(values.size()) + " numbers)");
   for (std::size_t k = 2; k < values.size(); k += 2)
     if (values[k] < values[k - 2])
-      throw NetlistError(card.at(name_at), "PWL file '" + path.string() + "': times must not decrease (pair " +
-                                               std::to_string(k / 2 + 1) + ")");
+      throw NetlistError(card.at(name_at), "PWL file '" + path.string() + "' line " +
+                                               std::to_string(value_lines[k]) + ": times must not decrease");
   return values;
 }
 

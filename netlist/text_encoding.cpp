@@ -45,16 +45,14 @@ std::string from_utf16(const std::string& bytes, std::size_t start, bool little_
   return out;
 }
 
-bool valid_utf8(const std::string& s) {
-  for (std::size_t k = 0; k < s.size();) {
-    const auto b = static_cast<unsigned char>(s[k]);
-    const int extra = b < 0x80 ? 0 : (b >> 5) == 0x6 ? 1 : (b >> 4) == 0xE ? 2 : (b >> 3) == 0x1E ? 3 : -1;
-    if (extra < 0 || k + extra >= s.size() + (extra == 0 ? 1 : 0)) return false;
-    for (int j = 1; j <= extra; ++j)
-      if ((static_cast<unsigned char>(s[k + j]) & 0xC0) != 0x80) return false;
-    k += 1 + extra;
-  }
-  return true;
+// The length of the valid UTF-8 sequence at s[k], 0 where none starts there.
+std::size_t utf8_sequence(const std::string& s, std::size_t k) {
+  const auto b = static_cast<unsigned char>(s[k]);
+  const std::size_t extra = b < 0x80 ? 0 : (b >> 5) == 0x6 ? 1 : (b >> 4) == 0xE ? 2 : (b >> 3) == 0x1E ? 3 : 4;
+  if (extra == 4 || k + extra >= s.size()) return extra == 0 ? 1 : 0;
+  for (std::size_t j = 1; j <= extra; ++j)
+    if ((static_cast<unsigned char>(s[k + j]) & 0xC0) != 0x80) return 0;
+  return 1 + extra;
 }
 
 // Windows-1252's 0x80-0x9F; the rest of its upper half is Latin-1 (the code point is the byte).
@@ -72,11 +70,18 @@ std::string to_utf8(const std::string& bytes) {
     if (b0 == 0xFE && b1 == 0xFF) return from_utf16(bytes, 2, false);
     if (bytes.size() >= 4 && b0 != 0 && b0 < 0x80 && b1 == 0 && bytes[3] == 0) return from_utf16(bytes, 0, true);
   }
-  if (valid_utf8(bytes)) return bytes;
+  // UTF-8 sequences are kept; each byte that starts none is a Windows-1252 character (a deck with
+  // a UTF-8 "1µF" and a Latin-1 degree sign in a comment keeps both).
   std::string out;
   out.reserve(bytes.size() + bytes.size() / 8);
-  for (char ch : bytes) {
-    const auto b = static_cast<unsigned char>(ch);
+  for (std::size_t k = 0; k < bytes.size();) {
+    const std::size_t length = utf8_sequence(bytes, k);
+    if (length > 0) {
+      out.append(bytes, k, length);
+      k += length;
+      continue;
+    }
+    const auto b = static_cast<unsigned char>(bytes[k++]);
     append_utf8(out, b >= 0x80 && b < 0xA0 ? kCp1252High[b - 0x80] : b);
   }
   return out;

@@ -8,9 +8,9 @@
 namespace lcs::parse {
 
 // `bytes` as UTF-8: UTF-16 with a byte order mark (either order) or without one (an ASCII first
-// character followed by a zero byte: little-endian) is decoded; text that is not valid UTF-8 is
-// read as Windows-1252 (its 0x80-0x9F as that code page's letters); valid UTF-8 is returned as
-// it is (a UTF-8 byte order mark included: the lexer skips it).
+// character followed by a zero byte: little-endian) is decoded; otherwise valid UTF-8 sequences
+// are kept and each byte that starts none is read as Windows-1252 (its 0x80-0x9F as that code
+// page's letters, the rest as Latin-1); a UTF-8 byte order mark is kept (the lexer skips it).
 std::string to_utf8(const std::string& bytes);
 
 }  // namespace lcs::parse

@@ -645,8 +645,9 @@ TEST(BjtAstable, SmoothLeavesTheUnstableBothSaturatedRestPoint) {
 // moves 7.6 % with the lines fitted lower). The smoothed circuit's ideal start has its junctions
 // at VON = 0, RON = RS = 0: the two input diodes, both at 0 V, share the current in any split, and
 // that start has 2 operating points. The run stopped at t = 0 ("the operating point is not
-// unique"); it now seeks the Shockley operating point from the first, says so, and the gate
-// works: high with either input low, low (Q1 saturated) with both high.
+// unique"); it now seeks the Shockley operating point from each, finds the same one, and the
+// gate works: high with either input low, low (Q1 saturated) with both high. A flip-flop, whose
+// Shockley operating points are several too, still stops (exit 3) for .ic or .nodeset.
 TEST(BjtDtl, SmoothStartsFromTheFirstOfTheSmoothedCircuitsTiedIdealStarts) {
   const fs::path deck = write_deck("bjt_dtl_", "nand",
                                    "DTL NAND\nVCC vcc 0 5\nVA a 0 PULSE(0 5 0 10n 10n 1u 2u)\n"
@@ -659,8 +660,7 @@ TEST(BjtDtl, SmoothStartsFromTheFirstOfTheSmoothedCircuitsTiedIdealStarts) {
     SCOPED_TRACE(how);
     const Result r = run_lcspice("run '" + deck.string() + "' " + how + " -o '" + (dir / "out.csv").string() + "'", dir);
     ASSERT_EQ(r.code, 0) << r.err;
-    EXPECT_NE(r.err.find("warning: the ideal start of the smoothed circuit has 2 operating points"), std::string::npos)
-        << r.err;
+    EXPECT_EQ(r.err.find("the operating point is not unique"), std::string::npos) << r.err;
     const Csv csv = parse_csv(read_file(dir / "out.csv"));
     const std::vector<double> t = column(csv, "time"), v = column(csv, "v(out)");
     EXPECT_GT(v[row_at(t, 0.0)], 4.99);     // inputs low: Q1 off
@@ -668,6 +668,19 @@ TEST(BjtDtl, SmoothStartsFromTheFirstOfTheSmoothedCircuitsTiedIdealStarts) {
     EXPECT_GT(v[row_at(t, 1.5e-6)], 4.99);  // A low again
     EXPECT_LT(v[row_at(t, 4.5e-6)], 0.1);
   }
+  const fs::path flip_flop = write_deck("bjt_dtl_", "flip_flop",
+                                        "flip-flop\nVS vs 0 DC 5\nR1 vs c1 1k\nR2 vs c2 1k\nR3 c1 b2 10k\n"
+                                        "R4 c2 b1 10k\nR5 b1 0 10k\nR6 b2 0 10k\nQ1 c1 b1 0 qff\nQ2 c2 b2 0 qff\n"
+                                        ".model qff NPN(BF=100 BR=1 VONE=0.7 VONC=0.5 CJE=10p)\n.tran 1u 40u\n.end\n");
+  const Result ff = run_lcspice("run '" + flip_flop.string() + "' --method smooth -o '" +
+                                    (flip_flop.parent_path() / "out.csv").string() + "'",
+                                flip_flop.parent_path());
+  EXPECT_EQ(ff.code, 3);
+  EXPECT_NE(ff.err.find("error: numerical failure at t = 0 s: the operating point is not unique: the Shockley "
+                        "junctions' operating point sought from the 3 points of the smoothed circuit's ideal start "
+                        "differs between them; choose one with .ic or .nodeset node voltages"),
+            std::string::npos)
+      << ff.err;
 }
 
 TEST(BjtBoost, EventMethodAtCoarseTolerancesMatchesATightReference) {

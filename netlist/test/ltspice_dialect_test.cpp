@@ -137,7 +137,7 @@ TEST(LtspiceDialect, PwlPointsReadFromAFile) {
   EXPECT_EQ(error_of("V1 a 0 PWL FILE pwl/odd.txt"),
             "PWL file '" + kData + "/pwl/odd.txt' needs time-value pairs (3 numbers)");
   EXPECT_EQ(error_of("V1 a 0 PWL file=pwl/decreasing.txt"),
-            "PWL file '" + kData + "/pwl/decreasing.txt': times must not decrease (pair 3)");
+            "PWL file '" + kData + "/pwl/decreasing.txt' line 3: times must not decrease");
   EXPECT_EQ(error_of("V1 a 0 PWL file="), "missing file name after 'file='");
 }
 

@@ -59,6 +59,9 @@ TEST(TextEncoding, ConversionsOfTheRawBytes) {
   EXPECT_EQ(parse::to_utf8(std::string("\xfe\xff\x00" "a\x00\xb5", 6)), "a\xc2\xb5");  // UTF-16BE
   EXPECT_EQ(parse::to_utf8(std::string("\xff\xfe\x3d\xd8\x00\xde", 6)), "\xf0\x9f\x98\x80");  // a surrogate pair
   EXPECT_EQ(parse::to_utf8("\x80 10\xb5"), "\xe2\x82\xac 10\xc2\xb5");  // Windows-1252: the euro sign, micro
+  // Mixed: a UTF-8 micro sign kept, a Latin-1 degree sign (0xB0) beside it read as Windows-1252.
+  EXPECT_EQ(parse::to_utf8("1\xc2\xb5" "F * 25\xb0" "C"), "1\xc2\xb5" "F * 25\xc2\xb0" "C");
+  EXPECT_EQ(parse::to_utf8("a\xc2"), "a\xc3\x82");  // a sequence cut off at the end
 }
 
 }  // namespace

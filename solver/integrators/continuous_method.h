@@ -42,9 +42,11 @@ class ContinuousMethod {
   // The run starts at the circuit's DC operating point (not UIC), x0 the ideal model's; `held`
   // marks the states IC= or .ic set there. A method of the smoothed circuit then starts from that
   // circuit's own operating point (smooth_method.h); the others from x0 as it is.
-  void StartAtOperatingPoint(std::vector<bool> held) {
+  void StartAtOperatingPoint(std::vector<bool> held,
+                             std::vector<std::pair<Eigen::VectorXd, Eigen::VectorXd>> other_starts = {}) {
     start_at_rest_ = true;
     held_ = std::move(held);
+    other_starts_ = std::move(other_starts);
   }
   // What the run's warnings should say about how the method ran.
   const std::vector<std::string>& notes() const { return notes_; }
@@ -56,6 +58,7 @@ class ContinuousMethod {
   StepperStats stats_;
   bool start_at_rest_ = false;
   std::vector<bool> held_;
+  std::vector<std::pair<Eigen::VectorXd, Eigen::VectorXd>> other_starts_;  // InitialState::other_starts
   std::vector<std::string> notes_;
 };
 

@@ -59,7 +59,8 @@ class GuardedMethod {
   // The first segment starts at the circuit's DC operating point (not UIC); `held` marks the
   // states IC= or .ic set (ContinuousMethod::StartAtOperatingPoint). Methods of the ideal
   // circuit start from the state they are given.
-  virtual void start_at_operating_point(std::vector<bool> /*held*/) {}
+  virtual void start_at_operating_point(std::vector<bool> /*held*/,
+                                        std::vector<std::pair<Eigen::VectorXd, Eigen::VectorXd>> /*other_starts*/) {}
   // What the run's warnings should say about how the method ran.
   virtual std::vector<std::string> run_notes() const { return {}; }
 };

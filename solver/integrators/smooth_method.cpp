@@ -441,17 +441,45 @@ void SmoothMethod::at_rest(Eigen::VectorXd& s) const {
 // The run starts at the circuit's DC operating point: the smoothed circuit's own, not the ideal
 // diodes' (whose VON/RON put the nodes tens of millivolts elsewhere, and the run would begin with
 // that difference relaxing, where ngspice, from its own operating point, begins at rest).
-void SmoothMethod::rest_point(double t, Eigen::VectorXd& x, Eigen::VectorXd& s) {
+bool SmoothMethod::rest_point(double t, Eigen::VectorXd& x, Eigen::VectorXd& s) {
   const int n = dae_.states(), m = dae_.pairs();
   Eigen::VectorXd y(n + m);
   y << x, s;
   if (dae_.solve_rest_point(t, y, held_, &stats_.newton_iterations)) {
     x = y.head(n);
     s = y.tail(m);
-    return;
+    return true;
   }
   notes_.push_back("the smoothed circuit's own operating point was not found (Newton's method did not "
                    "converge from the ideal diodes' one): the run starts from the ideal diodes' operating point");
+  return false;
+}
+
+// The smoothed circuit's ideal start had several points (InitialState::other_starts): the Shockley
+// operating point sought from each of the others must be the one found from the first, to
+// rounding of the states and of the pair currents, or the circuit itself has several (a flip-flop:
+// Newton from the first point landed on the balanced saddle, from the others on the two latch
+// states) and the run stops, as the ideal methods do, for .ic or .nodeset to choose.
+void SmoothMethod::check_other_starts(double t, const Eigen::VectorXd& x, const Eigen::VectorXd& s) {
+  const int n = dae_.states(), m = dae_.pairs();
+  const Eigen::VectorXd currents = dae_.complementarity_variables(s);
+  const double x_scale = std::max(x.cwiseAbs().maxCoeff(), 1.0), i_scale = currents.cwiseAbs().maxCoeff();
+  int found = 1;
+  for (const auto& [x_other, z_other] : other_starts_) {
+    if (x_other.size() != n || z_other.size() != m) continue;
+    Eigen::VectorXd y(n + m);
+    y << x_other, dae_.parameters_from_ideal(t, x_other, z_other);
+    if (!dae_.solve_rest_point(t, y, held_, &stats_.newton_iterations)) continue;
+    const Eigen::VectorXd other_currents = dae_.complementarity_variables(y.tail(m));
+    const bool same_states = (y.head(n) - x).cwiseAbs().maxCoeff() <= 1e-6 * x_scale;
+    const bool same_currents = (other_currents - currents).cwiseAbs().maxCoeff() <= 1e-6 * i_scale + 1e-12;
+    if (!(same_states && same_currents)) ++found;
+  }
+  if (found > 1)
+    throw NumericalFailure(t, "the operating point is not unique: the Shockley junctions' operating point sought "
+                              "from the " + std::to_string(other_starts_.size() + 1) +
+                              " points of the smoothed circuit's ideal start differs between them; choose one "
+                              "with .ic or .nodeset node voltages");
 }
 
 // A rest point can be an unstable equilibrium (an astable multivibrator with both transistors
@@ -576,8 +604,8 @@ std::optional<GuardCrossing> SmoothMethod::RunSegment(const SegmentStart& start,
       s.setZero();
     }
     consistent_pairs(t0, x0, s, schedule.tstep);
-    if (t0 == 0 && start_at_rest_ && n > 0) {
-      rest_point(t0, x0, s);
+    if (t0 == 0 && start_at_rest_ && n > 0 && rest_point(t0, x0, s)) {
+      if (!other_starts_.empty()) check_other_starts(t0, x0, s);
       leave_unstable_rest(t0, stops.back(), x0, s);
     }
     at_rest(s);

@@ -31,7 +31,10 @@ class SmoothMethod : public ContinuousMethod, public GuardedMethod {
   SmoothMethod(const LcsProblem& model, const MethodOptions& options);
   ~SmoothMethod() override;
   StepperStats stats() const override { return stats_; }
-  void start_at_operating_point(std::vector<bool> held) override { StartAtOperatingPoint(std::move(held)); }
+  void start_at_operating_point(std::vector<bool> held,
+                                std::vector<std::pair<Eigen::VectorXd, Eigen::VectorXd>> other_starts) override {
+    StartAtOperatingPoint(std::move(held), std::move(other_starts));
+  }
   std::vector<std::string> run_notes() const override { return notes(); }
 
   // Switches (switched_adaptive.h): the guards are IDA root functions after the pairs', falling
@@ -53,7 +56,8 @@ class SmoothMethod : public ContinuousMethod, public GuardedMethod {
   // (complementarity) solution, else from zero. Throws NumericalFailure when none converges.
   void consistent_pairs(double t, const Eigen::VectorXd& x, Eigen::VectorXd& s, double tstep);
   void at_rest(Eigen::VectorXd& s) const;
-  void rest_point(double t, Eigen::VectorXd& x, Eigen::VectorXd& s);
+  bool rest_point(double t, Eigen::VectorXd& x, Eigen::VectorXd& s);
+  void check_other_starts(double t, const Eigen::VectorXd& x, const Eigen::VectorXd& s);
   void leave_unstable_rest(double t, double tstop, Eigen::VectorXd& x, Eigen::VectorXd& s);
   static constexpr int kMaxUnstableCheckStates = 200;  // a dense eigenproblem of the states
   static constexpr double kVisibleGrowth = 36;          // e^36 * 1e-16: rounding grown to 0.4

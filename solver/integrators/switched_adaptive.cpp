@@ -110,7 +110,7 @@ void run_switched_adaptive(SwitchFamily& family, const SwitchConfig& start_confi
 
   SwitchConfig config = start_config;
   Configuration* cur = &configuration(config);
-  if (!options.uic) cur->method->start_at_operating_point(init.held);
+  if (!options.uic) cur->method->start_at_operating_point(init.held, init.other_starts);
   DistinctRows rows([&](double t, const Eigen::VectorXd& x, const Eigen::VectorXd& z) {
     cur->writer->write(t, x, z);
     ++summary.rows;

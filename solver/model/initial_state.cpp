@@ -134,6 +134,7 @@ InitialState initial_state(const CircuitModel& model, bool uic, double t0) {
     if (!op.undetermined.empty()) init.warnings.push_back(undetermined_state_warning(op.undetermined));
     for (const std::string& w : op.warnings) init.warnings.push_back(w);
     chosen_by = op.chosen_by;
+    for (const auto& [x, oz] : op.other_starts) init.other_starts.push_back({model.physical_state(x, t0), oz});
   } else {
     // From rest, lines carry the waves of their IC= port values (zero without).
     std::vector<double> before;

@@ -19,6 +19,9 @@ struct InitialState {
   Eigen::VectorXd z;                  // the operating point's z (zeros with UIC)
   std::vector<bool> held;             // per state: its value set by IC=, .ic or a winding's IC=
   std::vector<std::string> warnings;  // IC= on dependent elements, states with no DC path
+  // The other points of a smoothed circuit's tied ideal start (OperatingPoint::other_starts), as
+  // (x, z) at t0.
+  std::vector<std::pair<Eigen::VectorXd, Eigen::VectorXd>> other_starts;
 };
 
 InitialState initial_state(const CircuitModel& model, bool uic, double t0);

@@ -403,18 +403,20 @@ OperatingPoint choose_among(const CircuitModel& model, const StaticProblem& p, d
   const std::map<std::string, double> hints = node_hints(model.netlist());
   // The smoothed circuit's ideal start (its junctions' lines at VON = 0, RON = RS: parallel
   // junctions share any split, chains of them tie) is only Newton's first guess for the Shockley
-  // junctions' own operating point (smooth_method.h), which settles the split. A DTL gate's input
-  // diodes, both at 0 V, gave 2 such points, and `--method smooth` (and `--diode auto`, which
-  // chose it) stopped at t = 0. The first is taken and the choice said, for a circuit whose
-  // Shockley operating points are several too (a flip-flop), where it picks the state.
+  // junctions' own operating point (smooth_method.h). A DTL gate's input diodes, both at 0 V,
+  // gave 2 such points, and `--method smooth` (and `--diode auto`, which chose it) stopped at
+  // t = 0. The first is taken and the others kept: the smooth method seeks the Shockley point
+  // from each and stops only if they differ (a flip-flop).
   if (hints.empty() && model.netlist().smooth_junctions) {
     OperatingPoint op = point_from(p, zs[0]);
     polish(model, t, op);
     finish(model, op);
-    op.warnings.push_back("the ideal start of the smoothed circuit has " + count + " (" + who +
-                          " on in some, off in others): the Shockley junctions' operating point is "
-                          "sought from the first; if the circuit has several, .ic or .nodeset values "
-                          "choose among them");
+    for (std::size_t k = 1; k < zs.size(); ++k) {
+      OperatingPoint other = point_from(p, zs[k]);
+      polish(model, t, other);
+      finish(model, other);
+      op.other_starts.push_back({other.x, other.z});
+    }
     return op;
   }
   if (hints.empty())

@@ -16,6 +16,10 @@ namespace lcs {
 struct OperatingPoint {
   Eigen::VectorXd x;  // LCS state
   Eigen::VectorXd z;
+  // A smoothed circuit's ideal start with several points: the others (x, z), from which the
+  // smooth method seeks the Shockley operating point too, to tell a tie of the start's lines
+  // (parallel junctions at VON = 0) from several operating points of the circuit itself.
+  std::vector<std::pair<Eigen::VectorXd, Eigen::VectorXd>> other_starts;
   // Lines: the waves they carry at DC (their history inputs), in DelayHistory order. Solving
   // makes them the lines' past (LcsProblem::begin_history): values read at t are this point's.
   std::vector<double> history;
