@@ -6,6 +6,7 @@
 #include <memory>
 
 #include <algorithm>
+#include <functional>
 
 
 namespace lcs {
@@ -309,28 +310,19 @@ bool ShockleyDae::solve_rest_point(double t, Eigen::VectorXd& y, const std::vect
     a_max = model_.lcs().A.size() > 0 ? model_.lcs().A.cwiseAbs().maxCoeff() : 0.0;
   }
   const Eigen::VectorXd pull = Eigen::VectorXd::Constant(n_, 1e-9 * std::max(a_max, 1e-300));
-  Eigen::VectorXd r(size), weights(size);
-  Eigen::MatrixXd J(sparse_ ? 0 : size, sparse_ ? 0 : size);
-  auto evaluate = [&](const Eigen::VectorXd& at) {
+  auto is_held = [&](int k) { return k < n_ && k < static_cast<int>(held.size()) && held[k]; };
+  auto evaluate = [&](const Eigen::VectorXd& at, Eigen::VectorXd& r) {
     if (!residual(t, at, zero, r)) return false;
     r.head(n_) += pull.cwiseProduct(at.head(n_) - y0.head(n_));  // residual() has x' - f: here -f
     for (int k = 0; k < n_; ++k)
-      if (k < static_cast<int>(held.size()) && held[k]) r(k) = at(k) - y0(k);
+      if (is_held(k)) r(k) = at(k) - y0(k);
     return true;
   };
-  auto norm = [&](const Eigen::VectorXd& d, const Eigen::VectorXd& at) {
-    error_weights(at, weights);
-    return std::sqrt(d.cwiseProduct(weights).squaredNorm() / size);
-  };
-  auto is_held = [&](int k) { return k < n_ && k < static_cast<int>(held.size()) && held[k]; };
-  Eigen::VectorXd yk = y, y_try;
-  for (int it = 0; it < 200; ++it) {
-    if (!evaluate(yk)) return false;
-    if (iterations) ++*iterations;
-    std::unique_ptr<NewtonFactor> factor;
+  auto linearise = [&](const Eigen::VectorXd& at) -> NewtonStep {
+    std::shared_ptr<NewtonFactor> factor;
     if (sparse_) {
       // The sparse Jacobian at cj = 0 is dF/dy; the pull goes on the states' diagonal; a held state's row is e_k.
-      const Eigen::SparseMatrix<double>& S = sparse_jacobian(yk, 0.0);
+      const Eigen::SparseMatrix<double>& S = sparse_jacobian(at, 0.0);
       std::vector<Eigen::Triplet<double>> entries;
       entries.reserve(S.nonZeros());
       for (int c = 0; c < S.outerSize(); ++c)
@@ -339,35 +331,23 @@ bool ShockleyDae::solve_rest_point(double t, Eigen::VectorXd& y, const std::vect
       for (int k = 0; k < n_; ++k) entries.emplace_back(k, k, is_held(k) ? 1.0 : pull(k));
       Eigen::SparseMatrix<double> M(size, size);
       M.setFromTriplets(entries.begin(), entries.end());
-      factor = std::make_unique<NewtonFactor>(M);
+      factor = std::make_shared<NewtonFactor>(M);
     } else {
-      jacobian(t, yk, 0.0, J);
+      Eigen::MatrixXd J(size, size);
+      jacobian(t, at, 0.0, J);
       J.topLeftCorner(n_, n_).diagonal() += pull;
       for (int k = 0; k < n_; ++k)
         if (is_held(k)) {
           J.row(k).setZero();
           J(k, k) = 1.0;
         }
-      factor = std::make_unique<NewtonFactor>(J);
+      factor = std::make_shared<NewtonFactor>(J);
     }
-    const NewtonFactor& lu = *factor;
-    const Eigen::VectorXd dy = lu.solve(-r);
-    if (!dy.allFinite()) return false;
-    const double dy_norm = norm(dy, yk);
-    if (dy_norm <= 1e-3) {
-      y = yk + dy;
-      polish_rest_point(t, y, held, y0, iterations);
-      return true;
-    }
-    bool accepted = false;  // the natural monotonicity test, as in solve_pairs
-    for (double lambda = 1.0; lambda > 1e-10 && !accepted; lambda *= 0.5) {
-      y_try = yk + lambda * dy;
-      accepted = evaluate(y_try) && norm(lu.solve(-r), yk) <= (1 - lambda / 4) * dy_norm;
-    }
-    if (!accepted) return false;
-    yk = y_try;
-  }
-  return false;
+    return [factor](const Eigen::VectorXd& r) -> Eigen::VectorXd { return factor->solve(-r); };
+  };
+  if (!damped_newton(y, 200, iterations, evaluate, linearise)) return false;
+  polish_rest_point(t, y, held, y0, iterations);
+  return true;
 }
 
 // The pull's own error, taken out: Newton's method on the DC equations without the pull, from the
@@ -389,25 +369,18 @@ void ShockleyDae::polish_rest_point(double t, Eigen::VectorXd& y, const std::vec
   if (size == 0 || size > kPolishMaxUnknowns || model_.has_history()) return;
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(size);
   auto is_held = [&](int k) { return k < n_ && k < static_cast<int>(held.size()) && held[k]; };
-  Eigen::VectorXd r(size), weights(size), yk = y;
-  auto evaluate = [&](const Eigen::VectorXd& at) {
+  auto evaluate = [&](const Eigen::VectorXd& at, Eigen::VectorXd& r) {
     if (!residual(t, at, zero, r)) return false;
     for (int k = 0; k < n_; ++k)
       if (is_held(k)) r(k) = at(k) - y0(k);
     return true;
   };
-  auto norm = [&](const Eigen::VectorXd& d, const Eigen::VectorXd& at) {
-    error_weights(at, weights);
-    return std::sqrt(d.cwiseProduct(weights).squaredNorm() / size);
-  };
-  Eigen::MatrixXd J(size, size);
-  for (int it = 0; it < 20; ++it) {
-    if (!evaluate(yk)) return;
-    if (iterations) ++*iterations;
+  auto linearise = [&](const Eigen::VectorXd& at) -> NewtonStep {
+    Eigen::MatrixXd J(size, size);
     if (sparse_)
-      J = Eigen::MatrixXd(sparse_jacobian(yk, 0.0));
+      J = Eigen::MatrixXd(sparse_jacobian(at, 0.0));
     else
-      jacobian(t, yk, 0.0, J);
+      jacobian(t, at, 0.0, J);
     for (int k = 0; k < n_; ++k)
       if (is_held(k)) {
         J.row(k).setZero();
@@ -419,28 +392,51 @@ void ShockleyDae::polish_rest_point(double t, Eigen::VectorXd& y, const std::vec
     Eigen::VectorXd columns = scaled.cwiseAbs().colwise().maxCoeff().transpose();
     for (int k = 0; k < size; ++k) columns(k) = columns(k) > 0 ? 1.0 / columns(k) : 1.0;
     scaled = scaled * columns.asDiagonal();
-    Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod;
-    cod.setThreshold(1e-10);
-    cod.compute(scaled);
-    auto step = [&](const Eigen::VectorXd& residual_at) -> Eigen::VectorXd {
-      return columns.cwiseProduct(cod.solve(-rows.cwiseProduct(residual_at)));
+    auto cod = std::make_shared<Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd>>();
+    cod->setThreshold(1e-10);
+    cod->compute(scaled);
+    return [cod, rows, columns](const Eigen::VectorXd& r) -> Eigen::VectorXd {
+      return columns.cwiseProduct(cod->solve(-rows.cwiseProduct(r)));
     };
+  };
+  Eigen::VectorXd polished = y;
+  if (damped_newton(polished, 20, iterations, evaluate, linearise)) y = polished;
+}
+
+// Damped Newton's method from y: a step dy = step(r) from the linearisation at the iterate, halved
+// until the natural monotonicity test passes (the next residual's step, with the same
+// linearisation, shrinks by 1 - lambda/4; as in solve_pairs); converged when the step is below
+// 1e-3 in IDA's error weights, y then the last iterate plus its step. False (y unchanged) when a
+// residual or a step is not finite, the test fails at every lambda, or after `max_iterations`.
+bool ShockleyDae::damped_newton(Eigen::VectorXd& y, int max_iterations, long* iterations,
+                                const std::function<bool(const Eigen::VectorXd&, Eigen::VectorXd&)>& evaluate,
+                                const std::function<NewtonStep(const Eigen::VectorXd&)>& linearise) const {
+  const int size = static_cast<int>(y.size());
+  Eigen::VectorXd r(size), weights(size), yk = y, y_try;
+  auto norm = [&](const Eigen::VectorXd& d, const Eigen::VectorXd& at) {
+    error_weights(at, weights);
+    return std::sqrt(d.cwiseProduct(weights).squaredNorm() / size);
+  };
+  for (int it = 0; it < max_iterations; ++it) {
+    if (!evaluate(yk, r)) return false;
+    if (iterations) ++*iterations;
+    const NewtonStep step = linearise(yk);
     const Eigen::VectorXd dy = step(r);
-    if (!dy.allFinite()) return;
+    if (!dy.allFinite()) return false;
     const double dy_norm = norm(dy, yk);
     if (dy_norm <= 1e-3) {
       y = yk + dy;
-      return;
+      return true;
     }
     bool accepted = false;
-    Eigen::VectorXd y_try;
     for (double lambda = 1.0; lambda > 1e-10 && !accepted; lambda *= 0.5) {
       y_try = yk + lambda * dy;
-      accepted = evaluate(y_try) && norm(step(r), yk) <= (1 - lambda / 4) * dy_norm;
+      accepted = evaluate(y_try, r) && norm(step(r), yk) <= (1 - lambda / 4) * dy_norm;
     }
-    if (!accepted) return;
+    if (!accepted) return false;
     yk = y_try;
   }
+  return false;
 }
 
 }  // namespace lcs

@@ -24,6 +24,8 @@
 #pragma once
 
 #include <cmath>
+#include <functional>
+#include <memory>
 #include <vector>
 
 #include <Eigen/Dense>
@@ -124,6 +126,10 @@ class ShockleyDae {
  private:
   void polish_rest_point(double t, Eigen::VectorXd& y, const std::vector<bool>& held, const Eigen::VectorXd& y0,
                          long* iterations) const;
+  using NewtonStep = std::function<Eigen::VectorXd(const Eigen::VectorXd&)>;  // residual -> step
+  bool damped_newton(Eigen::VectorXd& y, int max_iterations, long* iterations,
+                     const std::function<bool(const Eigen::VectorXd&, Eigen::VectorXd&)>& evaluate,
+                     const std::function<NewtonStep(const Eigen::VectorXd&)>& linearise) const;
   static constexpr int kPolishMaxUnknowns = 400;  // dense: O(size^3) an iteration
   // The diodes' part of error_weights, at states x and parameters s.
   void pair_weights(const Eigen::Ref<const Eigen::VectorXd>& x,
