@@ -157,6 +157,16 @@ std::vector<std::string> floating_probe_warnings(const CircuitModel& model,
   return out;
 }
 
+std::vector<std::string> floating_potential_probes(const CircuitModel& model, const std::vector<Probe>& probes) {
+  const NodePartition h = h_components(model.graph());
+  std::vector<std::string> out;
+  for (const Probe& p : probes) {
+    const int n = p.kind == Probe::Kind::NodeVoltage && p.b.empty() ? model.graph().node_index(p.a) : -1;
+    if (n >= 0 && h.component[n] != h.component[0]) out.push_back(p.name());
+  }
+  return out;
+}
+
 bool has_floating_potential(const CircuitModel& model, const std::string& node) {
   const NodePartition h = h_components(model.graph());
   const int n = model.graph().node_index(node);

@@ -38,4 +38,7 @@ std::vector<std::string> floating_probe_warnings(const CircuitModel& model,
                                                  const std::vector<Probe>& probes);
 // Whether `node` lies in such a component.
 bool has_floating_potential(const CircuitModel& model, const std::string& node);
+// The probes among `probes` that read such a potential: v(node) of a node reached only through
+// diodes (one partition of the graph for all of them).
+std::vector<std::string> floating_potential_probes(const CircuitModel& model, const std::vector<Probe>& probes);
 }  // namespace lcs

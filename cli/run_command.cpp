@@ -10,7 +10,6 @@
 #include "cli/load_circuit.h"
 #include "cli/progress.h"
 #include "cli/source_sampling.h"
-#include "graph/components.h"
 #include "solver/integrators/diode_refit.h"
 #include "solver/integrators/fit_sensitivity.h"
 #include "solver/integrators/transient.h"
@@ -209,13 +208,7 @@ int run_command(const RunArgs& args) {
   std::unique_ptr<RecordedRows> lowered;
   std::string lowered_failure;
   FitSensitivityOptions sensitivity_options;
-  {
-    const NodePartition h = h_components(model.graph());  // once: the default probes are every node
-    for (const Probe& p : probes_for(netlist, model, args.probes)) {
-      const int n = p.kind == Probe::Kind::NodeVoltage && p.b.empty() ? model.graph().node_index(p.a) : -1;
-      if (n >= 0 && h.component[n] != h.component[0]) sensitivity_options.unjudged.push_back(p.name());
-    }
-  }
+  sensitivity_options.unjudged = floating_potential_probes(model, probes_for(netlist, model, args.probes));
   if (!method_of(options).smooth_model) {
     // Cards without VON/RON: their lines refitted to the currents this circuit carries.
     const DiodeRefitResult refit = refit_diodes(netlist, refit_model_options(options.tstop), options);

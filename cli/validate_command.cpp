@@ -176,6 +176,24 @@ MemorySink run_ours(const CircuitModel& model, const OutputMap& outputs, const T
   return sink;
 }
 
+// As `run`: when the default method (event) stops with a numerical failure, the fixed-step
+// default runs instead (run.method becomes it), with a warning (a differential pair with a
+// current-mirror load and no junction capacitance stopped event at a degenerate switching).
+MemorySink run_ours_or_fall_back(const CircuitModel& model, const OutputMap& outputs, TransientOptions& run) {
+  if (run.method == fixed_step_default_method().name || find_method(run.method)->smooth_model)
+    return run_ours(model, outputs, run);
+  MemorySink sink;
+  try {
+    run_transient(model, outputs, run, sink);
+    return sink;
+  } catch (const NumericalFailure& e) {
+    std::cerr << "lcspice: warning: method " << run.method << " failed " << e.what() << "; running --method "
+              << fixed_step_default_method().name << " (the fixed-step default) instead\n";
+  }
+  run.method = fixed_step_default_method().name;
+  return run_ours(model, outputs, run);
+}
+
 std::vector<double> column(const MemorySink& sink, size_t p) {
   std::vector<double> out;
   for (const Eigen::VectorXd& row : sink.rows) out.push_back(row(p));
@@ -540,24 +558,8 @@ int validate_with_faults(const ValidateArgs& args, const NgspiceDeckFaults& faul
   }
   require_ngspice("validate needs ngspice");
 
-  // As `run`: when the default method (event) stops with a numerical failure, the fixed-step
-  // default runs instead, with a warning (a differential pair with a current-mirror load and no
-  // junction capacitance stopped event at a degenerate switching; euler runs it and passes).
-  MemorySink ours;
-  try {
-    ours = run_ours(ours_model, outputs, run);
-  } catch (const CliError& e) {
-    if (!args.method.empty() || e.code() != kExitNumerical || run.method == fixed_step_default_method().name ||
-        find_method(run.method)->smooth_model)
-      throw;
-    std::string what = e.what();
-    const std::string prefix = "lcspice: error: numerical failure ";
-    if (what.compare(0, prefix.size(), prefix) == 0) what = what.substr(prefix.size());
-    std::cerr << "lcspice: warning: method " << run.method << " failed " << what << "; running --method "
-              << fixed_step_default_method().name << " (the fixed-step default) instead\n";
-    run.method = fixed_step_default_method().name;
-    ours = run_ours(ours_model, outputs, run);
-  }
+  const MemorySink ours =
+      args.method.empty() ? run_ours_or_fall_back(ours_model, outputs, run) : run_ours(ours_model, outputs, run);
   // The gap of each ideal diode at its own peak current, and lcspice again with every such
   // threshold raised by it: the far wall of the tube. `smooth` integrates the deck's own Shockley
   // diodes: no gap, the tube is lcspice's answer.

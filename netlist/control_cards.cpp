@@ -134,7 +134,7 @@ std::vector<NodeIc> parse_ic(const Card& card, const ParamScope& scope) {
 std::vector<Probe> parse_probe_card(const Card& card, std::vector<std::string>& warnings) {
   std::vector<Probe> out;
   const std::size_t n = card.size();
-  const bool save = card.keyword() == ".save" || card.keyword() == ".probe" || card.keyword() == ".probe64";
+  const bool save = classify_dot_card(card.keyword()) == DotCard::Save;
   std::vector<std::string> pspice_other;  // W(alias(*)), D(alias(*)), NOISE(alias(*))
   std::size_t i = 1;
   if (!save && i < n && card[i].is_word() && !(i + 1 < n && card[i + 1].is(Token::Kind::LParen))) {

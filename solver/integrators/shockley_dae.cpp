@@ -309,11 +309,11 @@ bool ShockleyDae::solve_rest_point(double t, Eigen::VectorXd& y, const std::vect
   } else {
     a_max = model_.lcs().A.size() > 0 ? model_.lcs().A.cwiseAbs().maxCoeff() : 0.0;
   }
-  const Eigen::VectorXd pull = Eigen::VectorXd::Constant(n_, 1e-9 * std::max(a_max, 1e-300));
+  const double pull = 1e-9 * std::max(a_max, 1e-300);
   auto is_held = [&](int k) { return k < n_ && k < static_cast<int>(held.size()) && held[k]; };
   auto evaluate = [&](const Eigen::VectorXd& at, Eigen::VectorXd& r) {
     if (!residual(t, at, zero, r)) return false;
-    r.head(n_) += pull.cwiseProduct(at.head(n_) - y0.head(n_));  // residual() has x' - f: here -f
+    r.head(n_) += pull * (at.head(n_) - y0.head(n_));  // residual() has x' - f: here -f
     for (int k = 0; k < n_; ++k)
       if (is_held(k)) r(k) = at(k) - y0(k);
     return true;
@@ -328,14 +328,14 @@ bool ShockleyDae::solve_rest_point(double t, Eigen::VectorXd& y, const std::vect
       for (int c = 0; c < S.outerSize(); ++c)
         for (Eigen::SparseMatrix<double>::InnerIterator it(S, c); it; ++it)
           if (!is_held(static_cast<int>(it.row()))) entries.emplace_back(it.row(), c, it.value());
-      for (int k = 0; k < n_; ++k) entries.emplace_back(k, k, is_held(k) ? 1.0 : pull(k));
+      for (int k = 0; k < n_; ++k) entries.emplace_back(k, k, is_held(k) ? 1.0 : pull);
       Eigen::SparseMatrix<double> M(size, size);
       M.setFromTriplets(entries.begin(), entries.end());
       factor = std::make_shared<NewtonFactor>(M);
     } else {
       Eigen::MatrixXd J(size, size);
       jacobian(t, at, 0.0, J);
-      J.topLeftCorner(n_, n_).diagonal() += pull;
+      J.topLeftCorner(n_, n_).diagonal().array() += pull;
       for (int k = 0; k < n_; ++k)
         if (is_held(k)) {
           J.row(k).setZero();

@@ -464,7 +464,7 @@ void SmoothMethod::check_other_starts(double t, const Eigen::VectorXd& x, const 
   const int n = dae_.states(), m = dae_.pairs();
   const Eigen::VectorXd currents = dae_.complementarity_variables(s);
   const double x_scale = std::max(x.cwiseAbs().maxCoeff(), 1.0), i_scale = currents.cwiseAbs().maxCoeff();
-  int found = 1;
+  bool differs = false;
   for (const auto& [x_other, z_other] : other_starts_) {
     if (x_other.size() != n || z_other.size() != m) continue;
     Eigen::VectorXd y(n + m);
@@ -473,9 +473,10 @@ void SmoothMethod::check_other_starts(double t, const Eigen::VectorXd& x, const 
     const Eigen::VectorXd other_currents = dae_.complementarity_variables(y.tail(m));
     const bool same_states = (y.head(n) - x).cwiseAbs().maxCoeff() <= 1e-6 * x_scale;
     const bool same_currents = (other_currents - currents).cwiseAbs().maxCoeff() <= 1e-6 * i_scale + 1e-12;
-    if (!(same_states && same_currents)) ++found;
+    differs = !(same_states && same_currents);
+    if (differs) break;
   }
-  if (found > 1)
+  if (differs)
     throw NumericalFailure(t, "the operating point is not unique: the Shockley junctions' operating point sought "
                               "from the " + std::to_string(other_starts_.size() + 1) +
                               " points of the smoothed circuit's ideal start differs between them; choose one "

@@ -378,6 +378,14 @@ std::vector<Eigen::VectorXd> with_off_devices_off(const CircuitModel& model, con
   return kept.empty() ? zs : kept;
 }
 
+// The operating point of solution z, polished and finished.
+OperatingPoint finished_point(const CircuitModel& model, const StaticProblem& p, double t, const Eigen::VectorXd& z) {
+  OperatingPoint op = point_from(p, z);
+  polish(model, t, op);
+  finish(model, op);
+  return op;
+}
+
 OperatingPoint choose_among(const CircuitModel& model, const StaticProblem& p, double t,
                             const std::vector<Eigen::VectorXd>& all) {
   const std::vector<std::string> differ = elements_that_differ(model, all);
@@ -393,9 +401,7 @@ OperatingPoint choose_among(const CircuitModel& model, const StaticProblem& p, d
   std::vector<std::string> off_names;
   const std::vector<Eigen::VectorXd> zs = with_off_devices_off(model, all, off_names);
   if (zs.size() == 1) {
-    OperatingPoint op = point_from(p, zs[0]);
-    polish(model, t, op);
-    finish(model, op);
+    OperatingPoint op = finished_point(model, p, t, zs[0]);
     op.warnings.push_back("the circuit has " + count + " (" + who + "); the one with " + join_names(off_names) +
                           " off (OFF on the card) is taken (`op --all` lists them)");
     return op;
@@ -408,13 +414,9 @@ OperatingPoint choose_among(const CircuitModel& model, const StaticProblem& p, d
   // t = 0. The first is taken and the others kept: the smooth method seeks the Shockley point
   // from each and stops only if they differ (a flip-flop).
   if (hints.empty() && model.netlist().smooth_junctions) {
-    OperatingPoint op = point_from(p, zs[0]);
-    polish(model, t, op);
-    finish(model, op);
+    OperatingPoint op = finished_point(model, p, t, zs[0]);
     for (std::size_t k = 1; k < zs.size(); ++k) {
-      OperatingPoint other = point_from(p, zs[k]);
-      polish(model, t, other);
-      finish(model, other);
+      const OperatingPoint other = finished_point(model, p, t, zs[k]);
       op.other_starts.push_back({other.x, other.z});
     }
     return op;
@@ -425,9 +427,7 @@ OperatingPoint choose_among(const CircuitModel& model, const StaticProblem& p, d
                                   "one with .ic or .nodeset node voltages (the nearest is taken)");
   std::vector<std::pair<double, int>> distance;
   for (int k = 0; k < static_cast<int>(zs.size()); ++k) {
-    OperatingPoint op = point_from(p, zs[k]);
-    polish(model, t, op);
-    finish(model, op);
+    const OperatingPoint op = finished_point(model, p, t, zs[k]);
     distance.push_back({hint_distance(model, hints, op.x, op.z, t), k});
   }
   std::sort(distance.begin(), distance.end());
@@ -435,9 +435,7 @@ OperatingPoint choose_among(const CircuitModel& model, const StaticProblem& p, d
     throw NumericalFailure(t, "the operating point is not unique: " + count + " (" + who +
                                   "), and the .ic/.nodeset values are as near to two of them; give "
                                   "values nearer to the one wanted (`op --all` lists them)");
-  OperatingPoint op = point_from(p, zs[distance[0].second]);
-  polish(model, t, op);
-  finish(model, op);
+  OperatingPoint op = finished_point(model, p, t, zs[distance[0].second]);
   for (const auto& [node, value] : hints)
     if (model.graph().node_index(node) >= 0) op.chosen_by.push_back(node);
   op.warnings.push_back("the circuit has " + count + " (" + who + "); the one nearest to the .ic/.nodeset "
