@@ -117,4 +117,13 @@ void AtomicFile::commit() {
   }
 }
 
+void write_text_file(const std::string& path, const std::string& text) {
+  AtomicFile file(path);
+  std::FILE* out = std::fopen(file.temp().c_str(), "w");
+  const bool written = out && std::fwrite(text.data(), 1, text.size(), out) == text.size();
+  if (!out || std::fclose(out) != 0 || !written)
+    throw CliError(kExitUsage, "error: cannot write " + path + ": " + std::strerror(errno));
+  file.commit();
+}
+
 }  // namespace lcs

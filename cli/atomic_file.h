@@ -38,4 +38,7 @@ class AtomicFile {
   bool committed_ = false;
 };
 
+// Writes `text` to `path` through an AtomicFile; throws CliError (exit 1) on failure.
+void write_text_file(const std::string& path, const std::string& text);
+
 }  // namespace lcs

@@ -18,6 +18,7 @@
 #include "cli/bench_scale.h"
 #include "cli/bench_scaling.h"
 #include "cli/bench_study.h"
+#include "cli/scale_family.h"
 #include "cli/commands.h"
 #include "cli/csv_writer.h"
 #include "cli/exit_codes.h"
@@ -188,8 +189,14 @@ int scale_command(const BenchArgs& args) {
   const std::string base = args.output_dir + "/scale_" + scale_family_name(*family);
   write_scale_csv(study, base + ".csv");
   write_scale_chart(study, base + ".png");
+  // The decks themselves, so that any run can be repeated (`lcspice run`) or studied for accuracy
+  // (`lcspice bench DECK`).
+  const std::vector<int> sizes = settings.sizes.empty() ? default_scale_sizes(*family) : settings.sizes;
+  for (int n : sizes)
+    write_text_file(args.output_dir + "/" + scale_family_deck_name(*family, n), scale_family_netlist(*family, n));
   print_scale(study);
-  std::printf("wrote %s.csv and %s.png\n", base.c_str(), base.c_str());
+  std::printf("wrote %s.csv, %s.png and the decks %s/%s_N.cir\n", base.c_str(), base.c_str(),
+              args.output_dir.c_str(), scale_family_name(*family));
   return kExitOk;
 }
 

@@ -227,7 +227,7 @@ ScaleStudy study_scale(ScaleFamily family, const ScaleSettings& settings, const 
       p.who = who;
       p.size = n;
       p.diodes = scale_family_diodes(family, n);
-      const std::string file = std::string(scale_family_name(family)) + "_" + std::to_string(n) + ".cir";
+      const std::string file = scale_family_deck_name(family, n);
       const std::string text = scale_family_netlist(family, n);
       p.tstop = settings.tstop > 0 ? settings.tstop : parse_netlist_string(text, file).tran->tstop;
       if (progress) progress(who + " N=" + std::to_string(n), done++ / total);

@@ -21,9 +21,6 @@ namespace lcs {
 
 namespace {
 
-// The most steps the aliasing guard subdivides to before it refuses instead.
-constexpr double kMaxGuardedSteps = 1e7;
-
 // `.options method=` and `theta=` (read_netlist_options: registry names and ngspice's trap,
 // theta 0.5; gear is accepted with a warning and the default method).
 // Returns whether the deck names a method (`.options method=`, gear aside).
@@ -41,37 +38,6 @@ bool apply_netlist_options(const Netlist& netlist, TransientOptions& options) {
 }
 
 void note(const std::string& message) { std::cerr << "lcspice: note: " << message << "\n"; }
-
-std::string seconds(double t) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%g s", t);
-  return buf;
-}
-
-// The aliasing guard (cli/source_sampling.h). A step the user chose (--step) is kept, with a
-// warning; TSTEP from the .tran card is the print step, and the method steps a fraction of it.
-void guard_source_sampling(const Netlist& netlist, const RunArgs& args, TransientOptions& options) {
-  const std::optional<SourceFeature> finest = finest_source_feature(netlist);
-  if (!finest || options.step <= finest->max_step * (1 + 1e-9)) return;
-  const std::string source = "source " + finest->element + "'s " + finest->what;
-  if (args.step) {
-    warn("--step " + seconds(options.step) + " is longer than " + seconds(finest->max_step) + " (" + source +
-         "): " + options.method + " samples that source too coarsely to resolve it");
-    return;
-  }
-  const double k = std::ceil(options.step / finest->max_step * (1 - 1e-12));
-  if (k * (options.tstop / options.step) > kMaxGuardedSteps) {
-    const std::string message = "TSTEP " + seconds(options.step) + " cannot resolve " + source + ": " +
-                                options.method + " would need steps of " + seconds(finest->max_step) +
-                                ", more than " + std::to_string(static_cast<long>(kMaxGuardedSteps)) +
-                                " steps; use --method event (exact between events) or give --step";
-    if (netlist.tran) throw CliError(kExitNetlist, NetlistError(netlist.tran->loc, message).formatted());
-    throw CliError(kExitUsage, "error: " + message);
-  }
-  options.substeps = static_cast<int>(k);
-  note(options.method + " steps at " + seconds(options.step / k) + " (" + std::to_string(options.substeps) +
-       " per TSTEP " + seconds(options.step) + ", to resolve " + source + "); rows every TSTEP");
-}
 
 const MethodEntry& method_of(const TransientOptions& options) { return *find_method(options.method); }
 
@@ -202,7 +168,7 @@ int run_command(const RunArgs& args) {
   std::string not_applicable;
   if (method_of(options).applies && !method_of(options).applies(model, &not_applicable))
     throw CliError(kExitUsage, "error: method " + options.method + ": " + not_applicable);
-  if (method_of(options).fixed_step()) guard_source_sampling(netlist, args, options);
+  if (method_of(options).fixed_step()) guard_source_sampling(netlist, args.step.has_value(), "TSTEP", options);
   // The ideal run with its fitted lines refitted lower, kept to judge the final run against
   // (fit_sensitivity.h): made where lines were fitted and nothing else has judged them.
   std::unique_ptr<RecordedRows> lowered;
@@ -320,7 +286,7 @@ int run_command(const RunArgs& args) {
         warn(std::string("method ") + options.method + " failed " + e.what() + "; running --method " +
              fixed_step_default_method().name + " (the fixed-step default) instead");
         options.method = fixed_step_default_method().name;
-        guard_source_sampling(netlist, args, options);
+        guard_source_sampling(netlist, args.step.has_value(), "TSTEP", options);
         lowered.reset();  // judged against the event run's rows: not this run's
         continue;
       }

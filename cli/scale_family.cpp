@@ -122,6 +122,10 @@ std::string scale_family_output_node(ScaleFamily family, int n) {
   return "";
 }
 
+std::string scale_family_deck_name(ScaleFamily family, int n) {
+  return std::string(scale_family_name(family)) + "_" + std::to_string(n) + ".cir";
+}
+
 std::string scale_family_netlist(ScaleFamily family, int n) {
   if (n < 1) throw std::invalid_argument("a circuit family needs a size of at least 1");
   switch (family) {

@@ -37,5 +37,7 @@ std::string scale_family_output_node(ScaleFamily family, int n);
 
 // The netlist text for size n >= 1 (std::invalid_argument otherwise).
 std::string scale_family_netlist(ScaleFamily family, int n);
+// Its file name, "<family>_<n>.cir".
+std::string scale_family_deck_name(ScaleFamily family, int n);
 
 }  // namespace lcs

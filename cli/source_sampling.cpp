@@ -2,10 +2,17 @@
 
 #include <cmath>
 #include <cstdio>
+#include <iostream>
+
+#include "cli/exit_codes.h"
+#include "cli/load_circuit.h"
 
 namespace lcs {
 
 namespace {
+
+// The most steps the guard subdivides to before it refuses instead.
+constexpr double kMaxGuardedSteps = 1e7;
 
 constexpr double kStepsPerPeriod = 50;
 constexpr double kStepsPerPulseWidth = 5;
@@ -68,6 +75,31 @@ std::optional<SourceFeature> finest_source_feature(const Netlist& netlist) {
   for (const Element& e : netlist.elements)
     if (e.kind == ElementKind::VoltageSource || e.kind == ElementKind::CurrentSource) features_of(e, finest);
   return finest;
+}
+
+void guard_source_sampling(const Netlist& netlist, bool step_given, const std::string& step_name,
+                           TransientOptions& options) {
+  const std::optional<SourceFeature> finest = finest_source_feature(netlist);
+  if (!finest || options.step <= finest->max_step * (1 + 1e-9)) return;
+  const std::string source = "source " + finest->element + "'s " + finest->what;
+  if (step_given) {
+    warn("--step " + seconds(options.step) + " is longer than " + seconds(finest->max_step) + " (" + source +
+         "): " + options.method + " samples that source too coarsely to resolve it");
+    return;
+  }
+  const double k = std::ceil(options.step / finest->max_step * (1 - 1e-12));
+  if (k * (options.tstop / options.step) > kMaxGuardedSteps) {
+    const std::string message = step_name + " " + seconds(options.step) + " cannot resolve " + source + ": " +
+                                options.method + " would need steps of " + seconds(finest->max_step) +
+                                ", more than " + std::to_string(static_cast<long>(kMaxGuardedSteps)) +
+                                " steps; use --method event (exact between events) or give --step";
+    if (netlist.tran) throw CliError(kExitNetlist, NetlistError(netlist.tran->loc, message).formatted());
+    throw CliError(kExitUsage, "error: " + message);
+  }
+  options.substeps = static_cast<int>(k);
+  std::cerr << "lcspice: note: " << options.method << " steps at " << seconds(options.step / k) << " ("
+            << options.substeps << " per " << step_name << " " << seconds(options.step) << ", to resolve " << source
+            << "); rows every " << step_name << "\n";
 }
 
 }  // namespace lcs

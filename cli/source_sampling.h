@@ -7,6 +7,7 @@
 #include <string>
 
 #include "netlist/netlist.h"
+#include "solver/integrators/transient.h"
 
 namespace lcs {
 
@@ -25,5 +26,13 @@ struct SourceFeature {
 // which the value changes one step each (defaulted edges follow TSTEP and are not features).
 // nullopt: no source constrains the step (DC only).
 std::optional<SourceFeature> finest_source_feature(const Netlist& netlist);
+
+// The guard for a fixed-step run of `options.method` at `options.step`. A step the user chose
+// (step_given: --step) is kept, with a warning; otherwise the step is the output step
+// (`step_name`: "TSTEP" for run, "output step" for validate) and the method takes
+// options.substeps steps per output step, with a note, or the run is refused (CliError, exit 2
+// located at the .tran card) when that needs more than 1e7 steps.
+void guard_source_sampling(const Netlist& netlist, bool step_given, const std::string& step_name,
+                           TransientOptions& options);
 
 }  // namespace lcs

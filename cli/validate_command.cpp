@@ -22,6 +22,7 @@
 #include "cli/exit_codes.h"
 #include "cli/gnuplot.h"
 #include "cli/load_circuit.h"
+#include "cli/source_sampling.h"
 #include "cli/require_ngspice.h"
 #include "cli/validate_tube.h"
 #include "solver/integrators/diode_refit.h"
@@ -39,6 +40,10 @@
 namespace lcs {
 
 namespace {
+
+// The most maximum-length steps validate asks of ngspice to resolve the sources (its run at
+// about 5 us a point: seconds).
+constexpr double kMaxWitnessSteps = 1e6;
 
 struct ProbeComparison {
   std::string name;
@@ -179,7 +184,10 @@ MemorySink run_ours(const CircuitModel& model, const OutputMap& outputs, const T
 // As `run`: when the default method (event) stops with a numerical failure, the fixed-step
 // default runs instead (run.method becomes it), with a warning (a differential pair with a
 // current-mirror load and no junction capacitance stopped event at a degenerate switching).
-MemorySink run_ours_or_fall_back(const CircuitModel& model, const OutputMap& outputs, TransientOptions& run) {
+// The default method, or where it fails the fixed-step default under the same aliasing guard as
+// `run`'s fallback.
+MemorySink run_ours_or_fall_back(const Netlist& netlist, bool step_given, const CircuitModel& model,
+                                 const OutputMap& outputs, TransientOptions& run) {
   if (run.method == fixed_step_default_method().name || find_method(run.method)->smooth_model)
     return run_ours(model, outputs, run);
   MemorySink sink;
@@ -191,6 +199,7 @@ MemorySink run_ours_or_fall_back(const CircuitModel& model, const OutputMap& out
               << fixed_step_default_method().name << " (the fixed-step default) instead\n";
   }
   run.method = fixed_step_default_method().name;
+  guard_source_sampling(netlist, step_given, "output step", run);
   return run_ours(model, outputs, run);
 }
 
@@ -472,6 +481,7 @@ int validate_with_faults(const ValidateArgs& args, const NgspiceDeckFaults& faul
     if (!args.step) throw CliError(kExitNetlist, NetlistError(netlist.tran->loc, why).formatted());
     throw CliError(kExitUsage, "error: " + why);
   }
+  if (find_method(run.method)->fixed_step()) guard_source_sampling(netlist, args.step.has_value(), "output step", run);
   auto positive = [](double v) { return v > 0 && std::isfinite(v); };
   if (!positive(args.tol)) throw CliError(kExitUsage, "error: --tol must be a positive number");
   if (!positive(args.emission)) throw CliError(kExitUsage, "error: --emission must be a positive number");
@@ -532,8 +542,18 @@ int validate_with_faults(const ValidateArgs& args, const NgspiceDeckFaults& faul
   // ngspice's maximum step: lcspice's output interval unless asked otherwise, never longer than
   // TSTEP or the deck's own TMAX. A step of ngspice's as long as TSTEP falls across the edges
   // compared at TSTEP/10 (p92's switch jumps, the AM detector's carrier peaks): README, "Real decks".
+  // Nor longer than the aliasing guard's step for the finest source feature (50 a period): at
+  // 10 a period a peak detector's sharp Shockley diode lost ngspice's solution near t = 0.296 s of
+  // a 0.3 s run (its capacitor discharged backwards through the blocking diode), and the ideal
+  // source itself was 2.4 % off between ngspice's points. Unless that asks for more than
+  // kMaxWitnessSteps of them (a short pulse in a long run: ngspice's breakpoints take its edges).
   const double deck_tmax = netlist.tran->tmax > 0 ? netlist.tran->tmax : netlist.tran->tstep;
   topt.max_step = args.max_step ? *args.max_step : std::min({run.step, netlist.tran->tstep, deck_tmax});
+  if (!args.max_step) {
+    const std::optional<SourceFeature> finest = finest_source_feature(netlist);
+    if (finest && finest->max_step < topt.max_step && run.tstop / finest->max_step <= kMaxWitnessSteps)
+      topt.max_step = finest->max_step;
+  }
   topt.options = args.ngspice_options;
   topt.reversed_diodes = faults.reversed_diodes;
   topt.open_diodes = faults.open_diodes;
@@ -559,7 +579,7 @@ int validate_with_faults(const ValidateArgs& args, const NgspiceDeckFaults& faul
   require_ngspice("validate needs ngspice");
 
   const MemorySink ours =
-      args.method.empty() ? run_ours_or_fall_back(ours_model, outputs, run) : run_ours(ours_model, outputs, run);
+      args.method.empty() ? run_ours_or_fall_back(netlist, args.step.has_value(), ours_model, outputs, run) : run_ours(ours_model, outputs, run);
   // The gap of each ideal diode at its own peak current, and lcspice again with every such
   // threshold raised by it: the far wall of the tube. `smooth` integrates the deck's own Shockley
   // diodes: no gap, the tube is lcspice's answer.

@@ -260,6 +260,16 @@ TEST(Bench, ScaleStudyRunsEverySizeInItsOwnProcess) {
   ASSERT_GT(png.size(), 8u);
   EXPECT_EQ(png.substr(1, 3), "PNG");
   EXPECT_EQ(r.err, "") << r.err;
+  // The decks it ran, to repeat a run or study its accuracy: the 4-rectifier bank, run again,
+  // takes the same 1000 steps.
+  EXPECT_TRUE(fs::exists(dir / "out" / "rectifiers_2.cir"));
+  const fs::path deck = dir / "out" / "rectifiers_4.cir";
+  EXPECT_EQ(read_file(deck).rfind("4 half-wave rectifiers on one 10 V 50 Hz source", 0), 0u);
+  const Result rerun = run_lcspice("run '" + deck.string() + "' --method euler --stats -o '" +
+                                       (dir / "rerun.csv").string() + "'",
+                                   dir);
+  ASSERT_EQ(rerun.code, 0) << rerun.err;
+  EXPECT_EQ(rerun.err_line(0).rfind("method euler: 1000 steps, ", 0), 0u) << rerun.err;
 }
 
 // A run over the wall-clock limit is killed and recorded, and its series stops there; the study

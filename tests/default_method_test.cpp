@@ -115,6 +115,34 @@ TEST(DefaultMethod, AFixedStepThatCannotResolveASourceIsRefused) {
   EXPECT_FALSE(fs::exists(dir / "out.csv"));
 }
 
+// validate steps its fixed-step methods under the same guard as run: its output step is TSTEP/10
+// (10 a source period here), so implicit Euler takes 5 steps per row, and says so. ngspice, its
+// witness, is held to 50 points a period too: at 10 (TMAX = the output step) its sharp diode lost
+// the solution near t = 0.296 s (v(b) swung to -9.8 V, the capacitor discharging backwards
+// through the blocking diode) and validate FAILed at 205 % of v(b)'s range; both runs agree now.
+TEST(DefaultMethod, ValidateResolvesTheAliasingDecksSourceForBothSimulators) {
+  const fs::path dir = scratch_dir("validate_aliasing");
+  const fs::path deck = write_deck(dir, "alias.cir", kAliasingDeck);
+  Result r = run_lcspice("validate '" + deck.string() + "' --method euler --report '" + (dir / "euler.csv").string() +
+                             "'",
+                         dir);
+  EXPECT_EQ(r.code, 0) << r.out << r.err;
+  EXPECT_EQ(r.err_line(0),
+            "lcspice: note: euler steps at 2e-05 s (5 per output step 0.0001 s, to resolve source v1's period 0.001 "
+            "s); rows every output step");
+  EXPECT_NE(r.out.find("lcspice: ideal diodes, euler, h = 0.0001 s, 3001 rows"), std::string::npos) << r.out;
+  r = run_lcspice("validate '" + deck.string() + "' --report '" + (dir / "event.csv").string() + "'", dir);
+  EXPECT_EQ(r.code, 0) << r.out << r.err;
+  // ngspice's own points every 2e-5 s at most (15,000 over 0.3 s), not every 1e-4 s (3014).
+  const size_t at = r.out.find("ngspice: ");
+  ASSERT_NE(at, std::string::npos) << r.out;
+  EXPECT_GE(std::stol(r.out.substr(at + 9)), 15000) << r.out;
+  const Csv report = parse_csv(read_file(dir / "event.csv"));
+  ASSERT_EQ(report.raw.size(), 4u);
+  EXPECT_EQ(report.raw[1][0], "v(b)");
+  EXPECT_LT(report.rows[1][3], 0.01);  // max|error| / range of v(b), ngspice against the ideal run
+}
+
 // Above 128 pairs the event method's dense exponentials cost too much to be the default: implicit
 // Euler runs instead, and says why.
 TEST(DefaultMethod, ALargeCircuitFallsBackToImplicitEulerWithANote) {
