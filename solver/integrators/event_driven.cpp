@@ -361,7 +361,9 @@ void EventDriven::Impl::propagate(Mode& md, int j, const Eigen::VectorXd& Xin, E
       md.has_action = true;
     }
     const double t = std::ldexp(h0, -j);
-    if (md.action_products[j] + md.action.planned_products(t) <= kDenseProductsPerState * md.q) {
+    // Products counted at their cost against a dense one: a sparse mode's rarely pay for it.
+    if (static_cast<double>(md.action_products[j] + md.action.planned_products(t)) * md.action.relative_cost() <=
+        static_cast<double>(kDenseProductsPerState * md.q)) {
       const long products = md.action.apply(t, Xin, out);
       md.action_products[j] += products;
       ++stats.exponential_actions;

@@ -10,10 +10,14 @@
 // highly non-normal A it may take more products than the paper's, never fewer digits.
 //
 // For the event method (event_driven.cpp) it replaces a dense exponential, O(n^3) once per mode
-// and step level, by O(n^2 m s) per use: the choice between them is the caller's.
+// and step level, by O(n^2 m s) per use: the choice between them is the caller's. A matrix at
+// most kSparseDensity full (a ladder's or a rectifier bank's modes: O(n) entries) is multiplied
+// as a sparse matrix, O(nnz m s) per use; relative_cost() tells the caller a product's cost
+// against a dense one.
 #pragma once
 
 #include <Eigen/Dense>
+#include <Eigen/SparseCore>
 
 namespace lcs {
 
@@ -24,6 +28,8 @@ class ExponentialAction {
 
   // The products with A that apply(t, ...) will take at most.
   long planned_products(double t) const;
+  // One product's cost against a dense n x n one: nnz / n^2 when A is multiplied as sparse, else 1.
+  double relative_cost() const { return relative_cost_; }
   // out = exp(t A) b; returns the products with A taken.
   long apply(double t, const Eigen::VectorXd& b, Eigen::VectorXd& out) const;
 
@@ -35,6 +41,8 @@ class ExponentialAction {
   Plan plan(double t) const;
 
   const Eigen::MatrixXd* A_ = nullptr;
+  Eigen::SparseMatrix<double> sparse_;  // A, when sparse enough (relative_cost_ < 1)
+  double relative_cost_ = 1;
   double mu_ = 0;
   double norm1_ = 0;  // ||A - mu I||_1
 };

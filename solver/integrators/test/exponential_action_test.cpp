@@ -93,5 +93,30 @@ TEST(ExponentialAction, ProductsGrowWithTheNormOfTheStep) {
   EXPECT_NEAR(out(0), std::exp(0.5), 1e-15);
 }
 
+// An RC ladder's mode (tridiagonal, 3n - 2 entries) is multiplied as a sparse matrix: each
+// product costs (3n - 2) / n^2 of a dense one, which the event method weighs against forming the
+// dense exponential; the result is the dense exponential's to rounding, on a stiff step
+// (||t A|| = 4e3) and a bisection's. A full matrix keeps the dense products (cost 1).
+TEST(ExponentialAction, ASparseModeIsMultipliedAsSparse) {
+  const int n = 100;
+  const double g = 1e9;  // 1 / (R C) of one section
+  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(n, n);
+  for (int i = 0; i < n; ++i) {
+    A(i, i) = i + 1 < n ? -2 * g : -g;
+    if (i > 0) A(i, i - 1) = g;
+    if (i + 1 < n) A(i, i + 1) = g;
+  }
+  const ExponentialAction action(A);
+  EXPECT_DOUBLE_EQ(action.relative_cost(), (3.0 * n - 2) / (n * n));
+  const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(n, 5.0, -1.0);
+  for (double t : {1e-6, std::ldexp(1e-6, -30)}) {
+    const Eigen::VectorXd dense = (A * t).exp() * b;
+    Eigen::VectorXd out;
+    action.apply(t, b, out);
+    EXPECT_LE((out - dense).cwiseAbs().maxCoeff(), 1e-12 * b.cwiseAbs().maxCoeff()) << "t " << t;
+  }
+  EXPECT_EQ(ExponentialAction(mode_like(40, 1e5, 3u).A).relative_cost(), 1.0);
+}
+
 }  // namespace
 }  // namespace lcs
