@@ -104,6 +104,9 @@ int run_cli(int argc, char** argv) {
   bench_cmd->add_option("-o", bench.output_dir, "output directory (default bench-results)");
   bench_cmd->add_flag("--quick", bench.quick, "two settings per method, one ngspice run: seconds, for tests");
   bench_cmd->add_flag("--no-ngspice", bench.no_ngspice, "leave ngspice out");
+  bench_cmd->add_flag("--no-smooth-reference", bench.no_smooth_reference,
+                      "no smooth (Shockley) reference: ngspice against the event reference only, smooth not run "
+                      "(the reference's rtol 1e-10 run can take longer than the rest)");
   bench_cmd->add_option("--method,--methods", bench.methods,
                         "comma-separated methods (default: all; --scaling and --scale: euler)");
   bench_cmd->add_option("--probe", bench.probes, "comma-separated probes for the netlists given");

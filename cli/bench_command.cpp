@@ -203,6 +203,8 @@ int scale_command(const BenchArgs& args) {
 }  // namespace
 
 int bench_command(const BenchArgs& args) {
+  if ((args.scaling || !args.scale.empty()) && args.no_smooth_reference)
+    throw CliError(kExitUsage, "error: --no-smooth-reference belongs to the work-precision study");
   if (!args.scale.empty()) return scale_command(args);
   if (!args.sizes.empty() || args.run_timeout != 120 || args.fit_from != 100)
     throw CliError(kExitUsage, "error: --sizes, --run-timeout and --fit-from belong to --scale");
@@ -221,6 +223,7 @@ int bench_command(const BenchArgs& args) {
   settings.ngspice_timeout = args.ngspice_timeout;
   settings.ngspice_options = args.ngspice_options;
   settings.methods = split(args.methods, ',');
+  settings.smooth_reference = !args.no_smooth_reference;
   if (args.quick) settings.min_timing_seconds = 0.005;
   for (const std::string& m : settings.methods)
     if (!find_method(m)) throw CliError(kExitUsage, "error: unknown method '" + m + "' (known: " + method_names() + ")");

@@ -173,7 +173,7 @@ CircuitStudy study_circuit(const std::string& path, const std::string& probe_lis
   // The smooth reference: the same circuit with Shockley diodes, as ngspice gets it.
   // None where the smooth method does not apply (switches): ngspice is then compared with the
   // ideal reference, as without a smooth method.
-  const MethodEntry* smooth_entry = smooth_reference_method();
+  const MethodEntry* smooth_entry = settings.smooth_reference ? smooth_reference_method() : nullptr;
   SmoothingOptions smoothing;
   study.emission = smoothing.emission;
   Prepared smooth;

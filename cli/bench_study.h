@@ -22,6 +22,9 @@ struct BenchSettings {
   std::vector<std::string> methods;          // empty: every method in the registry
   std::vector<std::string> ngspice_options;  // extra `.options` words for every ngspice run
   double min_timing_seconds = 0.05;          // repeat fast runs until this much CPU, keep the best
+  // false: no smooth reference (ngspice is compared with the ideal one, the smooth method is not
+  // run). Its rtol 1e-10 run can outlast the rest of the study: 310 s on a 50-stage multiplier.
+  bool smooth_reference = true;
 };
 
 struct BenchPoint {

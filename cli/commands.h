@@ -54,6 +54,7 @@ struct BenchArgs {
   std::vector<std::string> ngspice_options;
   double ngspice_timeout = 300;
   bool quick = false, no_ngspice = false;
+  bool no_smooth_reference = false;  // BenchSettings::smooth_reference
   // --scaling: CPU against the number of steps instead (cli/bench_scaling.h).
   bool scaling = false;
   std::optional<double> tstop;  // the first run's TSTOP (default: the netlist's)

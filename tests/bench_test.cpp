@@ -152,6 +152,32 @@ TEST(Bench, SwitchDeckWithTheEventReference) {
   EXPECT_NEAR(e2->error / e05->error, 4.0, 0.1);
 }
 
+// --no-smooth-reference (for circuits where the smooth reference's rtol 1e-10 run outlasts the
+// study: 310 s on a 50-stage multiplier): no smooth reference and no smooth method; ngspice is
+// judged against the event reference, so its error is its error against the ideal circuit.
+TEST(Bench, WithoutTheSmoothReferenceNgspiceIsJudgedAgainstTheEventOne) {
+  const fs::path dir = scratch_dir("bench_no_smooth_ref");
+  const Result r = run_lcspice("bench --quick --no-smooth-reference --methods euler,smooth '" +
+                                   source_path("circuits/lc_tank_bridge.cir").string() + "' -o '" +
+                                   (dir / "out").string() + "'",
+                               dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::vector<BenchRow> rows = read_bench(dir / "out" / "bench.csv");
+  for (const BenchRow& row : rows) {
+    EXPECT_NE(row.method, "smooth") << row.setting;
+    EXPECT_EQ(row.setting.find("smooth"), std::string::npos) << row.method << " " << row.setting;
+  }
+  EXPECT_NE(find(rows, "euler", "h=2e-06"), nullptr);
+  const BenchRow* ng = find(rows, "ngspice", "reltol=0.001");
+  ASSERT_NE(ng, nullptr);
+  EXPECT_EQ(ng->reference, "ideal");
+  EXPECT_EQ(ng->error, ng->error_vs_ideal);
+  EXPECT_GT(ng->error, 1e-3);  // the model gap, as in the quick run above
+  const Result scale = run_lcspice("bench --scale cw --no-smooth-reference -o '" + (dir / "s").string() + "'", dir);
+  EXPECT_EQ(scale.code, 1);
+  EXPECT_EQ(scale.err_line(0), "error: --no-smooth-reference belongs to the work-precision study");
+}
+
 TEST(Bench, LongRunsAreQuietWhenStandardErrorIsNotATerminal) {
   const fs::path dir = scratch_dir("quiet_run");
   const Result r = run_lcspice("run '" + source_path("circuits/lc_tank_bridge.cir").string() +
