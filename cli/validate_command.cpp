@@ -183,9 +183,8 @@ MemorySink run_ours(const CircuitModel& model, const OutputMap& outputs, const T
 
 // As `run`: when the default method (event) stops with a numerical failure, the fixed-step
 // default runs instead (run.method becomes it), with a warning (a differential pair with a
-// current-mirror load and no junction capacitance stopped event at a degenerate switching).
-// The default method, or where it fails the fixed-step default under the same aliasing guard as
-// `run`'s fallback.
+// current-mirror load and no junction capacitance stopped event at a degenerate switching),
+// under the same aliasing guard.
 MemorySink run_ours_or_fall_back(const Netlist& netlist, bool step_given, const CircuitModel& model,
                                  const OutputMap& outputs, TransientOptions& run) {
   if (run.method == fixed_step_default_method().name || find_method(run.method)->smooth_model)
@@ -579,7 +578,8 @@ int validate_with_faults(const ValidateArgs& args, const NgspiceDeckFaults& faul
   require_ngspice("validate needs ngspice");
 
   const MemorySink ours =
-      args.method.empty() ? run_ours_or_fall_back(netlist, args.step.has_value(), ours_model, outputs, run) : run_ours(ours_model, outputs, run);
+      args.method.empty() ? run_ours_or_fall_back(netlist, args.step.has_value(), ours_model, outputs, run)
+                          : run_ours(ours_model, outputs, run);
   // The gap of each ideal diode at its own peak current, and lcspice again with every such
   // threshold raised by it: the far wall of the tube. `smooth` integrates the deck's own Shockley
   // diodes: no gap, the tube is lcspice's answer.
