@@ -2,6 +2,7 @@
 #include "solver/model/empty_safe.h"
 
 #include <algorithm>
+#include <limits>
 #include <array>
 #include <cmath>
 #include <complex>
@@ -37,6 +38,8 @@ constexpr int kGrowRounds = 4;        // Impl::select: the reduced set grows at 
 constexpr int kDerivativeLevels = 4;  // w and its first three derivatives in the reduced q
 constexpr double kNoise = 1e-4;  // kNoise * kTol = 1e-16: rounding of a row times |X|
 constexpr double kUncoupled = 1e-13;  // of the largest row of a unit: see zero_uncoupled_rows
+constexpr double kUncoupledRounding = 8;  // times eps / rcond of the mode's system: the same
+constexpr double kUncoupledMost = 1e-9;   // at most (kZeroTol): a row this small is zero anyway
 // Impl::propagate: modes of at least kActionStates unknowns (states and source states) step by
 // the exponential's action until the products spent on one step level would have paid for its
 // dense exponential, about kDenseProductsPerState products per unknown (Eigen's Padé scaling
@@ -194,7 +197,7 @@ struct EventDriven::Impl {
   void prepare(double tstep, double tstop);
   bool consistent(Mode& md, const Eigen::VectorXd& X, std::vector<int>* near_zero,
                   const Eigen::MatrixXd* error, std::vector<int>* failing = nullptr) const;
-  void zero_uncoupled_rows(const std::vector<bool>& active, Eigen::MatrixXd& G) const;
+  void zero_uncoupled_rows(const std::vector<bool>& active, double rcond, Eigen::MatrixXd& G) const;
   Mode& select(double t, const Eigen::VectorXd& x, const Eigen::VectorXd& sigma,
                const std::string& signature, const Mode* previous, bool event = false);
   Eigen::VectorXd rcp_levels(const std::vector<bool>& active, const std::vector<int>& set,
@@ -225,14 +228,22 @@ struct EventDriven::Impl {
 // against its own size, its value -5.5e-20 A and its derivatives failed the right mode, and the
 // run stopped with "no consistent mode". A row below kUncoupled of the largest row of its unit
 // (currents: a link diode's z, a tree diode's w; the others voltages) is that rounding, and is
-// set to the zero it stands for.
-void EventDriven::Impl::zero_uncoupled_rows(const std::vector<bool>& active, Eigen::MatrixXd& G) const {
+// set to the zero it stands for. The rounding of the elimination grows with the condition of the
+// mode's system (eps / rcond relative to its largest entries), so the bound does too, up to
+// kUncoupledMost. A differential pair with a current-mirror load (no capacitances) at its
+// input's zero crossing: the mirror's diode-connected junction, on at zero current while the
+// pair's collector is off, came out at -3.7e-16 A against 1e-3 A (4.5e-13 of its unit) with the
+// system's rcond 6.9e-7, every other mode failed too, and event stopped with "no consistent mode".
+void EventDriven::Impl::zero_uncoupled_rows(const std::vector<bool>& active, double rcond,
+                                            Eigen::MatrixXd& G) const {
+  const double bound =
+      std::min(kUncoupledMost, std::max(kUncoupled, kUncoupledRounding * std::numeric_limits<double>::epsilon() / rcond));
   double largest[2] = {0, 0};
   auto unit = [&](int i) { return active[i] != model.pairs()[i].voltage_type ? 0 : 1; };
   Eigen::VectorXd norms = G.rowwise().norm();
   for (int i = 0; i < m; ++i) largest[unit(i)] = std::max(largest[unit(i)], norms(i));
   for (int i = 0; i < m; ++i)
-    if (norms(i) <= kUncoupled * largest[unit(i)]) G.row(i).setZero();
+    if (norms(i) <= bound * largest[unit(i)]) G.row(i).setZero();
 }
 
 Mode& EventDriven::Impl::mode(const std::vector<bool>& active, const std::string& signature) {
@@ -271,7 +282,7 @@ Mode& EventDriven::Impl::mode(const std::vector<bool>& active, const std::string
       if (n > 0) md->G.block(i, 0, 1, n) = d.Wx.row(r);
       if (p > 0) md->G.block(i, n, 1, p) = d.Wu.row(r) * P + d.Wd.row(r) * P * S;
     }
-    zero_uncoupled_rows(md->active, md->G);
+    zero_uncoupled_rows(md->active, d.rcond, md->G);
     md->GM = md->G * md->M;
     md->GMM = md->GM * md->M;
     md->Gabs = md->G.cwiseAbs();

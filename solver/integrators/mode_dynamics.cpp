@@ -60,6 +60,7 @@ ModeDynamics ModeDynamics::build(const Lcs& s, const std::vector<bool>& is_activ
     const double scale = Q.cwiseAbs().maxCoeff();
     lu.setThreshold(1e-12);
     m.well_posed = scale > 0 && lu.isInvertible();
+    if (m.well_posed) m.rcond = lu.rcond();
   } else {
     m.well_posed = true;
   }

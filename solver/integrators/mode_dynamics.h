@@ -18,6 +18,7 @@ namespace lcs {
 struct ModeDynamics {
   std::vector<int> active, inactive;  // pair indices
   bool well_posed = false;            // z_α is determined (the stacked system is nonsingular)
+  double rcond = 1;                   // its reciprocal condition (FullPivLU estimate; 1 with no active pair)
   Eigen::MatrixXd Kx, Ku, Kd;         // |α| rows
   Eigen::MatrixXd Ax, Eu, Ed;         // n rows
   Eigen::MatrixXd Wx, Wu, Wd;         // |β| rows
