@@ -154,6 +154,7 @@ InitialState initial_state(const CircuitModel& model, bool uic, double t0) {
 
   init.held.assign(n, false);
   std::set<std::string> used_node_ics(chosen_by.begin(), chosen_by.end());
+  std::map<std::string, std::string> card_ic_at;  // node -> a state capacitor there with IC=
   std::vector<int> state_of_branch(g.branches.size(), -1);  // windings: their magnetising state
   for (int j = 0; j < n; ++j) {
     state_of_branch[model.states()[j].branch] = j;
@@ -176,6 +177,10 @@ InitialState initial_state(const CircuitModel& model, bool uic, double t0) {
     if (ic) {
       physical(j) = *ic;
       init.held[j] = true;
+      if (cap) {
+        card_ic_at.emplace(g.nodes[br.from], br.name);
+        card_ic_at.emplace(g.nodes[br.to], br.name);
+      }
     } else if (cap && (node_ic.count(g.nodes[br.from]) || node_ic.count(g.nodes[br.to]))) {
       physical(j) = node_value(br.from) - node_value(br.to);
       init.held[j] = true;
@@ -183,10 +188,18 @@ InitialState initial_state(const CircuitModel& model, bool uic, double t0) {
       used_node_ics.insert(g.nodes[br.to]);
     }
   }
-  for (const NodeIc& ic : netlist.node_ics)
-    if (!used_node_ics.count(ic.node))
+  // A device's IC= takes precedence over .ic (SPICE3's manual, .IC).
+  for (const NodeIc& ic : netlist.node_ics) {
+    if (used_node_ics.count(ic.node)) continue;
+    const auto card = card_ic_at.find(ic.node);
+    if (card != card_ic_at.end())
+      init.warnings.push_back(".ic v(" + ic.node + ") ignored: IC= on " + card->second +
+                              " sets the voltage of the capacitor at node '" + ic.node +
+                              "' (a device's IC= takes precedence over .ic)");
+    else
       init.warnings.push_back(".ic v(" + ic.node + ") ignored: no capacitor whose voltage is a "
                               "state of the circuit connects to node '" + ic.node + "'");
+  }
   std::vector<int> set_by_ic;
   for (int j = 0; j < n; ++j) {
     if (model.states()[j].windings.empty()) continue;

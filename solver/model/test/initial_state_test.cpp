@@ -77,6 +77,24 @@ TEST(InitialState, IcOnANodeWithoutAStateCapacitorIsReported) {
                               "circuit connects to node 'a'");
 }
 
+// A capacitor with IC= on the node: its IC= wins (SPICE3), and the warning says so. Before, it
+// said no capacitor connects to the node.
+TEST(InitialState, IcOnANodeWhoseCapacitorHasItsOwnIcNamesThatCapacitor) {
+  NetlistBuilder b;
+  b.r("r1", "a", "0", 1e3);
+  b.c("c1", "a", "0", 1e-6, 2.0);
+  Netlist n = b.build();
+  n.node_ics.push_back({"a", 5.0, {}});
+  CircuitModel m = CircuitModel::build(n, {});
+  for (bool uic : {true, false}) {
+    InitialState init = initial_state(m, uic, 0.0);
+    ASSERT_EQ(init.warnings.size(), 1u) << uic;
+    EXPECT_EQ(init.warnings[0], ".ic v(a) ignored: IC= on c1 sets the voltage of the capacitor at node 'a' (a "
+                                "device's IC= takes precedence over .ic)");
+    EXPECT_DOUBLE_EQ(m.physical_state(init.x, 0.0)(0), 2.0) << uic;
+  }
+}
+
 }  // namespace
 }  // namespace lcs
 
