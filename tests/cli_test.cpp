@@ -199,6 +199,41 @@ TEST(DefaultMethod, FailureOfTheEventMethodFallsBackToTheFixedStepDefault) {
   EXPECT_EQ(piped.code, 3) << piped.err;
 }
 
+// A forum deck's habit: a 1 GOhm resistor tying a floating source to ground, here across a diode
+// in an inductor's loop (L / R = 1e-10 s). Near t = 0 rounding switched that diode's mode back
+// and forth every 1.3e-13 s, and event ran without end (killed at 120 s, no CSV). Now a storm of
+// more than 10000 events each less than 1e-7 TSTEP after the one before stops event as chattering
+// (exit 3 when named), and the default falls back to euler.
+TEST(DefaultMethod, AnEventStormFromRoundingStopsTheEventMethod) {
+  const fs::path dir = scratch_dir("default_method_storm");
+  const fs::path deck = dir / "storm.cir";
+  std::ofstream(deck) << "two diodes, an inductor and a 1G shunt\nV1 a b SIN(0 24 60)\nRB b 0 1G\nD1 a p DF\n"
+                         "D4 0 b DF\nL1 p f 100m\nRL f 0 100\n.model DF D(VON=0.7)\n.tran 0.1m 50m\n.end\n";
+  const fs::path out = dir / "out.csv";
+  const Result named = run_lcspice("run '" + deck.string() + "' --method event -o '" + out.string() + "'", dir);
+  EXPECT_EQ(named.code, 3) << named.err;
+  EXPECT_NE(named.err.find("event chattering: more than 10000 switching events in a row, each less than 1e-11 s "
+                           "after the one before"),
+            std::string::npos)
+      << named.err;
+  const Result r = run_lcspice("run '" + deck.string() + "' -o '" + out.string() + "'", dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find("running --method euler (the fixed-step default) instead"), std::string::npos) << r.err;
+  // The half-wave through D1, L1 and RL: the inductor's current never reverses, and peaks below
+  // the sinusoidal steady state's (24 - 0.7 V) / |100 + j 2 pi 60 0.1 H| = 0.218 A (0.2099 A).
+  const Csv csv = parse_csv(read_file(out));
+  ASSERT_EQ(csv.rows.size(), 501u);
+  const int il = csv.column("i(l1)");
+  ASSERT_GE(il, 0);
+  double peak = 0;
+  for (const auto& row : csv.rows) {
+    EXPECT_GE(row[il], -1e-9) << row[0];
+    peak = std::max(peak, row[il]);
+  }
+  EXPECT_GT(peak, 0.19);
+  EXPECT_LT(peak, 0.218);
+}
+
 // A differential pair with a current-mirror load and no capacitances (every quantity algebraic
 // in the sources): at each zero crossing of the input one side's collector turns off and the
 // mirror's diode-connected junction holds its node at zero current. Event stopped there (t = 0.52

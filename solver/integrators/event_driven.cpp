@@ -2,6 +2,7 @@
 #include "solver/model/empty_safe.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <limits>
 #include <array>
 #include <cmath>
@@ -1117,8 +1118,9 @@ std::optional<GuardCrossing> EventDriven::RunSegment(const SegmentStart& start, 
 
   size_t next_stop = 0;
   while (next_stop < stops.size() && stops[next_stop].at < r.pos) ++next_stop;  // before the segment
-  int events_here = 0;
+  int events_here = 0, events_in_storm = 0;
   DyadicTime last_event{-1, 0};
+  double last_event_t = -INFINITY;
   DyadicTime last_breakpoint{-1, 0};
   double last_breakpoint_t = 0;
   while (r.pos < end) {
@@ -1188,6 +1190,15 @@ std::optional<GuardCrossing> EventDriven::RunSegment(const SegmentStart& start, 
                                       std::to_string(r.options.max_events_at_one_time) +
                                       " switching events at one instant (grazing contact or a "
                                       "Zeno point)");
+      events_in_storm = t - last_event_t < r.options.storm_spacing * h0 ? events_in_storm + 1 : 0;
+      last_event_t = t;
+      if (events_in_storm > r.options.max_events_in_a_storm) {
+        char spacing[32];
+        std::snprintf(spacing, sizeof spacing, "%.3g", r.options.storm_spacing * h0);
+        throw NumericalFailure(t, "event chattering: more than " + std::to_string(r.options.max_events_in_a_storm) +
+                                      " switching events in a row, each less than " + spacing +
+                                      " s after the one before (rounding switching a mode back and forth)");
+      }
       const Eigen::VectorXd propagated = r.X.tail(r.X.size() - n);
       if (restart(t, r.state(), &propagated)) ++r.stats.mode_switches;
       if (history) history->mark_break(t);

@@ -30,6 +30,12 @@ struct EventOptions {
   // Consecutive events without progress (more than this at one instant) are reported as
   // chattering (exit 3) rather than looping.
   int max_events_at_one_time = 64;
+  // Consecutive events each less than storm_spacing * TSTEP after the one before, more than
+  // max_events_in_a_storm of them, are reported as chattering too (exit 3): no circuit switches
+  // that often at that pace, but rounding can (a mode held by a 1 GOhm resistor near t = 0, every
+  // 1.3e-13 s, which ran without end).
+  int max_events_in_a_storm = 10000;
+  double storm_spacing = 1e-7;
   // Bytes of exponentials exp(M h0 / 2^j) kept (exponential_cache.h); the least recently used
   // are recomputed past it.
   std::size_t exponential_cache_bytes = std::size_t(256) << 20;
