@@ -381,10 +381,17 @@ ParsedElement parse_element(const Card& card, const ElementScope& scope,
       r.node(2, e);
       if (letter == 'l') r.distinct_nodes(e, "the current of an inductor shorted by itself is not set by the circuit");
       out.shorted = e.nodes[0] == e.nodes[1];
-      e.value = r.value(3);
-      r.positive(3, e.value, letter == 'r' ? "resistance" : letter == 'l' ? "inductance" : "capacitance");
+      const char* what = letter == 'r' ? "resistance" : letter == 'l' ? "inductance" : "capacitance";
+      // ngspice and LTspice also take the value as a keyword: R1 a b r=1k (resistance=),
+      // C1 b 0 c=1u (capacitance=), L1 b c l=1m (inductance=).
+      std::size_t at = 3;
+      if (at + 1 < card.size() && card[at + 1].is(Token::Kind::Equals) &&
+          (card[at].lower == std::string(1, letter) || card[at].is_word(what)) && card[at].is_word())
+        at += 2;
+      e.value = r.value(at);
+      r.positive(at, e.value, what);
       InstanceParasitics parasitics;
-      const double m = r.trailing(4, e, letter != 'r', letter == 'r' ? nullptr : &parasitics);
+      const double m = r.trailing(at + 1, e, letter != 'r', letter == 'r' ? nullptr : &parasitics);
       scale_for_parallel_copies(e, m);
       if (parasitics.any() && !out.shorted) out.parasitics = expand_parasitics(e, parasitics, m);
       break;

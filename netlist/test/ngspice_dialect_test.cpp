@@ -47,6 +47,27 @@ TEST(NgspiceDialect, PrintEntriesThatAreNotProbesAreSkippedWithAWarningEach) {
             "or i2(line)\n.save q(a)\n      ^~~~");
 }
 
+// R, C and L take their value as a keyword too (ngspice: r=, resistance=; c=, capacitance=;
+// l=, inductance=; LTspice writes R=): before, "invalid number 'r'".
+TEST(NgspiceDialect, ValueGivenAsAKeyword) {
+  Netlist n = test::parse("t\n.param rv=2k\nV1 a 0 1\nR1 a b r=1k\nC1 b 0 c=1u\nL1 b c L=1m m=2\n"
+                          "R2 c 0 resistance={rv}\nC2 c 0 CAPACITANCE=2n ic=1\nL2 c 0 inductance=3m\nR3 c 0 R=5\n");
+  EXPECT_DOUBLE_EQ(test::element(n, "r1").value, 1e3);
+  EXPECT_DOUBLE_EQ(test::element(n, "c1").value, 1e-6);
+  EXPECT_DOUBLE_EQ(test::element(n, "l1").value, 0.5e-3);  // two in parallel
+  EXPECT_DOUBLE_EQ(test::element(n, "r2").value, 2e3);
+  EXPECT_DOUBLE_EQ(test::element(n, "c2").value, 2e-9);
+  ASSERT_TRUE(test::element(n, "c2").ic.has_value());
+  EXPECT_DOUBLE_EQ(*test::element(n, "c2").ic, 1.0);
+  EXPECT_DOUBLE_EQ(test::element(n, "l2").value, 3e-3);
+  EXPECT_DOUBLE_EQ(test::element(n, "r3").value, 5.0);
+  EXPECT_TRUE(n.warnings.empty());
+  // Another element's keyword is not a value, and a keyword without one is located.
+  EXPECT_EQ(test::diag("t\nR1 a 0 c=1u\n"), "t.cir:2:8: error: invalid number 'c'\nR1 a 0 c=1u\n       ^");
+  EXPECT_EQ(test::diag("t\nR1 a 0 r=\n"), "t.cir:2:10: error: missing value for 'r1'\nR1 a 0 r=\n         ^");
+  EXPECT_EQ(test::diag("t\nR1 a 0 r=-5\n"), "t.cir:2:10: error: resistance of 'r1' must be positive\nR1 a 0 r=-5\n         ^~");
+}
+
 TEST(NgspiceDialect, DiodeWithoutModelIsLtspicesIdealDiode) {
   Netlist n = test::parse("t\nV1 a 0 1\nD1 a b\nR1 b 0 1k\nD2 b 0\n");
   ASSERT_EQ(n.elements.size(), 4u);
