@@ -163,6 +163,17 @@ int run_command(const RunArgs& args) {
     options.method = default_method_for(model, &why).name;
     if (!why.empty()) note("method " + options.method + ": the default method does not apply (" + why + ")");
   }
+  // SPEC §3: event and smooth write rows at the multiples of TSTEP (plus events) also where the
+  // deck's TMAX is smaller; TMAX then bounds smooth's steps. (The fixed-step methods step at it.)
+  const bool tmax_below_tstep = netlist.tran && !args.step && netlist.tran->tmax > 0 &&
+                                netlist.tran->tmax < netlist.tran->tstep;
+  auto step_for_method = [&] {
+    if (!tmax_below_tstep) return;
+    const bool fixed = method_of(options).fixed_step();
+    options.step = fixed ? netlist.tran->tmax : netlist.tran->tstep;
+    options.method_options.max_step = fixed ? 0 : netlist.tran->tmax;
+  };
+  step_for_method();
   // A method that cannot integrate this circuit is a usage error (the netlist is fine, as another
   // method shows), like --diode shockley with a complementarity method.
   std::string not_applicable;
@@ -286,6 +297,7 @@ int run_command(const RunArgs& args) {
         warn(std::string("method ") + options.method + " failed " + e.what() + "; running --method " +
              fixed_step_default_method().name + " (the fixed-step default) instead");
         options.method = fixed_step_default_method().name;
+        step_for_method();
         guard_source_sampling(netlist, args.step.has_value(), "TSTEP", options);
         lowered.reset();  // judged against the event run's rows: not this run's
         continue;

@@ -199,6 +199,36 @@ TEST(DefaultMethod, FailureOfTheEventMethodFallsBackToTheFixedStepDefault) {
   EXPECT_EQ(piped.code, 3) << piped.err;
 }
 
+// SPEC §3: event and smooth write rows at the multiples of TSTEP (plus events). A deck's TMAX
+// below TSTEP made it the output step: `.tran 10u 100u 0 2u` wrote 51 rows, every 2 us. Now 11;
+// TMAX bounds smooth's steps instead (at 0.5u, at least 200 over the 100 us), and the fixed-step
+// methods still step at it, a row per step.
+TEST(DefaultMethod, TmaxBelowTstepLeavesTheRowsAtTstep) {
+  const fs::path dir = scratch_dir("default_method_tmax");
+  const fs::path deck = dir / "tmax.cir";
+  std::ofstream(deck) << "rc tmax\nV1 a 0 SIN(0 1 1k)\nR1 a b 1k\nC1 b 0 1u\n.tran 10u 100u 0 0.5u\n.end\n";
+  const fs::path out = dir / "out.csv";
+  for (const std::string method : {"event", "smooth"}) {
+    const Result r = run_lcspice("run '" + deck.string() + "' --method " + method + " --stats -o '" + out.string() + "'", dir);
+    ASSERT_EQ(r.code, 0) << r.err;
+    const Csv csv = parse_csv(read_file(out));
+    ASSERT_EQ(csv.rows.size(), 11u) << method;
+    for (size_t k = 0; k < csv.rows.size(); ++k) EXPECT_NEAR(csv.rows[k][0], 1e-5 * k, 1e-18) << method;
+    // v(b) of the RC driven by sin(2 pi 1k t) from rest, in closed form at 100 us.
+    const double w = 2 * M_PI * 1e3, tau = 1e-3, t = 1e-4;
+    const double vb = (std::sin(w * t) - w * tau * std::cos(w * t) + w * tau * std::exp(-t / tau)) / (1 + w * w * tau * tau);
+    EXPECT_NEAR(csv.rows.back()[csv.column("v(b)")], vb, method == "event" ? 1e-12 : 1e-6) << method;
+    if (method == "smooth") {
+      std::smatch steps;
+      ASSERT_TRUE(std::regex_search(r.err, steps, std::regex("method smooth: (\\d+) steps"))) << r.err;
+      EXPECT_GE(std::stol(steps[1]), 200) << r.err;
+    }
+  }
+  const Result e = run_lcspice("run '" + deck.string() + "' --method euler -o '" + out.string() + "'", dir);
+  ASSERT_EQ(e.code, 0) << e.err;
+  EXPECT_EQ(parse_csv(read_file(out)).rows.size(), 201u);
+}
+
 // A forum deck's habit: a 1 GOhm resistor tying a floating source to ground, here across a diode
 // in an inductor's loop (L / R = 1e-10 s). Near t = 0 rounding switched that diode's mode back
 // and forth every 1.3e-13 s, and event ran without end (killed at 120 s, no CSV). Now a storm of

@@ -27,6 +27,9 @@ struct MethodOptions {
   bool history_series = true;
   // The event method's budget for its modes, in bytes (event_driven.h); 0 keeps its default.
   std::size_t event_mode_cache_bytes = 0;
+  // The deck's TMAX where it is below TSTEP: smooth's largest step (rows stay at TSTEP); 0: none.
+  // (Event is exact between events; the fixed-step methods step at it instead.)
+  double max_step = 0;
 };
 
 // What `bench` varies for a method: the fixed step h, or the tolerance --rtol.

@@ -23,6 +23,7 @@
 // for; IDA offers no such hook, and this parametrisation makes it unnecessary.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <memory>
@@ -61,7 +62,9 @@ class ShockleyDae {
   explicit ShockleyDae(const LcsProblem& model, bool sparse = true);
 
   int states() const { return n_; }
-  double max_step() const { return model_.max_step(); }  // devices with history
+  // The largest step: devices with history bound it, and so does the deck's TMAX (set_max_step).
+  double max_step() const { return std::min(model_.max_step(), max_step_); }
+  void set_max_step(double h) { max_step_ = h > 0 ? h : INFINITY; }
   int pairs() const { return m_; }
   int size() const { return n_ + m_; }
   // Sources at t >= `end` take their left limit at `end`: a step that lands on a breakpoint
@@ -154,6 +157,7 @@ class ShockleyDae {
   std::vector<bool> voltage_type_;
   mutable Eigen::VectorXd z_, w_, dz_, dw_;
   double rtol_ = 1e-6, margin_atol_ = 1e-9, voltage_scale_ = 0;
+  double max_step_ = INFINITY;
   Eigen::VectorXd state_atol_;
   std::vector<bool> capacitor_;
 };

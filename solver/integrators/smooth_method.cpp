@@ -388,7 +388,9 @@ SmoothMethod::SmoothMethod(const LcsProblem& model, const MethodOptions& options
     : ContinuousMethod(model),
       dae_(model, options.sparse),
       rtol_(options.rtol > 0 ? options.rtol : kDefaultRtol),
-      atol_(options.atol > 0 ? options.atol : kDefaultAtol) {}
+      atol_(options.atol > 0 ? options.atol : kDefaultAtol) {
+  dae_.set_max_step(options.max_step);
+}
 
 SmoothMethod::~SmoothMethod() = default;
 
