@@ -4,6 +4,7 @@
 // (smooth_netlist with validate's emission and saturation current): the same model on both
 // sides, so what remains is the two integrators' error.
 #include <algorithm>
+#include <cctype>
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -153,7 +154,8 @@ void write_report(const std::string& path, const std::vector<ProbeComparison>& r
 }
 
 // One ngspice run of the translated deck; NgspiceError as exit 3 with ngspice's last words.
-NgspiceResult run_witness(const std::vector<std::string>& deck, double timeout) {
+// `timestep_too_small`, when given, says whether ngspice gave up with "Timestep too small".
+NgspiceResult run_witness(const std::vector<std::string>& deck, double timeout, bool* timestep_too_small = nullptr) {
   NgspiceResult theirs;
   try {
     NgspiceRun nr;
@@ -161,6 +163,11 @@ NgspiceResult run_witness(const std::vector<std::string>& deck, double timeout) 
     nr.timeout_seconds = timeout;
     theirs = run_ngspice_transient(nr);
   } catch (const NgspiceError& e) {
+    if (timestep_too_small && e.kind() == NgspiceError::Kind::Convergence) {
+      std::string what = e.what();
+      std::transform(what.begin(), what.end(), what.begin(), [](unsigned char c) { return std::tolower(c); });
+      *timestep_too_small = what.find("timestep too small") != std::string::npos;
+    }
     std::string text = std::string("lcspice: error: ngspice failed: ") + e.what();
     const auto& m = e.messages();
     for (size_t k = m.size() > 8 ? m.size() - 8 : 0; k < m.size(); ++k) text += "\n  ngspice: " + m[k];
@@ -615,7 +622,31 @@ int validate_with_faults(const ValidateArgs& args, const NgspiceDeckFaults& faul
     far_wall = std::move(resampled);
   }
 
-  const NgspiceResult theirs = run_witness(deck.lines, args.timeout);
+  // ngspice gives up with "Timestep too small" where a node floats while every diode at it is off
+  // (a transformer's secondary feeding a bridge: the witness has no junction capacitance). Its
+  // own remedy is .options rshunt, a resistor from every node to ground: run once more with 1 GOhm
+  // there, unless the user set rshunt, and say so.
+  NgspiceResult theirs;
+  bool shunted = false;  // the second run, with rshunt
+  {
+    bool too_small = false;
+    try {
+      theirs = run_witness(deck.lines, args.timeout, &too_small);
+    } catch (const CliError&) {
+      const bool user_rshunt = std::any_of(topt.options.begin(), topt.options.end(), [](std::string o) {
+        std::transform(o.begin(), o.end(), o.begin(), [](unsigned char c) { return std::tolower(c); });
+        return o.rfind("rshunt", 0) == 0;
+      });
+      if (!too_small || user_rshunt) throw;
+      std::cerr << "lcspice: note: ngspice stopped with \"Timestep too small\"; running it again with "
+                   ".options rshunt=1e9 (1 GOhm from every node to ground, ngspice's remedy for a node that "
+                   "floats while the diodes at it are off)\n";
+      topt.options.push_back("rshunt=1e9");
+      shunted = true;
+      deck = translate_to_ngspice(model, all, topt);
+      theirs = run_witness(deck.lines, args.timeout);
+    }
+  }
   const std::vector<std::vector<double>> interpolated = witness_on(ours, theirs, deck, outputs, probes.size());
   // `.ic` without UIC: ngspice's t = 0 row is its operating point with those nodes held by
   // sources (its .ic meaning), whose currents are not the circuit's: for a junction held at the
@@ -648,6 +679,7 @@ int validate_with_faults(const ValidateArgs& args, const NgspiceDeckFaults& faul
                 find_method(run.method)->fixed_step() ? "h =" : "output every", run.step, ours.times.size());
   std::printf("  ngspice: %zu time points, %.3f s CPU%s\n", theirs.time.size(), theirs.analysis_cpu_seconds,
               shared_start.empty() ? "" : (", started from lcspice's initial state (" + shared_start + ")").c_str());
+  if (shunted) std::printf("  ngspice: with .options rshunt=1e9 (without it: \"Timestep too small\")\n");
   if (held_start)
     std::printf("  .ic without UIC: ngspice's t = 0 row holds the .ic nodes with sources (not the circuit's\n"
                 "  currents); judged from the first step on\n");

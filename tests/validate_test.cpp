@@ -250,6 +250,33 @@ TEST(ValidateDefaultMethod, EventRunsAMirrorLoadedPairThroughItsZeroCurrentSwitc
   EXPECT_NE(r.out.find("  lcspice: ideal diodes, event, output every 1e-06 s, "), std::string::npos) << r.out;
 }
 
+// A transformer's secondary feeding a bridge floats while its diodes are off, and the witness
+// (no junction capacitance) stopped ngspice with "Timestep too small" at 6.4 ms: exit 3, nothing
+// compared. validate now runs ngspice once more with .options rshunt=1e9, its own remedy, says
+// so, and compares: PASS (v(out) within 0.4 % of its range). A rshunt the user gives is kept.
+TEST(ValidateWitness, TimestepTooSmallRunsNgspiceAgainWithRshunt) {
+  const std::string text =
+      "bridge rectifier behind a transformer\nV1 line 0 SIN(0 170 60)\nRs line p1 0.5\nLp p1 0 100m\nLs s1 s2 1m\n"
+      "K1 Lp Ls 0.999\nD1 s1 out D1N4007\nD2 s2 out D1N4007\nD3 0 s1 D1N4007\nD4 0 s2 D1N4007\nC1 out 0 1000u\n"
+      "RL out 0 100\n.model D1N4007 D(IS=7.02767n RS=0.0341512 N=1.80803 BV=1000 IBV=5e-08)\n.tran 0.1m 100m\n"
+      ".print tran v(out) v(s1,s2) i(Lp)\n.end\n";
+  const fs::path deck = write_deck("validate_", "transformer_bridge", text);
+  const fs::path dir = deck.parent_path();
+  const Result r = run_lcspice("validate '" + deck.string() + "'", dir);
+  EXPECT_EQ(r.code, 0) << r.out << r.err;
+  EXPECT_NE(r.err.find("lcspice: note: ngspice stopped with \"Timestep too small\"; running it again with .options "
+                       "rshunt=1e9"),
+            std::string::npos)
+      << r.err;
+  EXPECT_NE(r.out.find("  ngspice: with .options rshunt=1e9 (without it: \"Timestep too small\")"), std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("PASS"), std::string::npos) << r.out;
+  // The user's own rshunt is not replaced (and here suffices too: no note).
+  const Result own = run_lcspice("validate '" + deck.string() + "' --ngspice-option rshunt=1e10", dir);
+  EXPECT_EQ(own.code, 0) << own.out << own.err;
+  EXPECT_EQ(own.err.find("running it again"), std::string::npos) << own.err;
+}
+
 // A Zener-referenced current source feeding an LED string from a supply that starts at 0 V: at
 // t = 0 the string's middle node floats, and the collector junction's capacitance, which least
 // energy sets from it, came out 1.3e-15 V in one operating point and 0 in another with the same
