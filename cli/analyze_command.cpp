@@ -332,6 +332,8 @@ int analyze_command(const AnalyzeArgs& args) {
   }
   Report r{model, h_components(model.graph()), classify_diodes(model.graph()), lcs_index(model), {}, {}, {}, {}, {}, {}};
   for (const std::string& w : floating_potential_warnings(model)) r.warnings.push_back(w);
+  if (!(netlist.tran && netlist.tran->uic))
+    for (const std::string& w : dc_floating_start_warnings(model, netlist)) r.warnings.push_back(w);
   if (refit && refit->passes > 0) {
     r.refit = std::to_string(refit->passes) + " transient pass" + (refit->passes == 1 ? "" : "es") + ", " +
               (refit->converged ? "converged" : "not converged") +

@@ -1,10 +1,13 @@
 #include "cli/load_circuit.h"
 
+#include <algorithm>
+#include <cmath>
 #include <iostream>
 
 #include "cli/exit_codes.h"
 #include "solver/model/numerical_failure.h"
 #include "solver/model/switch_family.h"
+#include "solver/model/operating_point.h"
 
 namespace lcs {
 
@@ -171,6 +174,81 @@ bool has_floating_potential(const CircuitModel& model, const std::string& node) 
   const NodePartition h = h_components(model.graph());
   const int n = model.graph().node_index(node);
   return n >= 0 && h.component[n] != h.component[0];
+}
+
+std::vector<std::string> dc_floating_start_warnings(const CircuitModel& model, const Netlist& netlist,
+                                                    const std::vector<Probe>* probes) {
+  const CircuitGraph& g = model.graph();
+  const NodePartition h = h_components(g);
+  const NodePartition dc = components(g, [](const Branch& b) {
+    return b.cls != BranchClass::Diode && b.cls != BranchClass::CurrentSource && b.cls != BranchClass::Capacitor;
+  });
+  // A component of `dc` apart from ground's, inside ground's component of H (the others are
+  // floating_potential_warnings').
+  std::vector<bool> candidate(dc.count, false);
+  for (size_t n = 0; n < g.nodes.size(); ++n)
+    candidate[dc.component[n]] = dc.component[n] != dc.component[0] && h.same(static_cast<int>(n), 0);
+  for (const NodeIc& ic : netlist.node_ics) {
+    const int n = g.node_index(ic.node);
+    if (n >= 0) candidate[dc.component[n]] = false;
+  }
+  for (size_t b = 0; b < g.branches.size(); ++b)
+    if (g.branches[b].cls == BranchClass::Capacitor && model.storage()[b] && model.storage()[b]->ic) {
+      candidate[dc.component[g.branches[b].from]] = false;
+      candidate[dc.component[g.branches[b].to]] = false;
+    }
+  if (probes) {
+    std::vector<bool> probed(dc.count, false);
+    for (const Probe& p : *probes) {
+      const int n = p.kind == Probe::Kind::NodeVoltage && p.b.empty() ? g.node_index(p.a) : -1;
+      if (n >= 0) probed[dc.component[n]] = true;
+    }
+    for (int c = 0; c < dc.count; ++c) candidate[c] = candidate[c] && probed[c];
+  }
+  std::vector<std::string> out;
+  if (std::none_of(candidate.begin(), candidate.end(), [](bool c) { return c; })) return out;
+  // Where a diode at its boundary conducts at the operating point (a differential pair's emitters,
+  // reached at DC only through its junctions), that diode pins the potential.
+  OperatingPoint op;
+  try {
+    op = solve_operating_point(model, 0.0);
+  } catch (const NumericalFailure&) {
+    return out;  // the run reports it
+  }
+  std::vector<double> current(g.branches.size(), 0.0);
+  double largest = 0;
+  for (size_t b = 0; b < g.branches.size(); ++b) {
+    current[b] = model.evaluate_dc(model.branch_current(static_cast<int>(b)), op.x, op.z, 0.0);
+    largest = std::max(largest, std::abs(current[b]));
+  }
+  const double on_threshold = std::max(1e-9 * largest, 1e-15);  // as `op` tells on from off
+  for (size_t b = 0; b < g.branches.size(); ++b) {
+    const Branch& br = g.branches[b];
+    if (br.cls == BranchClass::Diode && dc.component[br.from] != dc.component[br.to] &&
+        current[b] > on_threshold) {
+      candidate[dc.component[br.from]] = false;
+      candidate[dc.component[br.to]] = false;
+    }
+  }
+  for (int c = 0; c < dc.count; ++c) {
+    if (!candidate[c]) continue;
+    std::vector<std::string> nodes, diodes, capacitors;
+    for (size_t n = 0; n < g.nodes.size(); ++n)
+      if (dc.component[n] == c) nodes.push_back("'" + g.nodes[n] + "'");
+    for (const Branch& b : g.branches) {
+      if ((dc.component[b.from] == c) == (dc.component[b.to] == c)) continue;
+      if (b.cls == BranchClass::Diode) diodes.push_back(b.name);
+      if (b.cls == BranchClass::Capacitor) capacitors.push_back(b.name);
+    }
+    out.push_back((nodes.size() == 1 ? "node " + nodes[0] + " reaches" : "nodes " + join_names(nodes) + " reach") +
+                  " ground at DC only through diodes (" + join_names(diodes) + ") and capacitors (" +
+                  join_names(capacitors) +
+                  "): the operating point leaves " + (nodes.size() == 1 ? "its potential" : "their potentials") +
+                  " free while none of those diodes conducts, and the run starts from one valid value, where a "
+                  "real circuit's start (and ngspice's) is set by the diodes' leakage; give .ic, IC= on the "
+                  "capacitors, or UIC to choose it");
+  }
+  return out;
 }
 
 }  // namespace lcs

@@ -41,4 +41,12 @@ bool has_floating_potential(const CircuitModel& model, const std::string& node);
 // The probes among `probes` that read such a potential: v(node) of a node reached only through
 // diodes (one partition of the graph for all of them).
 std::vector<std::string> floating_potential_probes(const CircuitModel& model, const std::vector<Probe>& probes);
+// At DC capacitors are open: the nodes that reach ground only through diodes, current sources and
+// capacitors (and not through diodes and current sources alone: those are above) have an
+// operating point whose potential is not unique while none of their diodes conducts. Once the run
+// starts their capacitors' charge holds it, so only the start is a choice: one message per such
+// component, none where a .ic on one of its nodes or an IC= on one of its capacitors chooses it.
+// `probes` non-null: only components holding a node whose absolute voltage is probed.
+std::vector<std::string> dc_floating_start_warnings(const CircuitModel& model, const Netlist& netlist,
+                                                    const std::vector<Probe>* probes = nullptr);
 }  // namespace lcs

@@ -242,6 +242,8 @@ int run_command(const RunArgs& args) {
   const std::vector<Probe> probes = probes_for(netlist, model, args.probes);
   OutputMap outputs = output_map_or_exit(model, probes);
   for (const std::string& w : floating_probe_warnings(model, probes)) warn(w);
+  if (!options.uic)
+    for (const std::string& w : dc_floating_start_warnings(model, netlist, &probes)) warn(w);
   // The default method (event) failing is not the end of a run nobody asked a method of: the
   // fixed-step default runs it again, with a warning, where the CSV can be written afresh (a file,
   // not standard output or a pipe). Its rows replace the CSV only if it gets to TSTOP; else the

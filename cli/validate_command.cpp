@@ -269,7 +269,8 @@ std::string reason_to_share_the_start(const CircuitModel& model, bool uic) {
   } catch (const NumericalFailure& e) {
     throw CliError(kExitNumerical, std::string("lcspice: error: numerical failure ") + e.what());
   }
-  if (!floating_potential_warnings(model).empty()) return "the operating point is not unique";
+  if (!floating_potential_warnings(model).empty() || !dc_floating_start_warnings(model, netlist).empty())
+    return "the operating point is not unique";
   return "";
 }
 
