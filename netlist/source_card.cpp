@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <optional>
 #include <sstream>
@@ -324,6 +325,20 @@ Waveform parse_source_waveform(const Card& card, std::size_t first, const ParamS
                                                                 quote(name) + " is limited to " +
                                                                 (mdi < 0 ? std::string("0") : "FC/FS") +
                                                                 " (as ngspice does)"));
+      }
+      if (fn->kind == Waveform::Kind::Am && w.params.size() <= 5) {
+        // ngspice 40 changed AM's parameters; decks written for earlier versions (and their
+        // manuals) give AM(VA VO MF FC TD). Five values or fewer fit both forms: say which is read.
+        auto hz = [&](std::size_t k) {
+          char buf[32];
+          std::snprintf(buf, sizeof buf, "%g Hz", k < w.params.size() ? w.params[k] : 0.0);
+          return std::string(buf);
+        };
+        warnings.push_back(warning_line(
+            card.at(t), "AM of " + quote(name) + " is read in ngspice 40's order, AM(VO VMO VMA FM FC TD PHASEM "
+                        "PHASEC): carrier FC = " + hz(4) + ", modulation FM = " + hz(3) +
+                        "; ngspice 39 and earlier read AM(VA VO MF FC TD), a carrier of " + hz(3) +
+                        " here (six values or more are read in the 40+ order without this warning)"));
       }
       i = j;
       continue;

@@ -47,6 +47,21 @@ TEST(NgspiceDialect, PrintEntriesThatAreNotProbesAreSkippedWithAWarningEach) {
             "or i2(line)\n.save q(a)\n      ^~~~");
 }
 
+// ngspice 40 reordered AM's parameters; five values or fewer fit the earlier AM(VA VO MF FC TD)
+// too, and lcspice (like its validate witness, which gets lcspice's reading) would silently give
+// a constant where the deck meant a 100 kHz carrier. A warning says which reading is used.
+TEST(NgspiceDialect, AmWithFiveValuesOrFewerSaysWhichOrderIsRead) {
+  Netlist n = test::parse("t\nV1 in 0 AM(1 0.5 1k 100k 0)\nR1 in 0 1k\n");
+  ASSERT_EQ(n.warnings.size(), 1u);
+  EXPECT_EQ(n.warnings[0], "t.cir:2:9: warning: AM of 'v1' is read in ngspice 40's order, AM(VO VMO VMA FM FC TD "
+                           "PHASEM PHASEC): carrier FC = 0 Hz, modulation FM = 100000 Hz; ngspice 39 and earlier "
+                           "read AM(VA VO MF FC TD), a carrier of 100000 Hz here (six values or more are read in "
+                           "the 40+ order without this warning)");
+  EXPECT_DOUBLE_EQ(test::element(n, "v1").waveform.value(3e-6), 1.0);  // VO + VMO sin(0): the 40+ reading
+  n = test::parse("t\nV1 in 0 AM(0.5 2 1.8 1k 100k 1m 0 0)\nR1 in 0 1k\n");
+  EXPECT_TRUE(n.warnings.empty());
+}
+
 // R, C and L take their value as a keyword too (ngspice: r=, resistance=; c=, capacitance=;
 // l=, inductance=; LTspice writes R=): before, "invalid number 'r'".
 TEST(NgspiceDialect, ValueGivenAsAKeyword) {
