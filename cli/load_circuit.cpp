@@ -7,6 +7,8 @@
 #include "cli/exit_codes.h"
 #include "solver/model/numerical_failure.h"
 #include "solver/model/switch_family.h"
+#include "solver/integrators/transient.h"
+#include "solver/model/netlist_options.h"
 #include "solver/model/operating_point.h"
 
 namespace lcs {
@@ -249,6 +251,19 @@ std::vector<std::string> dc_floating_start_warnings(const CircuitModel& model, c
                   "capacitors, or UIC to choose it");
   }
   return out;
+}
+
+bool apply_netlist_options(const Netlist& netlist, TransientOptions& options) {
+  NetlistOptions read;
+  try {
+    read = read_netlist_options(netlist);
+  } catch (const NetlistError& e) {
+    throw CliError(kExitNetlist, e.formatted());
+  }
+  if (!read.method.empty()) options.method = read.method;
+  if (read.gear) warn(".options method=gear: lcspice has no Gear method; using the default method");
+  if (read.theta) options.method_options.theta = *read.theta;
+  return !read.method.empty();
 }
 
 }  // namespace lcs

@@ -8,6 +8,10 @@
 #include "solver/model/circuit_model.h"
 
 namespace lcs {
+struct TransientOptions;
+}
+
+namespace lcs {
 
 // FileError -> exit 1; NetlistError -> exit 2. Prints the netlist's warnings to stderr.
 // `require_transient`: see ReadOptions (run and validate).
@@ -25,6 +29,10 @@ std::vector<Probe> probes_for(const Netlist& netlist, const CircuitModel& model,
 const Element* first_switch(const Netlist& netlist);
 OutputMap output_map_or_exit(const CircuitModel& model, const std::vector<Probe>& probes);
 void warn(const std::string& text);  // "lcspice: warning: ..." on stderr
+// `.options method=` and `theta=` into `options` (read_netlist_options: registry names and
+// ngspice's trap, theta 0.5; gear is accepted with a warning and the default method). Returns
+// whether the deck names a method (`.options method=`, gear aside); a bad value exits 2.
+bool apply_netlist_options(const Netlist& netlist, TransientOptions& options);
 
 }  // namespace lcs
 

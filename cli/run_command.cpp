@@ -21,22 +21,6 @@ namespace lcs {
 
 namespace {
 
-// `.options method=` and `theta=` (read_netlist_options: registry names and ngspice's trap,
-// theta 0.5; gear is accepted with a warning and the default method).
-// Returns whether the deck names a method (`.options method=`, gear aside).
-bool apply_netlist_options(const Netlist& netlist, TransientOptions& options) {
-  NetlistOptions read;
-  try {
-    read = read_netlist_options(netlist);
-  } catch (const NetlistError& e) {
-    throw CliError(kExitNetlist, e.formatted());
-  }
-  if (!read.method.empty()) options.method = read.method;
-  if (read.gear) warn(".options method=gear: lcspice has no Gear method; using the default method");
-  if (read.theta) options.method_options.theta = *read.theta;
-  return !read.method.empty();
-}
-
 void note(const std::string& message) { std::cerr << "lcspice: note: " << message << "\n"; }
 
 const MethodEntry& method_of(const TransientOptions& options) { return *find_method(options.method); }

@@ -475,7 +475,10 @@ int validate_with_faults(const ValidateArgs& args, const NgspiceDeckFaults& faul
   }
   TransientOptions run;
   // The exact (event-driven) method by default: no step error of lcspice's own to argue about.
+  // A method the deck names (.options method=) is the one `run` integrates it with: that run is
+  // the one validated.
   run.method = args.method.empty() ? exact_reference_method().name : args.method;
+  const bool deck_names_method = args.method.empty() && apply_netlist_options(netlist, run);
   if (!find_method(run.method))
     throw CliError(kExitUsage, "error: unknown method '" + run.method + "' (known: " + method_names() + ")");
   // Output interval (event, smooth) or step: a tenth of TSTEP resolves the edges being compared.
@@ -498,7 +501,7 @@ int validate_with_faults(const ValidateArgs& args, const NgspiceDeckFaults& faul
 
   CircuitModel model = build_model(netlist, 0.0, run.tstop);
   if (const MethodEntry& entry = *find_method(run.method); entry.applies && !entry.applies(model, &why)) {
-    if (!args.method.empty())
+    if (!args.method.empty() || deck_names_method)
       throw CliError(kExitUsage, "error: method " + run.method + ": " + why);  // an SFFM source and event
     // The default (exact) method cannot integrate this circuit: the fixed-step default, as `run`.
     run.method = fixed_step_default_method().name;
@@ -586,8 +589,9 @@ int validate_with_faults(const ValidateArgs& args, const NgspiceDeckFaults& faul
   require_ngspice("validate needs ngspice");
 
   const MemorySink ours =
-      args.method.empty() ? run_ours_or_fall_back(netlist, args.step.has_value(), ours_model, outputs, run)
-                          : run_ours(ours_model, outputs, run);
+      args.method.empty() && !deck_names_method
+          ? run_ours_or_fall_back(netlist, args.step.has_value(), ours_model, outputs, run)
+          : run_ours(ours_model, outputs, run);
   // The gap of each ideal diode at its own peak current, and lcspice again with every such
   // threshold raised by it: the far wall of the tube. `smooth` integrates the deck's own Shockley
   // diodes: no gap, the tube is lcspice's answer.

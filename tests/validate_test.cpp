@@ -250,6 +250,22 @@ TEST(ValidateDefaultMethod, EventRunsAMirrorLoadedPairThroughItsZeroCurrentSwitc
   EXPECT_NE(r.out.find("  lcspice: ideal diodes, event, output every 1e-06 s, "), std::string::npos) << r.out;
 }
 
+// A method the deck names (.options method=) is the one `run` integrates it with, and validate
+// now validates that run; before, validate ran event whatever the deck said.
+TEST(ValidateDefaultMethod, TheDecksOwnMethodIsTheOneValidated) {
+  const fs::path deck = write_deck("validate_", "deck_method",
+                                   "rc named euler\nV1 in 0 SIN(0 5 1k)\nR1 in out 1k\nC1 out 0 100n\n"
+                                   ".options method=euler\n.tran 10u 3m\n.end\n");
+  const fs::path dir = deck.parent_path();
+  const Result r = run_lcspice("validate '" + deck.string() + "'", dir);
+  EXPECT_EQ(r.code, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("  lcspice: ideal diodes, euler, h = 1e-06 s, 3001 rows"), std::string::npos) << r.out;
+  // --method still wins.
+  const Result named = run_lcspice("validate '" + deck.string() + "' --method event", dir);
+  EXPECT_EQ(named.code, 0) << named.out << named.err;
+  EXPECT_NE(named.out.find("  lcspice: ideal diodes, event, output every 1e-06 s"), std::string::npos) << named.out;
+}
+
 // A transformer's secondary feeding a bridge floats while its diodes are off, and the witness
 // (no junction capacitance) stopped ngspice with "Timestep too small" at 6.4 ms: exit 3, nothing
 // compared. validate now runs ngspice once more with .options rshunt=1e9, its own remedy, says
