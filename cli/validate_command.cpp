@@ -652,7 +652,6 @@ int validate_with_faults(const ValidateArgs& args, const NgspiceDeckFaults& faul
       theirs = run_witness(deck.lines, args.timeout);
     }
   }
-  const std::vector<std::vector<double>> interpolated = witness_on(ours, theirs, deck, outputs, probes.size());
   // `.ic` without UIC: ngspice's t = 0 row is its operating point with those nodes held by
   // sources (its .ic meaning), whose currents are not the circuit's: for a junction held at the
   // ideal threshold, which a Shockley junction needs its gap more to conduct at, the whole base
@@ -665,14 +664,68 @@ int validate_with_faults(const ValidateArgs& args, const NgspiceDeckFaults& faul
   const bool uic_start = run.uic || !shared_start.empty();
   const size_t from = (held_start || uic_start) && ours.times.size() > 1 ? 1 : 0;
   auto tail = [from](const std::vector<double>& v) { return std::vector<double>(v.begin() + from, v.end()); };
-  std::vector<ProbeComparison> rows;
-  for (size_t p = 0; p < probes.size(); ++p) {
-    const std::vector<double> mine = column(ours, p);
-    ProbeComparison c = compare(outputs.names[p], ours.times, mine, interpolated[p]);
-    c.tube = tube_distance(tail(ours.times), tail(mine), tail(far_wall ? column(*far_wall, p) : mine),
-                           tail(interpolated[p]), dt);
-    c.not_judged = why_not_judged(model, probes[p]);
-    rows.push_back(c);
+  auto compare_with = [&](const NgspiceResult& witness, const TranslatedDeck& witness_deck,
+                          std::vector<std::vector<double>>& on_ours) {
+    on_ours = witness_on(ours, witness, witness_deck, outputs, probes.size());
+    std::vector<ProbeComparison> out;
+    for (size_t p = 0; p < probes.size(); ++p) {
+      const std::vector<double> mine = column(ours, p);
+      ProbeComparison c = compare(outputs.names[p], ours.times, mine, on_ours[p]);
+      c.tube = tube_distance(tail(ours.times), tail(mine), tail(far_wall ? column(*far_wall, p) : mine),
+                             tail(on_ours[p]), dt);
+      c.not_judged = why_not_judged(model, probes[p]);
+      out.push_back(c);
+    }
+    return out;
+  };
+  // The judged probe furthest outside the tube, or none (-1).
+  auto worst_outside = [&](const std::vector<ProbeComparison>& rs) {
+    int worst = -1;
+    for (size_t p = 0; p < rs.size(); ++p)
+      if (rs[p].not_judged.empty() && rs[p].tube_relative() > args.tol &&
+          (worst < 0 || rs[p].tube_relative() > rs[worst].tube_relative()))
+        worst = static_cast<int>(p);
+    return worst;
+  };
+  std::vector<std::vector<double>> interpolated;
+  std::vector<ProbeComparison> rows = compare_with(theirs, deck, interpolated);
+  // ngspice's own step error at its default RELTOL (1e-3) can put an edge outside the tube (a
+  // relay driver's collector turning on: 3.5 % of its range at 1.002 ms, the same with lcspice's
+  // smooth method, within it at RELTOL 1e-4). Where a probe is outside, the witness runs once more
+  // at RELTOL 1e-4 (unless the user set RELTOL); its verdict stands where it passes, the first
+  // one otherwise, and the report says which.
+  std::string tighter_note;
+  const bool user_reltol = std::any_of(topt.options.begin(), topt.options.end(), [](std::string o) {
+    std::transform(o.begin(), o.end(), o.begin(), [](unsigned char c) { return std::tolower(c); });
+    return o.rfind("reltol", 0) == 0;
+  });
+  if (const int first_worst = worst_outside(rows); first_worst >= 0 && !user_reltol && !args.converge) {
+    TranslationOptions tight = topt;
+    tight.options.push_back("reltol=1e-4");
+    TranslatedDeck tight_deck = translate_to_ngspice(model, all, tight);
+    char first[160];
+    std::snprintf(first, sizeof first, "%s %.3g %% of its range outside the tube", rows[first_worst].name.c_str(),
+                  100 * rows[first_worst].tube_relative());
+    try {
+      NgspiceResult tight_theirs = run_witness(tight_deck.lines, args.timeout);
+      std::vector<std::vector<double>> tight_interpolated;
+      std::vector<ProbeComparison> tight_rows = compare_with(tight_theirs, tight_deck, tight_interpolated);
+      if (worst_outside(tight_rows) < 0) {
+        tighter_note = std::string("at its default RELTOL 1e-3 ngspice put ") + first +
+                       "; at RELTOL 1e-4 (the table below) every probe is within it: ngspice's own step error";
+        theirs = std::move(tight_theirs);
+        deck = std::move(tight_deck);
+        rows = std::move(tight_rows);
+        interpolated = std::move(tight_interpolated);
+      } else {
+        const ProbeComparison& c = tight_rows[worst_outside(tight_rows)];
+        char again[160];
+        std::snprintf(again, sizeof again, "%s %.3g %%", c.name.c_str(), 100 * c.tube_relative());
+        tighter_note = std::string("at RELTOL 1e-4 too (") + again + "): not ngspice's tolerance";
+      }
+    } catch (const CliError&) {
+      tighter_note = "at RELTOL 1e-4 ngspice failed: the table is its default run's";
+    }
   }
 
   std::printf("validate %s\n", netlist.file.c_str());
@@ -685,6 +738,7 @@ int validate_with_faults(const ValidateArgs& args, const NgspiceDeckFaults& faul
   std::printf("  ngspice: %zu time points, %.3f s CPU%s\n", theirs.time.size(), theirs.analysis_cpu_seconds,
               shared_start.empty() ? "" : (", started from lcspice's initial state (" + shared_start + ")").c_str());
   if (shunted) std::printf("  ngspice: with .options rshunt=1e9 (without it: \"Timestep too small\")\n");
+  if (!tighter_note.empty()) std::printf("  ngspice: %s\n", tighter_note.c_str());
   if (held_start)
     std::printf("  .ic without UIC: ngspice's t = 0 row holds the .ic nodes with sources (not the circuit's\n"
                 "  currents); judged from the first step on\n");

@@ -111,6 +111,9 @@ TEST(ValidationCanFail, ReversedDiodeInTheNgspiceDeckExitsFour) {
   EXPECT_EQ(code, kExitValidate) << out << error;
   EXPECT_NE(out.find("FAIL: every probe within"), std::string::npos) << out;
   EXPECT_NE(out.find("OUTSIDE"), std::string::npos) << out;
+  // Checked again at RELTOL 1e-4, which does not make a wrong witness right.
+  EXPECT_NE(out.find("  ngspice: at RELTOL 1e-4 too ("), std::string::npos) << out;
+  EXPECT_NE(out.find("): not ngspice's tolerance"), std::string::npos) << out;
   // The report: the table, both waveforms, one overlay per probe.
   Csv table = parse_csv(read_file(dir / "report.csv"));
   EXPECT_EQ(table.header.front(), "probe");
@@ -248,6 +251,31 @@ TEST(ValidateDefaultMethod, EventRunsAMirrorLoadedPairThroughItsZeroCurrentSwitc
   EXPECT_EQ(r.code, 4) << r.out << r.err;
   EXPECT_EQ(r.err.find("method event failed"), std::string::npos) << r.err;
   EXPECT_NE(r.out.find("  lcspice: ideal diodes, event, output every 1e-06 s, "), std::string::npos) << r.out;
+}
+
+// ngspice's own step error at its default RELTOL 1e-3 put a relay driver's turn-on edge (v(coil),
+// 1.002 ms) 3.5 % of its range outside the tube, and validate FAILed a run that agrees with ngspice
+// at RELTOL 1e-4. Where a probe is outside, the witness runs again at RELTOL 1e-4; a pass there
+// stands, with a report line. A real disagreement still FAILs (a diode reversed in the witness),
+// and a RELTOL the user gives is not changed.
+TEST(ValidateWitness, AnEdgeOutsideAtNgspicesDefaultReltolIsCheckedAtATighterOne) {
+  const std::string relay =
+      "BJT switch driving a relay coil with flyback diode\nV1 vcc 0 12\nVIN ctl 0 PULSE(0 5 1m 10u 10u 4m 10m)\n"
+      "RB ctl b 4.7k\nQ1 coil b 0 Q2N2222\nLcoil vcc x 100m\nRcoil x coil 400\nD1 coil vcc DF\n"
+      ".model Q2N2222 NPN(IS=14.34f BF=255.9 BR=6.092 CJC=7.306p CJE=22.01p)\n.model DF D(VON=0.7 RON=1)\n"
+      ".tran 10u 10m\n.print tran v(coil) i(Lcoil) ic(Q1) i(D1)\n.end\n";
+  const fs::path deck = write_deck("validate_", "relay", relay);
+  const fs::path dir = deck.parent_path();
+  const Result r = run_lcspice("validate '" + deck.string() + "'", dir);
+  EXPECT_EQ(r.code, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("  ngspice: at its default RELTOL 1e-3 ngspice put v(coil) "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("of its range outside the tube; at RELTOL 1e-4 (the table below) every probe is within it: "
+                       "ngspice's own step error"),
+            std::string::npos)
+      << r.out;
+  const Result own = run_lcspice("validate '" + deck.string() + "' --ngspice-option reltol=1e-3", dir);
+  EXPECT_EQ(own.code, 4) << own.out << own.err;
+  EXPECT_EQ(own.out.find("RELTOL 1e-4"), std::string::npos) << own.out;
 }
 
 // A method the deck names (.options method=) is the one `run` integrates it with, and validate
