@@ -153,6 +153,14 @@ void write_report(const std::string& path, const std::vector<ProbeComparison>& r
   for (auto& png : pngs) png->commit();
 }
 
+// Whether one of the ngspice options ("name=value", any case) sets `name` (lower case).
+bool sets_option(const std::vector<std::string>& options, const std::string& name) {
+  return std::any_of(options.begin(), options.end(), [&](std::string o) {
+    std::transform(o.begin(), o.end(), o.begin(), [](unsigned char c) { return std::tolower(c); });
+    return o.rfind(name, 0) == 0;
+  });
+}
+
 // One ngspice run of the translated deck; NgspiceError as exit 3 with ngspice's last words.
 // `timestep_too_small`, when given, says whether ngspice gave up with "Timestep too small".
 NgspiceResult run_witness(const std::vector<std::string>& deck, double timeout, bool* timestep_too_small = nullptr) {
@@ -638,10 +646,7 @@ int validate_with_faults(const ValidateArgs& args, const NgspiceDeckFaults& faul
     try {
       theirs = run_witness(deck.lines, args.timeout, &too_small);
     } catch (const CliError&) {
-      const bool user_rshunt = std::any_of(topt.options.begin(), topt.options.end(), [](std::string o) {
-        std::transform(o.begin(), o.end(), o.begin(), [](unsigned char c) { return std::tolower(c); });
-        return o.rfind("rshunt", 0) == 0;
-      });
+      const bool user_rshunt = sets_option(topt.options, "rshunt");
       if (!too_small || user_rshunt) throw;
       std::cerr << "lcspice: note: ngspice stopped with \"Timestep too small\"; running it again with "
                    ".options rshunt=1e9 (1 GOhm from every node to ground, ngspice's remedy for a node that "
@@ -695,10 +700,7 @@ int validate_with_faults(const ValidateArgs& args, const NgspiceDeckFaults& faul
   // at RELTOL 1e-4 (unless the user set RELTOL); its verdict stands where it passes, the first
   // one otherwise, and the report says which.
   std::string tighter_note;
-  const bool user_reltol = std::any_of(topt.options.begin(), topt.options.end(), [](std::string o) {
-    std::transform(o.begin(), o.end(), o.begin(), [](unsigned char c) { return std::tolower(c); });
-    return o.rfind("reltol", 0) == 0;
-  });
+  const bool user_reltol = sets_option(topt.options, "reltol");
   if (const int first_worst = worst_outside(rows); first_worst >= 0 && !user_reltol && !args.converge) {
     TranslationOptions tight = topt;
     tight.options.push_back("reltol=1e-4");
