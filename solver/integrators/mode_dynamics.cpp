@@ -37,7 +37,9 @@ ModeDynamics ModeDynamics::build(const Lcs& s, const std::vector<bool>& is_activ
   if (a > 0) {
     Eigen::JacobiSVD<Eigen::MatrixXd> svd(Daa, Eigen::ComputeFullU);
     const Eigen::VectorXd& sv = svd.singularValues();
-    const double tol = 1e-10 * (sv.size() > 0 ? sv(0) : 0.0);
+    // Below 1e-13 of the largest: rounding (JacobiSVD is accurate to eps times it). 1e-10 counted a
+    // bridge's 0.1 ohm loop as zero beside its 1 GOhm shunt (2e9 ohm), and no mode fitted.
+    const double tol = 1e-13 * (sv.size() > 0 ? sv(0) : 0.0);
     int r = 0;
     while (r < sv.size() && sv(r) > tol && sv(r) > 0) ++r;
     U = svd.matrixU().leftCols(r);
