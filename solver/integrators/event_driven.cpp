@@ -565,15 +565,24 @@ Mode& EventDriven::Impl::select(double t, const Eigen::VectorXd& x, const Eigen:
     // pivot limit (no solution found at all) ends the run.
     // Several solutions (transistor feedback) make Lemke's pick a first guess as well: the
     // derivatives (consistent()) decide which mode continues the state.
-    if (sol.status != LcpStatus::Solved && sol.status != LcpStatus::NumericalFailure &&
-        sol.status != LcpStatus::NotUnique)
+    const bool answered = sol.status == LcpStatus::Solved || sol.status == LcpStatus::NumericalFailure ||
+                          sol.status == LcpStatus::NotUnique;
+    // A ray (or the pivot limit) with a mode to continue: rounding in a switching LCP whose
+    // entries span 1e9 (a 1 GOhm shunt) and 0 (RON = 0 diodes) ended Lemke's path at the first
+    // event of a bridge with an inductive load. The mode that ran into the event is then the
+    // first guess, and the search below decides as it does after any guess.
+    if (!answered && !(previous && previous->signature == signature))
       throw NumericalFailure(t, std::string("no next mode: the switching LCP has no solution (Lemke: ") +
                                     lcp_status_name(sol.status) + ")");
-    for (int i = 0; i < m; ++i) active[i] = sol.z(i) > 0;
-    const double qs = q.cwiseAbs().maxCoeff(), zs = sol.z.cwiseAbs().maxCoeff() + qs;
-    for (int i = 0; i < m; ++i)
-      if (std::abs(sol.z(i)) <= kZeroTol * zs && std::abs(sol.w(i)) <= kZeroTol * qs)
-        degenerate.push_back(i);
+    if (answered) {
+      for (int i = 0; i < m; ++i) active[i] = sol.z(i) > 0;
+      const double qs = q.cwiseAbs().maxCoeff(), zs = sol.z.cwiseAbs().maxCoeff() + qs;
+      for (int i = 0; i < m; ++i)
+        if (std::abs(sol.z(i)) <= kZeroTol * zs && std::abs(sol.w(i)) <= kZeroTol * qs)
+          degenerate.push_back(i);
+    } else {
+      active = previous->active;
+    }
   }
   std::vector<int> near_zero;
   Mode& first = mode(active, signature);
