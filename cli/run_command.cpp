@@ -170,12 +170,30 @@ int run_command(const RunArgs& args) {
   std::string lowered_failure;
   FitSensitivityOptions sensitivity_options;
   sensitivity_options.unjudged = floating_potential_probes(model, probes_for(netlist, model, args.probes));
+  // The runs made before the final one (the refit's passes, the lowered lines) fall back as the
+  // final run does when the default method stops: euler, under the aliasing guard (silently: the
+  // final run's note says so when it falls back too). A bridge whose fitted diodes differ stopped
+  // the event method in a refit pass, and the refit kept its first pass's lines without a word.
+  std::optional<TransientOptions> before_final_fallback;
+  if (method_defaulted && options.method == exact_reference_method().name && !method_of(options).smooth_model) {
+    TransientOptions f = options;
+    f.method = fixed_step_default_method().name;
+    if (tmax_below_tstep) f.step = netlist.tran->tmax;
+    f.method_options.max_step = 0;
+    if (!args.step) f.substeps = guarded_substeps(netlist, f);
+    if (f.substeps > 0) before_final_fallback = f;
+  }
   if (!method_of(options).smooth_model) {
     // Cards without VON/RON: their lines refitted to the currents this circuit carries.
-    const DiodeRefitResult refit = refit_diodes(netlist, refit_model_options(options.tstop), options);
+    DiodeRefitOptions refit_options;
+    refit_options.fallback = before_final_fallback;
+    const DiodeRefitResult refit = refit_diodes(netlist, refit_model_options(options.tstop), options, refit_options);
     if (refit.passes > 0) {
       if (args.stats) std::cerr << refit.BriefReport() << "\n";
       model = build_model(netlist, 0.0, options.tstop, refit.ranges);
+      if (!refit.failure.empty())
+        warn("fitting the diodes' lines to the currents they carry stopped at pass " + std::to_string(refit.passes) +
+             " (" + refit.failure + "); the lines of the last pass that reached TSTOP are used");
     }
     const std::string poor = poor_fit_message(model);
     // --diode auto: the smooth method with Shockley diodes where a fit does not serve the circuit
@@ -202,6 +220,12 @@ int run_command(const RunArgs& args) {
         lowered = std::make_unique<RecordedRows>();
         lowered_failure = run_with_lowered_lines(netlist, mo, options, probes_for(netlist, model, args.probes),
                                                  sensitivity_options, *lowered);
+        if (!lowered_failure.empty() && before_final_fallback) {
+          lowered = std::make_unique<RecordedRows>();
+          lowered_failure = run_with_lowered_lines(netlist, mo, *before_final_fallback,
+                                                   probes_for(netlist, model, args.probes), sensitivity_options,
+                                                   *lowered);
+        }
       }
     }
     if (!smooth_because.empty()) {

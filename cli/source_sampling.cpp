@@ -77,6 +77,13 @@ std::optional<SourceFeature> finest_source_feature(const Netlist& netlist) {
   return finest;
 }
 
+int guarded_substeps(const Netlist& netlist, const TransientOptions& options) {
+  const std::optional<SourceFeature> finest = finest_source_feature(netlist);
+  if (!finest || options.step <= finest->max_step * (1 + 1e-9)) return 1;
+  const double k = std::ceil(options.step / finest->max_step * (1 - 1e-12));
+  return k * (options.tstop / options.step) > kMaxGuardedSteps ? 0 : static_cast<int>(k);
+}
+
 void guard_source_sampling(const Netlist& netlist, bool step_given, const std::string& step_name,
                            TransientOptions& options) {
   const std::optional<SourceFeature> finest = finest_source_feature(netlist);

@@ -34,5 +34,8 @@ std::optional<SourceFeature> finest_source_feature(const Netlist& netlist);
 // located at the .tran card) when that needs more than 1e7 steps.
 void guard_source_sampling(const Netlist& netlist, bool step_given, const std::string& step_name,
                            TransientOptions& options);
+// The steps per output step the guard asks of a fixed-step run at `options.step` (1: none), or
+// 0 where that would pass the guard's limit; nothing is printed.
+int guarded_substeps(const Netlist& netlist, const TransientOptions& options);
 
 }  // namespace lcs

@@ -520,7 +520,17 @@ int validate_with_faults(const ValidateArgs& args, const NgspiceDeckFaults& faul
   if (!find_method(run.method)->smooth_model) {
     ModelOptions mo;
     mo.t1 = run.tstop;
-    const DiodeRefitResult refit = refit_diodes(netlist, mo, run);
+    DiodeRefitOptions refit_options;  // a pass the default method fails falls back as `run`'s do
+    if (args.method.empty() && !deck_names_method && run.method == exact_reference_method().name) {
+      TransientOptions f = run;
+      f.method = fixed_step_default_method().name;
+      if (!args.step) f.substeps = guarded_substeps(netlist, f);
+      if (f.substeps > 0) refit_options.fallback = f;
+    }
+    const DiodeRefitResult refit = refit_diodes(netlist, mo, run, refit_options);
+    if (!refit.failure.empty())
+      std::cerr << "lcspice: warning: fitting the diodes' lines to the currents they carry stopped at pass "
+                << refit.passes << " (" << refit.failure << "); the lines of the last pass that reached TSTOP are used\n";
     if (refit.passes > 0) {
       diode_ranges = refit.ranges;
       model = build_model(netlist, 0.0, run.tstop, diode_ranges);

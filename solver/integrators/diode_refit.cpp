@@ -86,8 +86,22 @@ DiodeRefitResult refit_diodes(const Netlist& netlist, const ModelOptions& model_
     try {
       run_transient(model, outputs, quiet, sink);
     } catch (const NumericalFailure& e) {
-      result.failure = e.what();
-      break;
+      bool recovered = false;
+      if (refit.fallback) {
+        TransientOptions again = *refit.fallback;
+        again.progress = nullptr;
+        sink = MemorySink();
+        try {
+          run_transient(model, outputs, again, sink);
+          recovered = true;
+          ++result.fallbacks;
+        } catch (const NumericalFailure&) {
+        }
+      }
+      if (!recovered) {
+        result.failure = e.what();
+        break;
+      }
     }
     completed = mo.diode_ranges;  // before this pass's refit
     bool any_moved = false;
@@ -117,7 +131,9 @@ std::string DiodeRefitResult::BriefReport() const {
   char buf[200];
   std::snprintf(buf, sizeof buf, "diode refit: %d transient pass%s, %s, %.3g s CPU", passes,
                 passes == 1 ? "" : "es", converged ? "converged" : "not converged", cpu_seconds);
-  return buf + (failure.empty() ? "" : "; a pass failed (" + failure + ")");
+  std::string out = buf;
+  if (fallbacks > 0) out += "; " + std::to_string(fallbacks) + " pass" + (fallbacks == 1 ? "" : "es") + " by the fallback method";
+  return out + (failure.empty() ? "" : "; a pass failed (" + failure + ")");
 }
 
 // 5 % of a junction's voltage is about 30 mV at 0.6 V, 1.2 Vt: an exponential junction's

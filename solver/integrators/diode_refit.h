@@ -18,6 +18,7 @@
 #pragma once
 
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -32,6 +33,9 @@ struct DiodeRefitOptions {
   double von_tolerance = 1e-3;   // V
   double ron_tolerance = 0.02;   // relative
   double low_quantile = 0.1;     // the range's low end among the conducting samples
+  // A pass that fails with the run's method runs again with these (the default method's euler
+  // fallback, as the final run falls back); none: the failure stops the refit.
+  std::optional<TransientOptions> fallback;
 };
 
 struct DiodeRefitResult {
@@ -39,6 +43,7 @@ struct DiodeRefitResult {
   int passes = 0;           // transients run (0: no diode to refit)
   bool converged = false;   // else max_passes was reached (or a pass failed)
   std::string failure;      // a pass's numerical failure, which stopped the refit
+  int fallbacks = 0;        // passes run by DiodeRefitOptions::fallback after the method failed
   double cpu_seconds = 0;   // process CPU time of the passes
   std::string BriefReport() const;
 };
