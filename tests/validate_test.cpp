@@ -495,6 +495,23 @@ TEST(ValidationErrors, PrintDeckShowsTheTranslation) {
   EXPECT_NE(own.out.find(".tran 1e-05 0.001 0 3e-07"), std::string::npos) << own.out;
 }
 
+// ngspice reads a PULSE's written PW 0 and PER 0 as its defaults (TSTOP), lcspice as no plateau
+// and one pulse. Translated as written, a triangle PULSE(0 5 1u 1u 1u 0 0) became a 5 V plateau
+// to TSTOP in ngspice, and a single zero-edge pulse came back at TSTOP (its TD moved back by the
+// jump's edge): 100 % of the range outside, FAIL. Now PW 0 is written as 1e-6 TSTOP and PER 0 as
+// a period beyond the run.
+TEST(ValidationTranslation, PulseWidthAndPeriodWrittenAsZeroAreLcspicesInNgspice) {
+  const fs::path dir = scratch_dir("validate_pulse_zeros");
+  std::ofstream(dir / "triangle.cir") << "triangle\nV1 a 0 PULSE(0 5 1u 1u 1u 0 0)\nR1 a 0 1k\n.tran 0.1u 10u\n.end\n";
+  std::ofstream(dir / "single.cir") << "single\nV1 a 0 PULSE(0 5 0 0 0 1u 0)\nR1 a 0 1k\n.tran 0.1u 10u\n.end\n";
+  for (const std::string name : {"triangle", "single"}) {
+    const Result r = run_lcspice("validate '" + (dir / (name + ".cir")).string() + "'", dir);
+    EXPECT_EQ(r.code, 0) << name << r.out << r.err;
+  }
+  const Result deck = run_lcspice("validate --print-deck '" + (dir / "triangle.cir").string() + "'", dir);
+  EXPECT_NE(deck.out.find("v1 a 0 PULSE(0 5 1e-06 1e-06 1e-06 1e-11 2.300001e-05)"), std::string::npos) << deck.out;
+}
+
 // Translation details that would otherwise make correct circuits fail; each failure they guard
 // against showed an error of about the whole range (1.0). The tolerances leave room for lcspice's
 // own implicit Euler error at TSTEP/10: 1.4e-3 on the RC after a jump (h/2tau), 1.3e-2 on the

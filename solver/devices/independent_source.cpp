@@ -22,8 +22,14 @@ std::string ngspice_waveform(Waveform w, double tstop) {
     double& tr = w.params[3];
     double& tf = w.params[4];
     double& pw = w.params[5];
+    double& per = w.params[6];
     if (tr == 0.0) td -= eps, tr = eps;
     if (tf == 0.0) pw = std::max(0.0, pw - eps), tf = eps;
+    // ngspice reads a written 0 as its default here too: PW and PER = TSTOP. lcspice's PW 0 is no
+    // plateau, its PER 0 one pulse (ngspice's second would start at TD + TSTOP, before TSTOP
+    // where TD was moved back for a jump above: a 5 V row at TSTOP where lcspice has 0).
+    if (pw == 0.0) pw = eps;
+    if (per <= 0.0) per = 2 * tstop + std::abs(td) + tr + pw + tf;
   }
   if (w.kind == Waveform::Kind::Exp && w.params.size() >= 6) {
     double& td1 = w.params[2];
