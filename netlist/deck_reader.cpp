@@ -1,5 +1,6 @@
 #include "netlist/deck_reader.h"
 
+#include <cctype>
 #include <filesystem>
 #include <fstream>
 #include <optional>
@@ -58,6 +59,17 @@ std::optional<LibReference> lib_reference(const Card& card) {
 }
 
 bool is_lib(const Card& card) { return card[0].is_word(".lib"); }
+
+// A path with a space, a directory separator and an extension at its end (".dio", ".lib").
+bool is_spaced_library_path(const std::string& text) {
+  if (text.find(' ') == std::string::npos || text.find_first_of("/\\") == std::string::npos) return false;
+  if (text.find('"') != std::string::npos || text.find('\'') != std::string::npos) return false;
+  const std::size_t dot = text.rfind('.');
+  if (dot == std::string::npos || dot + 1 == text.size() || dot < text.find_last_of("/\\")) return false;
+  for (std::size_t k = dot + 1; k < text.size(); ++k)
+    if (!std::isalnum(static_cast<unsigned char>(text[k]))) return false;
+  return true;
+}
 bool is_endl(const Card& card) { return card[0].is_word(".endl"); }
 
 // The `.endl` closing the section that starts at cards[begin] (a `.lib SECTION` card), or
@@ -125,6 +137,27 @@ class Reader {
           }
           expand(make_source_file(path, text), false, out);
           continue;
+        }
+        // LTspice IV writes its install path unquoted, spaces and all (`.lib C:\Program Files
+        // (x86)\LTC\LTspiceIV\lib\cmp\standard.dio`): the rest of the card is one file name where
+        // it has a directory and ends in an extension (a section name has none).
+        if (card.size() >= 3) {
+          const std::string rest = card.text(card[1].begin, card.tokens.back().end);
+          if (is_spaced_library_path(rest)) {
+            std::string text;
+            bool missing = false;
+            const SourceLocation loc = card.span(card[1].begin, card.tokens.back().end);
+            const std::string path = open_nested(file, rest, loc, "library", text, "", &missing);
+            if (missing) {
+              warnings_.push_back(warning_line(loc, "cannot open library file '" + rest +
+                                                        "': lcspice goes on with the models and subcircuits the "
+                                                        "deck defines itself (LTspice and PSpice write their own "
+                                                        "libraries' paths into every deck)"));
+              continue;
+            }
+            expand(make_source_file(path, text), false, out);
+            continue;
+          }
         }
         std::optional<LibReference> ref = lib_reference(card);
         if (!ref) throw NetlistError(card.at(0), "expected '.lib FILE SECTION' or '.lib SECTION'");

@@ -63,6 +63,27 @@ TEST(LtspiceDialect, LibOfAMissingFileIsAWarningWhenTheDeckDefinesWhatItUses) {
             "t.cir:3:6: error: cannot open library file 'models.lib'\n.lib models.lib fast\n     ^~~~~~~~~~");
 }
 
+// LTspice IV writes its install path unquoted, with spaces: before, "expected '.lib FILE SECTION'"
+// (three words or more) or "cannot open library file 'C:\Program'" (two).
+TEST(LtspiceDialect, LibPathWithSpacesIsOneFileName) {
+  Netlist n = test::parse("t\nV1 a 0 1\nD1 a 0 D\nR1 a 0 1k\n.model D D\n"
+                          ".lib C:\\Program Files (x86)\\LTC\\LTspiceIV\\lib\\cmp\\standard.dio\n.tran 1u 1m\n");
+  EXPECT_EQ(n.elements.size(), 3u);
+  ASSERT_EQ(n.warnings.size(), 1u);
+  EXPECT_EQ(n.warnings[0], "t.cir:6:6: warning: cannot open library file "
+                           "'C:\\Program Files (x86)\\LTC\\LTspiceIV\\lib\\cmp\\standard.dio': lcspice goes on "
+                           "with the models and subcircuits the deck defines itself (LTspice and PSpice write their own "
+                           "libraries' paths into every deck)");
+  n = test::parse("t\nR1 a 0 1k\nV1 a 0 1\n.lib C:\\Program Files\\LTC\\LTspiceXVII\\lib\\cmp\\standard.bjt\n");
+  ASSERT_EQ(n.warnings.size(), 1u);
+  EXPECT_NE(n.warnings[0].find("cannot open library file 'C:\\Program Files\\LTC\\LTspiceXVII\\lib\\cmp\\standard.bjt'"),
+            std::string::npos)
+      << n.warnings[0];
+  // FILE SECTION stays ngspice's form (a section name has no extension).
+  EXPECT_EQ(test::diag("t\nR1 a 0 1k\n.lib my models/models.lib fast\n"),
+            "t.cir:3:1: error: expected '.lib FILE SECTION' or '.lib SECTION'\n.lib my models/models.lib fast\n^~~~");
+}
+
 TEST(LtspiceDialect, SectionDefinitionsAreStillSkipped) {  // `.lib NAME` ... `.endl` (ngspice)
   Netlist n = test::parse("t\nR1 a 0 1\nV1 a 0 1\n.lib fast\nR9 a 0 5\n.endl\n");
   EXPECT_EQ(n.find_element("r9"), nullptr);
