@@ -17,6 +17,12 @@
 namespace lcs::parse {
 namespace {
 
+// LTspice/PSpice's `.step` reruns the deck per value; the CSV holds one run.
+NetlistError step_refusal(const Card& card) {
+  return NetlistError(card.at(0), "'.step' (parameter sweeps, LTspice/PSpice) is not supported: lcspice runs one "
+                                  "transient per deck; give each value its own deck or .param");
+}
+
 std::string short_number(double x) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%g", x);
@@ -243,9 +249,7 @@ class Elaborator {
       case DotCard::Endc:
         throw NetlistError(card.at(0), "'.endc' without '.control'");
       case DotCard::Unknown:
-        if (k == ".step")  // LTspice/PSpice: reruns the deck per value; the CSV holds one run
-          throw NetlistError(card.at(0), "'.step' (parameter sweeps, LTspice/PSpice) is not supported: lcspice "
-                                         "runs one transient per deck; give each value its own deck or .param");
+        if (k == ".step") throw step_refusal(card);  // in a subcircuit
         throw NetlistError(card.at(0), "unknown control card " + quote(card[0].text));
     }
   }
@@ -605,6 +609,10 @@ class Elaborator {
 }  // namespace
 
 void elaborate(const SubcktDef& top, Netlist& netlist, const Card* control_tran) {
+  // `.step` first: LTspice writes its directives after the components, and an element using the
+  // stepped parameter ({R}) would otherwise be reported as an undefined parameter.
+  for (const Card* card : top.body)
+    if (card->keyword() == ".step") throw step_refusal(*card);
   Elaborator(netlist).run(top, control_tran);
 }
 

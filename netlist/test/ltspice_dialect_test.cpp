@@ -246,6 +246,11 @@ TEST(LtspiceDialect, SweepsAreRefusedByName) {
   EXPECT_EQ(test::diag("t\nR1 a 0 {r}\n.param r=1k\n.step param r 1k 10k 1k\n"),
             "t.cir:4:1: error: '.step' (parameter sweeps, LTspice/PSpice) is not supported: lcspice runs one "
             "transient per deck; give each value its own deck or .param\n.step param r 1k 10k 1k\n^~~~~");
+  // LTspice writes the directives last, and the stepped parameter is defined by .step alone:
+  // before, "undefined parameter 'r'" at R1.
+  EXPECT_EQ(test::diag("t\nV1 a 0 1\nR1 a 0 {r}\n.step param r 1k 10k 1k\n.tran 1m 20m\n"),
+            "t.cir:4:1: error: '.step' (parameter sweeps, LTspice/PSpice) is not supported: lcspice runs one "
+            "transient per deck; give each value its own deck or .param\n.step param r 1k 10k 1k\n^~~~~");
 }
 
 // LTspice's K with more than two inductors couples every pair by the one k: K1 plus K1#2, K1#3.
