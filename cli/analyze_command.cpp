@@ -8,6 +8,7 @@
 #include "cli/commands.h"
 #include "cli/exit_codes.h"
 #include "cli/load_circuit.h"
+#include "cli/source_sampling.h"
 #include "cli/uniqueness_report.h"
 #include "graph/components.h"
 #include "graph/diode_classes.h"
@@ -54,21 +55,41 @@ std::string fit_text(const PairInfo& p) {
 
 // The transient `run` would make of the deck (its .tran and .options method), for the fit of its
 // diodes to the currents they carry; none without a .tran card.
-std::optional<TransientOptions> deck_transient(const Netlist& netlist) {
+// The deck's transient as `run` integrates it, for the refit's passes: the method the deck names,
+// else the default (event where it applies), with run's steps (TMAX the fixed-step methods' step,
+// event's rows at TSTEP) and, for the default event, run's euler fallback for a pass it fails.
+std::optional<TransientOptions> deck_transient(const Netlist& netlist, const CircuitModel& model,
+                                               DiodeRefitOptions& refit_options) {
   if (!netlist.tran) return std::nullopt;
   TransientOptions o;
   const TranSpec& tran = *netlist.tran;
-  o.step = tran.tmax > 0 ? std::min(tran.tstep, tran.tmax) : tran.tstep;
   o.tstop = tran.tstop;
   o.tstart = tran.tstart;
   o.uic = tran.uic;
+  bool named = false;
   try {
     const NetlistOptions read = read_netlist_options(netlist);
-    if (!read.method.empty() && find_method(read.method)) o.method = read.method;
+    if (!read.method.empty() && find_method(read.method)) o.method = read.method, named = true;
     if (read.theta) o.method_options.theta = *read.theta;
   } catch (const NetlistError&) {
   }
+  if (!named) o.method = default_method_for(model, nullptr).name;
+  const bool tmax_below = tran.tmax > 0 && tran.tmax < tran.tstep;
+  const bool fixed = find_method(o.method)->fixed_step();
+  o.step = tmax_below && fixed ? tran.tmax : tran.tstep;
+  if (tmax_below && !fixed) o.method_options.max_step = tran.tmax;
   if (!o.IsValid(nullptr) || find_method(o.method)->smooth_model) return std::nullopt;
+  if (fixed) {
+    o.substeps = guarded_substeps(netlist, o);
+    if (o.substeps == 0) return std::nullopt;  // run refuses it
+  } else if (!named && o.method == exact_reference_method().name) {
+    TransientOptions f = o;
+    f.method = fixed_step_default_method().name;
+    f.method_options.max_step = 0;
+    if (tmax_below) f.step = tran.tmax;
+    f.substeps = guarded_substeps(netlist, f);
+    if (f.substeps > 0) refit_options.fallback = f;
+  }
   return o;
 }
 
@@ -324,10 +345,12 @@ int analyze_command(const AnalyzeArgs& args) {
   const double t1 = netlist.tran ? netlist.tran->tstop : 0.0;
   CircuitModel model = build_model(netlist, 0.0, t1);
   std::optional<DiodeRefitResult> refit;
-  if (const std::optional<TransientOptions> tran = deck_transient(netlist)) {
+  DiodeRefitOptions refit_options;
+  const std::optional<TransientOptions> tran = deck_transient(netlist, model, refit_options);
+  if (tran) {
     ModelOptions mo;
     mo.t1 = t1;
-    refit = refit_diodes(netlist, mo, *tran);
+    refit = refit_diodes(netlist, mo, *tran, refit_options);
     if (refit->passes > 0) model = build_model(netlist, 0.0, t1, refit->ranges);
   }
   Report r{model, h_components(model.graph()), classify_diodes(model.graph()), lcs_index(model), {}, {}, {}, {}, {}, {}};
@@ -343,7 +366,9 @@ int analyze_command(const AnalyzeArgs& args) {
     ModelOptions mo;
     mo.t1 = t1;
     mo.diode_ranges = refit->ranges;
-    const FitSensitivity s = fit_sensitivity(netlist, mo, *deck_transient(netlist), probes_for(netlist, model, ""));
+    FitSensitivity s = fit_sensitivity(netlist, mo, *tran, probes_for(netlist, model, ""));
+    if (!s.failure.empty() && refit_options.fallback)  // as run's check falls back
+      s = fit_sensitivity(netlist, mo, *refit_options.fallback, probes_for(netlist, model, ""));
     if (s.measured) {
       r.sensitivity = s;
       if (s.exceeds({}))
