@@ -60,6 +60,13 @@ std::optional<LibReference> lib_reference(const Card& card) {
 
 bool is_lib(const Card& card) { return card[0].is_word(".lib"); }
 
+// LTspice's `.lib FILE` of a file that cannot be opened: a warning, not an error.
+std::string missing_library_warning(const SourceLocation& loc, const std::string& name) {
+  return warning_line(loc, "cannot open library file '" + name +
+                               "': lcspice goes on with the models and subcircuits the deck defines itself (LTspice "
+                               "and PSpice write their own libraries' paths into every deck)");
+}
+
 // A path with a space, a directory separator and an extension at its end (".dio", ".lib").
 bool is_spaced_library_path(const std::string& text) {
   if (text.find(' ') == std::string::npos || text.find_first_of("/\\") == std::string::npos) return false;
@@ -129,10 +136,7 @@ class Reader {
                                           "' ends at '.endl')",
                           file_like ? &missing : nullptr);
           if (missing) {
-            warnings_.push_back(warning_line(card.at(1), "cannot open library file '" + name +
-                                                             "': lcspice goes on with the models and subcircuits the "
-                                                             "deck defines itself (LTspice and PSpice write their own libraries' "
-                                                             "paths into every deck)"));
+            warnings_.push_back(missing_library_warning(card.at(1), name));
             continue;
           }
           expand(make_source_file(path, text), false, out);
@@ -149,10 +153,7 @@ class Reader {
             const SourceLocation loc = card.span(card[1].begin, card.tokens.back().end);
             const std::string path = open_nested(file, rest, loc, "library", text, "", &missing);
             if (missing) {
-              warnings_.push_back(warning_line(loc, "cannot open library file '" + rest +
-                                                        "': lcspice goes on with the models and subcircuits the "
-                                                        "deck defines itself (LTspice and PSpice write their own "
-                                                        "libraries' paths into every deck)"));
+              warnings_.push_back(missing_library_warning(loc, rest));
               continue;
             }
             expand(make_source_file(path, text), false, out);
