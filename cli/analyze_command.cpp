@@ -79,17 +79,13 @@ std::optional<TransientOptions> deck_transient(const Netlist& netlist, const Cir
   o.step = tmax_below && fixed ? tran.tmax : tran.tstep;
   if (tmax_below && !fixed) o.method_options.max_step = tran.tmax;
   if (!o.IsValid(nullptr) || find_method(o.method)->smooth_model) return std::nullopt;
-  if (fixed) {
-    o.substeps = guarded_substeps(netlist, o);
-    if (o.substeps == 0) return std::nullopt;  // run refuses it
-  } else if (!named && o.method == exact_reference_method().name) {
-    TransientOptions f = o;
-    f.method = fixed_step_default_method().name;
-    f.method_options.max_step = 0;
-    if (tmax_below) f.step = tran.tmax;
-    f.substeps = guarded_substeps(netlist, f);
-    if (f.substeps > 0) refit_options.fallback = f;
-  }
+  if (!named && o.method == exact_reference_method().name)
+    refit_options.fallback = fixed_step_fallback(netlist, o, tmax_below ? tran.tmax : o.step, false);
+  if (!fixed) return o;
+  // A fixed-step method at its guarded substeps, as `run` steps it (nullopt where run refuses it).
+  const std::optional<TransientOptions> guarded = fixed_step_fallback(netlist, o, o.step, false);
+  if (!guarded) return std::nullopt;
+  o.substeps = guarded->substeps;
   return o;
 }
 

@@ -175,14 +175,9 @@ int run_command(const RunArgs& args) {
   // final run's note says so when it falls back too). A bridge whose fitted diodes differ stopped
   // the event method in a refit pass, and the refit kept its first pass's lines without a word.
   std::optional<TransientOptions> before_final_fallback;
-  if (method_defaulted && options.method == exact_reference_method().name && !method_of(options).smooth_model) {
-    TransientOptions f = options;
-    f.method = fixed_step_default_method().name;
-    if (tmax_below_tstep) f.step = netlist.tran->tmax;
-    f.method_options.max_step = 0;
-    if (!args.step) f.substeps = guarded_substeps(netlist, f);
-    if (f.substeps > 0) before_final_fallback = f;
-  }
+  if (method_defaulted && options.method == exact_reference_method().name && !method_of(options).smooth_model)
+    before_final_fallback = fixed_step_fallback(netlist, options, tmax_below_tstep ? netlist.tran->tmax : options.step,
+                                                args.step.has_value());
   if (!method_of(options).smooth_model) {
     // Cards without VON/RON: their lines refitted to the currents this circuit carries.
     DiodeRefitOptions refit_options;

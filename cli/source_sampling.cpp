@@ -77,11 +77,25 @@ std::optional<SourceFeature> finest_source_feature(const Netlist& netlist) {
   return finest;
 }
 
-int guarded_substeps(const Netlist& netlist, const TransientOptions& options) {
-  const std::optional<SourceFeature> finest = finest_source_feature(netlist);
+namespace {
+
+// Steps per output step for `finest` at options.step (1: the step resolves it), 0 past the limit.
+int substeps_for(const std::optional<SourceFeature>& finest, const TransientOptions& options) {
   if (!finest || options.step <= finest->max_step * (1 + 1e-9)) return 1;
   const double k = std::ceil(options.step / finest->max_step * (1 - 1e-12));
   return k * (options.tstop / options.step) > kMaxGuardedSteps ? 0 : static_cast<int>(k);
+}
+
+}  // namespace
+
+std::optional<TransientOptions> fixed_step_fallback(const Netlist& netlist, TransientOptions options, double step,
+                                                    bool step_given) {
+  options.method = fixed_step_default_method().name;
+  options.method_options.max_step = 0;
+  options.step = step;
+  options.substeps = step_given ? 1 : substeps_for(finest_source_feature(netlist), options);
+  if (options.substeps == 0) return std::nullopt;
+  return options;
 }
 
 void guard_source_sampling(const Netlist& netlist, bool step_given, const std::string& step_name,
@@ -94,8 +108,8 @@ void guard_source_sampling(const Netlist& netlist, bool step_given, const std::s
          "): " + options.method + " samples that source too coarsely to resolve it");
     return;
   }
-  const double k = std::ceil(options.step / finest->max_step * (1 - 1e-12));
-  if (k * (options.tstop / options.step) > kMaxGuardedSteps) {
+  const int k = substeps_for(finest, options);
+  if (k == 0) {
     const std::string message = step_name + " " + seconds(options.step) + " cannot resolve " + source + ": " +
                                 options.method + " would need steps of " + seconds(finest->max_step) +
                                 ", more than " + std::to_string(static_cast<long>(kMaxGuardedSteps)) +
@@ -103,7 +117,7 @@ void guard_source_sampling(const Netlist& netlist, bool step_given, const std::s
     if (netlist.tran) throw CliError(kExitNetlist, NetlistError(netlist.tran->loc, message).formatted());
     throw CliError(kExitUsage, "error: " + message);
   }
-  options.substeps = static_cast<int>(k);
+  options.substeps = k;
   std::cerr << "lcspice: note: " << options.method << " steps at " << seconds(options.step / k) << " ("
             << options.substeps << " per " << step_name << " " << seconds(options.step) << ", to resolve " << source
             << "); rows every " << step_name << "\n";

@@ -34,8 +34,10 @@ std::optional<SourceFeature> finest_source_feature(const Netlist& netlist);
 // located at the .tran card) when that needs more than 1e7 steps.
 void guard_source_sampling(const Netlist& netlist, bool step_given, const std::string& step_name,
                            TransientOptions& options);
-// The steps per output step the guard asks of a fixed-step run at `options.step` (1: none), or
-// 0 where that would pass the guard's limit; nothing is printed.
-int guarded_substeps(const Netlist& netlist, const TransientOptions& options);
+// `options` with the fixed-step default method (euler) in place of its method, as `run` falls
+// back to it when the default method stops: at `step`, with the substeps the guard asks of it
+// unless the step was given (--step); nullopt where the guard would refuse it. Nothing is printed.
+std::optional<TransientOptions> fixed_step_fallback(const Netlist& netlist, TransientOptions options, double step,
+                                                    bool step_given);
 
 }  // namespace lcs

@@ -521,12 +521,8 @@ int validate_with_faults(const ValidateArgs& args, const NgspiceDeckFaults& faul
     ModelOptions mo;
     mo.t1 = run.tstop;
     DiodeRefitOptions refit_options;  // a pass the default method fails falls back as `run`'s do
-    if (args.method.empty() && !deck_names_method && run.method == exact_reference_method().name) {
-      TransientOptions f = run;
-      f.method = fixed_step_default_method().name;
-      if (!args.step) f.substeps = guarded_substeps(netlist, f);
-      if (f.substeps > 0) refit_options.fallback = f;
-    }
+    if (args.method.empty() && !deck_names_method && run.method == exact_reference_method().name)
+      refit_options.fallback = fixed_step_fallback(netlist, run, run.step, args.step.has_value());
     const DiodeRefitResult refit = refit_diodes(netlist, mo, run, refit_options);
     if (!refit.failure.empty())
       std::cerr << "lcspice: warning: fitting the diodes' lines to the currents they carry stopped at pass "
@@ -722,7 +718,8 @@ int validate_with_faults(const ValidateArgs& args, const NgspiceDeckFaults& faul
       NgspiceResult tight_theirs = run_witness(tight_deck.lines, args.timeout);
       std::vector<std::vector<double>> tight_interpolated;
       std::vector<ProbeComparison> tight_rows = compare_with(tight_theirs, tight_deck, tight_interpolated);
-      if (worst_outside(tight_rows) < 0) {
+      const int tight_worst = worst_outside(tight_rows);
+      if (tight_worst < 0) {
         tighter_note = std::string("at its default RELTOL 1e-3 ngspice put ") + first +
                        "; at RELTOL 1e-4 (the table below) every probe is within it: ngspice's own step error";
         theirs = std::move(tight_theirs);
@@ -730,7 +727,7 @@ int validate_with_faults(const ValidateArgs& args, const NgspiceDeckFaults& faul
         rows = std::move(tight_rows);
         interpolated = std::move(tight_interpolated);
       } else {
-        const ProbeComparison& c = tight_rows[worst_outside(tight_rows)];
+        const ProbeComparison& c = tight_rows[tight_worst];
         char again[160];
         std::snprintf(again, sizeof again, "%s %.3g %%", c.name.c_str(), 100 * c.tube_relative());
         tighter_note = std::string("at RELTOL 1e-4 too (") + again + "): not ngspice's tolerance";
