@@ -798,9 +798,22 @@ int validate_with_faults(const ValidateArgs& args, const NgspiceDeckFaults& faul
     for (size_t p = 0; p < rows.size(); ++p) within[p] = within[p] || converging;
   }
   for (bool w : within) ok = ok && w;
-  std::printf("\n%s: every probe within %g of its range%s\n", ok ? "PASS" : "FAIL", args.tol,
-              args.converge ? " (or converging as N -> 0)" : "");
-  if (!ok) std::printf("(a probe outside tolerance: exit code 4)\n");
+  if (ok) {
+    std::printf("\nPASS: every probe within %g of its range%s\n", args.tol,
+                args.converge ? " (or converging as N -> 0)" : "");
+  } else {
+    // The verdict names what failed: the probes outside and the worst of them.
+    size_t outside = 0, worst = rows.size();
+    for (size_t p = 0; p < rows.size(); ++p) {
+      if (within[p]) continue;
+      ++outside;
+      if (worst == rows.size() || rows[p].tube_relative() > rows[worst].tube_relative()) worst = p;
+    }
+    std::printf("\nFAIL: %zu of %zu probes outside %g of their range (worst %s: %.3g at t = %.6g s)\n",
+                outside, rows.size(), args.tol, rows[worst].name.c_str(), rows[worst].tube_relative(),
+                rows[worst].tube.worst_time);
+    std::printf("(a probe outside tolerance: exit code 4)\n");
+  }
   std::fflush(stdout);
   if (!args.report.empty()) write_report(args.report, rows, args.tol, ours, interpolated,
                                         smooth ? "Shockley diodes" : "ideal diodes");
