@@ -173,6 +173,23 @@ TEST(ValidationCanFail, ATransistorWiredBackwardsOrWithAWrongRonOrMissingExitsFo
   EXPECT_EQ(validate_quietly(pnp, NgspiceDeckFaults{{}, {"q2"}, {}}, out), kExitValidate) << out;
 }
 
+// A diode-connected transistor (collector on its base) keeps its transfer current in the
+// witness: the model leaves the self-loop out, but ngspice's deck has the terminals apart behind
+// their meters and needs the F source, or ic(q1) reads 0 and a current mirror fails by 300 %.
+TEST(ValidationCanFail, ADiodeConnectedTransistorKeepsItsTransferCurrent) {
+  ValidateArgs mirror;
+  mirror.netlist = write_deck("validate_", "mirror",
+                              "current mirror\n"
+                              "VCC vcc 0 10\nRREF vcc x 9.3k\nQ1 x x 0 QM\nQ2 out x 0 QM\n"
+                              "VL vcc2 0 PWL(0 0 1m 10)\nRL vcc2 out 1k\n"
+                              ".model QM NPN(BF=100 BR=1 VON=0.7 RON=1)\n"
+                              ".tran 10u 1m\n.print tran v(out) ic(q2) ic(q1) ib(q1)\n.end\n")
+                       .string();
+  std::string out;
+  EXPECT_EQ(validate_quietly(mirror, {}, out), kExitOk) << out;
+  EXPECT_NE(out.find("PASS: every probe within 0.02 of its range"), std::string::npos) << out;
+}
+
 // Probes the witness cannot judge are reported with the reason and left out of the verdict: a
 // node joining only an inductor and a diode (the half-wave rectifier's n1), the absolute
 // potential of a bridge's floating load side.

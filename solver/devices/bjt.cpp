@@ -180,12 +180,15 @@ NgspiceCards Bjt::ngspice(const NgspiceDeckContext& context) const {
   };
   if (l.de >= 0) meter_e = junction("be", e, card_e_, law_e_);
   if (l.dc >= 0) meter_c = junction("bc", c, card_c_, law_c_);
-  if (l.f >= 0) {
+  // Each transfer source wherever its junction is: in the model a transfer between two terminals
+  // on one node is a self-loop and left out (layout()), but here the terminals are apart behind
+  // their meters, and a diode-connected transistor's collector current is alphaF * i_DE.
+  if (l.de >= 0)
     cards.lines.push_back(deck_name('f', name() + "_f") + " " + (n ? c : b) + " " + (n ? b : c) + " " +
                           meter_e + " " + number(alpha_f_));
+  if (l.dc >= 0)
     cards.lines.push_back(deck_name('f', name() + "_r") + " " + (n ? e : b) + " " + (n ? b : e) + " " +
                           meter_c + " " + number(alpha_r_));
-  }
   cards.ideal_diode = !(law_e_.fitted || law_c_.fitted || card_.has_is || card_.has_nf || card_.has_nr);
   cards.witness = name() + ": Ebers-Moll of threshold sources, Shockley junctions and F sources";
   return cards;
