@@ -510,6 +510,47 @@ TEST(BjtAstable, HobbyAstableOffBalanceOscillatesWithEveryJunctionComplementary)
 }
 
 
+// A monostable rests with Q2 saturated and Q1 off; its timing capacitor then holds VCC - VBE2,
+// and with that voltage the other state (Q1 on, Q2's base pulled to -11.3 V) is consistent as
+// well. Every method starts where the operating point is (SPEC 2): the event method used to take
+// the switching LCP's pick, the other state, and fire a 0.8 ms pulse nobody triggered. Closed
+// form at rest: ib2 = (VCC - VON)/RB = 113.5 uA (the op: v(b2) = VON + RON * ie2 = 0.6669 V), Q2
+// saturated; a trigger at 1 ms (Q2's base pulled down by a 10 V edge through 10 nF) gives one
+// pulse of RB C ln((2 VCC - VON - VCE,sat)/(VCC - VON)) = 0.69 ms and the rest state after it.
+TEST(BjtMonostable, EveryMethodStartsAtTheOperatingPointAndPulsesOnlyWhenTriggered) {
+  const std::string body =
+      "VCC vcc 0 12\nRC1 vcc c1 2.2k\nRC2 vcc c2 2.2k\nRB vcc b2 100k\nC1 c1 b2 10n\n"
+      "R12 c2 b1 22k\nRB1 b1 0 47k\nQ1 c1 b1 0 QS\nQ2 c2 b2 0 QS\n"
+      ".model QS NPN(BF=150 VON=0.65 RON=3)\n";
+  const fs::path rest = write_deck("bjt_monostable_", "rest", "one-shot at rest\n" + body + ".tran 2u 2m\n.end\n");
+  const fs::path fired = write_deck("bjt_monostable_", "fired",
+                                    "one-shot triggered\n" + body +
+                                        "VT trig 0 PULSE(0 -10 1m 1u 1u 50u 10)\nCT trig b2 1n\n"
+                                        ".tran 2u 3m\n.end\n");
+  for (const char* method : {"event", "euler", "radau5"}) {
+    SCOPED_TRACE(method);
+    const Csv csv = run_csv(rest, method, "--probe 'v(c2),v(b2)'");
+    ASSERT_FALSE(csv.rows.empty());
+    const auto c2 = column(csv, "v(c2)"), b2 = column(csv, "v(b2)");
+    for (size_t k = 0; k < c2.size(); ++k) {
+      ASSERT_LT(c2[k], 0.1) << "row " << k << ": Q2 left saturation untriggered";
+      ASSERT_NEAR(b2[k], 0.6669, 1e-3) << "row " << k;
+    }
+  }
+  const Csv csv = run_csv(fired, "event", "--probe 'v(c2)'");
+  const auto t = column(csv, "time"), c2 = column(csv, "v(c2)");
+  std::vector<double> rises, falls;
+  for (size_t k = 1; k < c2.size(); ++k) {
+    if (c2[k - 1] < 6 && c2[k] >= 6) rises.push_back(t[k]);
+    if (c2[k - 1] >= 6 && c2[k] < 6) falls.push_back(t[k]);
+  }
+  ASSERT_EQ(rises.size(), 1u);
+  ASSERT_EQ(falls.size(), 1u);
+  EXPECT_NEAR(rises[0], 1e-3, 5e-6);
+  const double pulse = 100e3 * 10e-9 * std::log((2 * 12 - 0.65 - c2.front()) / (12 - 0.65));
+  EXPECT_NEAR(falls[0] - rises[0], pulse, 0.03 * pulse);
+}
+
 // ---------------------------------------------------------------------------------------------
 // The event method at coarse --rtol (issue 10). A switching of these circuits passes through
 // modes that last picoseconds (the astable's Q2 active for 98 ps while 0.49 A discharges 10 pF;

@@ -42,11 +42,14 @@ class ContinuousMethod {
   // The run starts at the circuit's DC operating point (not UIC), x0 the ideal model's; `held`
   // marks the states IC= or .ic set there. A method of the smoothed circuit then starts from that
   // circuit's own operating point (smooth_method.h); the others from x0 as it is.
+  // `z` is the operating point's complementarity variables (its mode).
   void StartAtOperatingPoint(std::vector<bool> held,
-                             std::vector<std::pair<Eigen::VectorXd, Eigen::VectorXd>> other_starts = {}) {
+                             std::vector<std::pair<Eigen::VectorXd, Eigen::VectorXd>> other_starts = {},
+                             Eigen::VectorXd z = {}) {
     start_at_rest_ = true;
     held_ = std::move(held);
     other_starts_ = std::move(other_starts);
+    start_z_ = std::move(z);
   }
   // What the run's warnings should say about how the method ran.
   const std::vector<std::string>& notes() const { return notes_; }
@@ -59,6 +62,7 @@ class ContinuousMethod {
   bool start_at_rest_ = false;
   std::vector<bool> held_;
   std::vector<std::pair<Eigen::VectorXd, Eigen::VectorXd>> other_starts_;  // InitialState::other_starts
+  Eigen::VectorXd start_z_;  // InitialState::z, when start_at_rest_
   std::vector<std::string> notes_;
 };
 

@@ -200,7 +200,8 @@ struct EventDriven::Impl {
                   const Eigen::MatrixXd* error, std::vector<int>* failing = nullptr) const;
   void zero_uncoupled_rows(const std::vector<bool>& active, double rcond, Eigen::MatrixXd& G) const;
   Mode& select(double t, const Eigen::VectorXd& x, const Eigen::VectorXd& sigma,
-               const std::string& signature, const Mode* previous, bool event = false);
+               const std::string& signature, const Mode* previous, bool event = false,
+               const Eigen::VectorXd* op_z = nullptr);
   Eigen::VectorXd rcp_levels(const std::vector<bool>& active, const std::vector<int>& set,
                              const std::string& signature, const Eigen::VectorXd& Xs,
                              const Eigen::MatrixXd* error);
@@ -219,6 +220,7 @@ struct EventDriven::Impl {
   std::vector<int> guards_below(const Eigen::VectorXd& Xv) const;
   Eigen::VectorXd right;  // bisection: the violated end
   bool advance_to(const DyadicTime& target, const Progress& progress);
+  void check_projected_steps(int level) const;
   Eigen::VectorXd state() const { return X.head(n); }
   Eigen::VectorXd inputs() const { return sources->P(cur->signature) * X.tail(X.size() - n); }
 };
@@ -505,7 +507,8 @@ bool EventDriven::Impl::consistent(Mode& md, const Eigen::VectorXd& Xs,
 
 // The mode that holds from t on at the state x with the sources' state sigma (of `signature`).
 Mode& EventDriven::Impl::select(double t, const Eigen::VectorXd& x, const Eigen::VectorXd& sigma,
-                                const std::string& signature, const Mode* previous, bool event) {
+                                const std::string& signature, const Mode* previous, bool event,
+                                const Eigen::VectorXd* op_z) {
   Eigen::VectorXd Xs(n + sigma.size());
   Xs << x, sigma;
   // After an event the modes are checked at the crossing, estimated inside the final bracket
@@ -551,6 +554,16 @@ Mode& EventDriven::Impl::select(double t, const Eigen::VectorXd& x, const Eigen:
   const double segment = next == bp.end() ? h0 : std::min(h0, *next - t);
   W.resize(Xs.size());
   W << Eigen::VectorXd::Ones(n), sources->rounding_weights(signature, segment);
+  // The operating point's mode first, where it continues the state (the start is the operating
+  // point: SPEC 2). The switching LCP below can have several solutions at x (a monostable at
+  // rest: with its timing capacitor's voltage, both transistors' states are consistent) and
+  // Lemke's pick need not be the operating point's.
+  if (op_z && m > 0) {
+    std::vector<bool> op_active(m);
+    for (int i = 0; i < m; ++i) op_active[i] = (*op_z)(i) > 0;
+    Mode& at_rest = mode(op_active, signature);
+    if (consistent(at_rest, *Xt, nullptr, error)) return at_rest;
+  }
   std::vector<bool> active(m, false);
   std::vector<int> degenerate;  // pairs the switching LCP leaves at z = w = 0
   Eigen::VectorXd q;
@@ -880,12 +893,27 @@ void EventDriven::Impl::bisect(int j) {
   event_width = std::ldexp(h0, -j);
 }
 
+void EventDriven::Impl::check_projected_steps(int level) const {
+  const double t = pos.seconds(h0);
+  if (!(t > 0) || !(prepared_tstop > t)) return;
+  const double projected = static_cast<double>(stats.steps) * prepared_tstop / t;
+  if (projected <= options.max_projected_steps) return;
+  char buf[400];
+  std::snprintf(buf, sizeof buf,
+                "the event method would take about %.2g steps to TSTOP %g s (%ld steps to here, now %.3g s "
+                "each: a step is at most 0.5/omega of the fastest oscillation of the circuit and its "
+                "sources); shorten the .tran or use a fixed step (--method euler --step H)",
+                projected, prepared_tstop, static_cast<long>(stats.steps), std::ldexp(h0, -level));
+  throw NumericalFailure(t, buf);
+}
+
 bool EventDriven::Impl::advance_to(const DyadicTime& target, const Progress& progress) {
   while (pos < target) {
     int j = pos.seconds(h0) - entered_at >= cur->settle_time ? cur->settled_level : cur->level;
     while (j < kMaxLevel && (!pos.aligned(j) || target < pos.plus(j))) ++j;
     if (!step(j)) return false;
     if (progress && (stats.steps & 4095) == 0) progress(pos.seconds(h0));
+    if ((stats.steps & ((1L << 20) - 1)) == 0) check_projected_steps(j);
   }
   return true;
 }
@@ -931,6 +959,7 @@ void EventDriven::DoRun(const Eigen::VectorXd& x0, const OutputGrid& grid, const
                         const Progress& progress) {
   SegmentStart start;
   start.x = x0;
+  if (start_at_rest_) start.op_z = start_z_;
   RunSegment(start, grid, emit, progress);
 }
 
@@ -991,7 +1020,7 @@ std::optional<GuardCrossing> EventDriven::RunSegment(const SegmentStart& start, 
   // (EventDriven.SteepEdgeDoesNotSwampTheConsistencyCheck).
   // A segment's start takes the sources' state its predecessor propagated (`from_signature`).
   auto restart = [&](double t, Eigen::VectorXd x, const Eigen::VectorXd* propagated,
-                     const std::string* from_signature = nullptr) {
+                     const std::string* from_signature = nullptr, const Eigen::VectorXd* op_z = nullptr) {
     if (r.evict_modes) r.trim_modes();
     const std::string sig = r.sources->signature(t);
     Mode* before = r.cur;
@@ -1005,7 +1034,7 @@ std::optional<GuardCrossing> EventDriven::RunSegment(const SegmentStart& start, 
       u = r.model.input_values(t);
     }
     r.apply_impulse(x, u);
-    r.cur = &r.select(t, x, sigma, sig, before, propagated != nullptr);
+    r.cur = &r.select(t, x, sigma, sig, before, propagated != nullptr, op_z);
     r.entered_at = t;
     r.X.resize(n + sigma.size());
     r.X << x, sigma;
@@ -1029,7 +1058,8 @@ std::optional<GuardCrossing> EventDriven::RunSegment(const SegmentStart& start, 
 
   r.pos = start.at;
   r.cur = nullptr;
-  restart(start.t, start.x, start.sigma.size() > 0 ? &start.sigma : nullptr, &start.signature);
+  restart(start.t, start.x, start.sigma.size() > 0 ? &start.sigma : nullptr, &start.signature,
+          start.op_z.size() == r.m ? &start.op_z : nullptr);
   if (std::vector<int> crossed = r.guards_below(r.X); !crossed.empty()) {
     GuardCrossing c = crossing(std::move(crossed));
     c.at.t = start.t;

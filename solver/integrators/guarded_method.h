@@ -35,6 +35,10 @@ struct SegmentStart {
   Eigen::VectorXd x;
   std::string signature;
   Eigen::VectorXd sigma;
+  // At the run's start (not UIC): the operating point's z. Its mode is the first tried, so a
+  // circuit with several modes consistent with x (a monostable's capacitor state fits both of its
+  // states) starts in the one its operating point has. Empty: none.
+  Eigen::VectorXd op_z;
 };
 
 // Where a segment ended: the first point located past a guard's zero, the state and sources

@@ -129,6 +129,7 @@ void run_switched_adaptive(SwitchFamily& family, const SwitchConfig& start_confi
   summary.cpu_setup = loop0 - cpu0;
   SegmentStart start;
   start.x = x0;
+  if (!options.uic) start.op_z = init.z;
   DyadicTime instant{-1, 0};
   int changes_here = 0;
   try {

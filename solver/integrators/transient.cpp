@@ -147,7 +147,7 @@ void run_adaptive(const CircuitModel& model, const OutputMap& outputs, const Tra
                   TransientSummary& summary, double cpu0) {
   const Eigen::VectorXd& x0 = init.x;
   std::unique_ptr<ContinuousMethod> method = entry.make_continuous(model, options.method_options);
-  if (!options.uic) method->StartAtOperatingPoint(init.held, init.other_starts);
+  if (!options.uic) method->StartAtOperatingPoint(init.held, init.other_starts, init.z);
   OutputGrid grid;
   grid.tstep = options.step;
   grid.tstop = options.tstop;
