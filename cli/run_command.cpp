@@ -296,7 +296,10 @@ int run_command(const RunArgs& args) {
         throw CliError(kExitNumerical, std::string("lcspice: error: numerical failure ") + default_failure->what() +
                                            " (--method " + options.method + ", tried next, failed too " + e.what() +
                                            ")" + default_where);
-      if (may_fall_back && sink.replaceable()) {
+      // The fixed-step default stands in unless it too would refuse (a source it would need more
+      // than kMaxGuardedSteps steps to resolve, a step count that stopped the event method too):
+      // then the event method's failure and rows stand.
+      if (may_fall_back && sink.replaceable() && before_final_fallback) {
         default_failure = e;
         default_where = where;
         warn(std::string("method ") + options.method + " failed " + e.what() + "; running --method " +

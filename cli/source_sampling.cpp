@@ -110,10 +110,15 @@ void guard_source_sampling(const Netlist& netlist, bool step_given, const std::s
   }
   const int k = substeps_for(finest, options);
   if (k == 0) {
+    // The event method's steps are bounded by a sine too (0.5/omega: 4 pi per period, against
+    // the 50 here), and past its own limit of 1e9 (event_driven.h) it is no remedy.
+    const bool event_would_do = options.tstop / finest->max_step * (4 * M_PI / kStepsPerPeriod) <= 1e9;
+    const std::string remedy = event_would_do ? "use --method event (exact between events) or give --step"
+                                              : "shorten the .tran or give --step";
     const std::string message = step_name + " " + seconds(options.step) + " cannot resolve " + source + ": " +
                                 options.method + " would need steps of " + seconds(finest->max_step) +
                                 ", more than " + std::to_string(static_cast<long>(kMaxGuardedSteps)) +
-                                " steps; use --method event (exact between events) or give --step";
+                                " steps; " + remedy;
     if (netlist.tran) throw CliError(kExitNetlist, NetlistError(netlist.tran->loc, message).formatted());
     throw CliError(kExitUsage, "error: " + message);
   }

@@ -115,6 +115,29 @@ TEST(DefaultMethod, AFixedStepThatCannotResolveASourceIsRefused) {
   EXPECT_FALSE(fs::exists(dir / "out.csv"));
 }
 
+// A 1 GHz sine over 1000 s: the event method steps at most 0.5/omega (1.7e13 steps), implicit
+// Euler 50 a period (5e13). Neither hangs: the event method stops after its first 2^20 steps with
+// the projection (exit 3, with the default too: the fallback would need as many), and euler
+// refuses at the .tran card without pointing at event.
+TEST(DefaultMethod, ARunOfTrillionsOfStepsStopsWithTheProjectionInsteadOfHanging) {
+  const fs::path dir = scratch_dir("trillions");
+  const fs::path deck = write_deck(dir, "ghz.cir", "ghz\nV1 a 0 SIN(0 1 1g)\nR1 a b 1k\nC1 b 0 1n\n.tran 1 1000\n.end\n");
+  for (const char* method : {"", " --method event"}) {
+    SCOPED_TRACE(method);
+    Result r = run_lcspice("run '" + deck.string() + "'" + method + " -o '" + (dir / "out.csv").string() + "'", dir);
+    EXPECT_EQ(r.code, 3) << r.err;
+    EXPECT_NE(r.err.find("the event method would take about 1.7e+13 steps to TSTOP 1000 s (1048576 steps to here, "
+                         "now 5.82e-11 s each"),
+              std::string::npos)
+        << r.err;
+  }
+  Result r = run_lcspice("run '" + deck.string() + "' --method euler -o '" + (dir / "out.csv").string() + "'", dir);
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_EQ(r.err_line(0), deck.string() +
+                               ":5:1: error: TSTEP 1 s cannot resolve source v1's period 1e-09 s: euler would need "
+                               "steps of 2e-11 s, more than 10000000 steps; shorten the .tran or give --step");
+}
+
 // validate steps its fixed-step methods under the same guard as run: its output step is TSTEP/10
 // (10 a source period here), so implicit Euler takes 5 steps per row, and says so. ngspice, its
 // witness, is held to 50 points a period too: at 10 (TMAX = the output step) its sharp diode lost

@@ -36,6 +36,11 @@ struct EventOptions {
   // 1.3e-13 s, which ran without end).
   int max_events_in_a_storm = 10000;
   double storm_spacing = 1e-7;
+  // A run whose steps, projected from those taken so far to TSTOP, pass this is stopped (exit 3)
+  // instead of running for hours: a step is at most 0.5 / omega of the fastest oscillation of
+  // the mode and its sources, so a 1 GHz sine over 1000 s is 1.3e13 steps. Checked every 2^20
+  // steps.
+  double max_projected_steps = 1e9;
   // Bytes of exponentials exp(M h0 / 2^j) kept (exponential_cache.h); the least recently used
   // are recomputed past it.
   std::size_t exponential_cache_bytes = std::size_t(256) << 20;
