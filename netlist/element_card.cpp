@@ -2,6 +2,7 @@
 
 #include "netlist/instance_parasitics.h"
 #include "netlist/parallel_copies.h"
+#include "netlist/part_attributes.h"
 #include "netlist/source_card.h"
 
 #include <cmath>
@@ -47,7 +48,12 @@ struct Reader {
   // for L and C, `IC=value` and LTspice's parasitics (into *parasitics). Returns m (1 when not given).
   double trailing(std::size_t i, Element& e, bool ic_allowed, InstanceParasitics* parasitics = nullptr) const {
     double m = 1.0;
+    std::vector<std::string> attributes;  // LTspice's part data, skipped
     while (i < card.size()) {
+      if (const std::size_t next = skip_part_attribute(card, i, e.kind, attributes); next != i) {
+        i = next;
+        continue;
+      }
       if (parasitics) {
         const std::size_t next = read_parasitic(card, i, e.kind, *scope.params, name, *parasitics);
         if (next != i) {
@@ -95,6 +101,7 @@ struct Reader {
       }
       extra(i);
     }
+    if (!attributes.empty()) warnings_->push_back(warning_line(card.at(0), part_attributes_warning(name, attributes)));
     return m;
   }
 

@@ -145,10 +145,12 @@ Waveform parse_source_waveform(const Card& card, std::size_t first, const ParamS
     }
     if (t.is_word("dc")) {
       if (have_dc) throw NetlistError(card.at(t), "second DC value for " + quote(name));
-      if (i + 1 >= n) throw NetlistError(card.after_last(), "missing value after " + quote(t.text));
-      w.dc = value_of(card, i + 1, scope);
+      // `DC 5` or `DC=5` (ngspice reads both).
+      const std::size_t at = i + 1 < n && card[i + 1].is(Token::Kind::Equals) ? i + 2 : i + 1;
+      if (at >= n) throw NetlistError(card.after_last(), "missing value after " + quote(t.text));
+      w.dc = value_of(card, at, scope);
       have_dc = true;
-      i += 2;
+      i = at + 1;
       continue;
     }
     if (t.is_word("m") && i + 1 < n && card[i + 1].is(Token::Kind::Equals)) {

@@ -120,6 +120,51 @@ TEST(ParseSources, DefaultsComeFromTran) {
   EXPECT_EQ(element(n, "v2").waveform.params, (std::vector<double>{0, 1, 100, 0, 0, 0}));
 }
 
+// ngspice reads `DC=5` as `DC 5` (a one-shot's supply written that way was refused).
+TEST(ParseSources, DcWithAnEqualsSign) {
+  Netlist n = parse("t\nV1 a 0 DC=5\nI1 b 0 dc = 2m SIN(0 1 1k)\nR1 a b 1\n.tran 1u 1m\n");
+  EXPECT_EQ(element(n, "v1").waveform.kind, Waveform::Kind::Dc);
+  EXPECT_EQ(element(n, "v1").waveform.dc, 5);
+  EXPECT_EQ(element(n, "i1").waveform.kind, Waveform::Kind::Sin);
+  EXPECT_EQ(element(n, "i1").waveform.dc, 2e-3);
+  EXPECT_TRUE(n.warnings.empty());
+  try {
+    parse("t\nV1 a 0 DC=\n");
+    ADD_FAILURE() << "DC= with no value accepted";
+  } catch (const NetlistError& e) {
+    EXPECT_EQ(e.formatted().rfind("t.cir:2:11: error: missing value after 'DC'", 0), 0u) << e.formatted();
+  }
+}
+
+// LTspice writes its part database's ratings and part numbers into the cards it exports; they
+// change nothing in its simulation. Skipped with one warning per card; what is not one stays an
+// error (a resistor has no Ipk).
+TEST(ParseElements, LtspicePartAttributesAreSkippedWithAWarning) {
+  Netlist n = parse(
+      "t\n"
+      "L1 in out 10u Ipk=2 Rser=0.05 mfg=\"Coilcraft\" pn=\"MSS1260-103\" type=\"ferrite\"\n"
+      "C1 out 0 100u V=50 Irms=2 Rser=0.01\n"
+      "R1 out 0 10 tol=1 pwr=0.25\n"
+      "V1 in 0 5\n");
+  EXPECT_EQ(element(n, "l1").value, 10e-6);
+  EXPECT_EQ(element(n, "l1#rser").value, 0.05);
+  EXPECT_EQ(element(n, "c1").value, 100e-6);
+  EXPECT_EQ(element(n, "r1").value, 10);
+  ASSERT_EQ(n.warnings.size(), 3u);
+  EXPECT_EQ(n.warnings[0], "t.cir:2:1: warning: 'l1': LTspice part attributes Ipk, mfg, pn, type ignored (ratings and "
+                           "part data: they do not change the simulation)");
+  EXPECT_EQ(n.warnings[1], "t.cir:3:1: warning: 'c1': LTspice part attributes V, Irms ignored (ratings and part data: "
+                           "they do not change the simulation)");
+  EXPECT_EQ(n.warnings[2], "t.cir:4:1: warning: 'r1': LTspice part attributes tol, pwr ignored (ratings and part "
+                           "data: they do not change the simulation)");
+  try {
+    parse("t\nR1 a 0 1k Ipk=2\n");
+    ADD_FAILURE() << "Ipk on a resistor accepted";
+  } catch (const NetlistError& e) {
+    EXPECT_EQ(e.formatted().rfind("t.cir:2:11: error: unknown parameter 'Ipk' for 'r1'", 0), 0u) << e.formatted();
+  }
+}
+
 TEST(ParseSources, NoValueIsDcZeroWithAWarning) {
   Netlist n = parse("t\nVsense a b\nR1 a b 1\n");
   EXPECT_EQ(element(n, "vsense").waveform.kind, Waveform::Kind::Dc);
