@@ -44,6 +44,13 @@ const Function kFunctions[] = {
     {"ceil", 1, 1, [](const std::vector<double>& a) { return std::ceil(a[0]); }},
     {"pow", 2, 2, [](const std::vector<double>& a) { return std::pow(a[0], a[1]); }},
     {"if", 3, 3, [](const std::vector<double>& a) { return a[0] != 0 ? a[1] : a[2]; }},
+    {"ternary_fcn", 3, 3, [](const std::vector<double>& a) { return a[0] != 0 ? a[1] : a[2]; }},
+    // ngspice's pwr(x, y) = |x|^y (libngspice 39: pwr(-8, 2) = 64, pwr(-8, 1/3) = 2), int (toward
+    // zero), nint (to the nearest, ties to even: nint(2.5) = 2, nint(3.5) = 4), sgn.
+    {"pwr", 2, 2, [](const std::vector<double>& a) { return std::pow(std::fabs(a[0]), a[1]); }},
+    {"int", 1, 1, [](const std::vector<double>& a) { return std::trunc(a[0]); }},
+    {"nint", 1, 1, [](const std::vector<double>& a) { return std::nearbyint(a[0]); }},
+    {"sgn", 1, 1, [](const std::vector<double>& a) { return static_cast<double>((a[0] > 0) - (a[0] < 0)); }},
     {"min", 1, 0,
      [](const std::vector<double>& a) {
        double m = a[0];
@@ -125,9 +132,22 @@ class Evaluator {
     ~Depth() { --e.depth_; }
   };
 
-  // ngspice's logical and comparison operators (lowest precedence first), 1 for true, 0 for false:
-  // `.if (mode == 2)`, `{ IF((a < 1) & (b > 0), x, y) }`.
+  // ngspice's conditional `c ? a : b` (lowest precedence, right-associative; both branches are
+  // evaluated, as if(c, a, b) is), then its logical and comparison operators, 1 for true, 0 for
+  // false: `.if (mode == 2)`, `{ IF((a < 1) & (b > 0), x, y) }`.
   double expr() {
+    const double c = disjunction();
+    if (!at('?')) return c;
+    Depth d(*this, i_);
+    ++i_;
+    const double a = expr();
+    if (!at(':')) unexpected();
+    ++i_;
+    const double b = expr();
+    return c != 0 ? a : b;
+  }
+
+  double disjunction() {
     double v = conjunction();
     while (at_operator("||") || at_single('|')) {
       i_ += at_operator("||") ? 2 : 1;

@@ -72,6 +72,28 @@ TEST(ParseExpression, ComparisonsLogicAndIf) {
   expect_error("a <", 3, 1, "unexpected end of expression");
 }
 
+// ngspice's conditional operator and the functions its decks use beside if(): values checked
+// against libngspice 39 (`.param` then `print`).
+TEST(ParseExpression, ConditionalOperatorAndNgspiceFunctions) {
+  EXPECT_EQ(eval("a > b ? 1k : 2k"), 1000);
+  EXPECT_EQ(eval("a < b ? 1k : 2k"), 2000);
+  EXPECT_EQ(eval("zero ? 1 : b ? 2 : 3"), 2);  // right-associative
+  EXPECT_EQ(eval("(zero ? 1 : 5) * 2"), 10);
+  EXPECT_EQ(eval("1 + 1 == 2 ? a : b"), 3);   // lowest precedence
+  EXPECT_EQ(eval("ternary_fcn(a > 2, 10, 20)"), 10);
+  EXPECT_EQ(eval("pwr(-8, 2)"), 64);
+  EXPECT_NEAR(eval("pwr(-8, 1/3)"), 2, 1e-15);
+  EXPECT_EQ(eval("int(-2.7)"), -2);
+  EXPECT_EQ(eval("int(2.7)"), 2);
+  EXPECT_EQ(eval("nint(2.5)"), 2);
+  EXPECT_EQ(eval("nint(3.5)"), 4);
+  EXPECT_EQ(eval("nint(-2.6)"), -3);
+  EXPECT_EQ(eval("sgn(-0.1)"), -1);
+  EXPECT_EQ(eval("sgn(zero)"), 0);
+  expect_error("a ? 1", 5, 1, "unexpected end of expression");
+  expect_error("a ? 1 , 2", 6, 1, "unexpected ',' in expression");
+}
+
 TEST(ParseExpression, NumbersWithSuffixes) {
   EXPECT_EQ(eval("1k*2"), 2000);
   EXPECT_DOUBLE_EQ(eval("2.2u*1meg"), 2.2);
