@@ -103,6 +103,11 @@ TranslatedDeck translate_to_ngspice(const Netlist& netlist, const std::vector<st
     for (const NodeIc& n : netlist.node_ics) ic += " v(" + n.node + ")=" + num(n.value);
     deck.lines.push_back(ic);
   }
+  if (!options.nodesets.empty()) {
+    std::string set = ".nodeset";
+    for (const auto& [node, value] : options.nodesets) set += " v(" + node + ")=" + num(value);
+    deck.lines.push_back(set);
+  }
   double tmax = tran.tmax > 0 && tran.tmax < tran.tstep ? tran.tmax : tran.tstep;
   if (options.max_step > 0) tmax = options.max_step;  // asked for explicitly: it wins
   const double tstop = options.tstop > 0 ? options.tstop : tran.tstop;

@@ -55,6 +55,9 @@ struct TranslationOptions {
   std::map<std::string, double> initial_conditions;
   // ... and these lines from their port voltages and currents (v1, i1, v2, i2; by element name).
   std::map<std::string, std::array<double, 4>> line_initial_conditions;
+  // When set, `.nodeset` of these node voltages (by node name): ngspice seeks its own operating
+  // point from lcspice's, for circuits with several (no UIC: its start is then its own).
+  std::map<std::string, double> nodesets;
 };
 
 struct TranslatedDeck {
