@@ -12,6 +12,7 @@
 #include "solver/lcp/lcp.h"
 #include "solver/devices/switch.h"
 #include "solver/model/line_dc_loops.h"
+#include "solver/integrators/diode_refit.h"
 #include "solver/model/operating_point.h"
 
 namespace lcs {
@@ -78,6 +79,26 @@ int op_command(const OpArgs& args) {
     if (netlist.tran && netlist.tran->uic) check_line_dc_loops(netlist);  // build_model did not
   } catch (const TopologyError& e) {
     throw CliError(kExitNetlist, e.formatted(netlist));
+  }
+  // Cards without VON/RON: their lines fitted to the currents this operating point carries, as
+  // run fits them (diode_refit.h) from a transient of one tiny implicit Euler step, which stays
+  // at the operating point. Else op printed the 1 mA - 100 mA chord's answer where run starts
+  // elsewhere: a diode at 9.5 uA at 0.654 V against run's (and the Shockley curve's) 0.535 V.
+  if (!args.all) {
+    TransientOptions at_rest;
+    at_rest.method = fixed_step_default_method().name;
+    at_rest.step = 1e-15;
+    at_rest.tstop = 1e-15;
+    try {
+      const DiodeRefitResult refit = refit_diodes(netlist, ModelOptions{}, at_rest);
+      if (refit.passes > 0 && refit.failure.empty()) model = build_model(netlist, 0.0, 0.0, refit.ranges);
+      if (!refit.failure.empty())
+        warn("fitting the diodes' lines to the operating point's currents failed (" + refit.failure +
+             "): the lines between 1 mA and 100 mA are used");
+    } catch (const NumericalFailure&) {
+      // The operating point itself fails below, with its own message.
+    }
+    if (const std::string poor = poor_fit_message(model); !poor.empty()) warn(poor);
   }
   std::vector<OperatingPoint> points;
   try {

@@ -82,6 +82,29 @@ TEST(DiodeFit, MicroampereRectifierAgreesWithShockley) {
   EXPECT_GT(max_of(column(ideal, "v(out)")), 0.47);  // the ifit chord: 0.346
 }
 
+// op fits the lines to the currents its operating point carries, as run does: a diode biased at
+// 9.5 uA (5 V through 470 kohm, IS = 1e-14 A, N = 1) sits where its Shockley curve crosses the
+// load line, v = Vt ln(1 + (5 - v)/(470k IS)) = 0.53468 V (Vt = 25.8649 mV, ngspice 39's at
+// 27 C), within 0.1 mV; op printed the 1 mA - 100 mA chord's 0.6539 V, where run's first row was
+// already 0.53468 V.
+TEST(DiodeFit, OpFitsTheLinesToItsOwnCurrentsAsRunDoes) {
+  const fs::path dir = scratch_dir("diode_fit_op");
+  const fs::path deck = write_deck(dir, "bias.cir",
+                                   "microamp bias\nV1 in 0 5\nR1 in a 470k\nD1 a 0 DS\n"
+                                   ".model DS D(IS=1e-14 N=1)\n.tran 1u 10u\n.end\n");
+  const double vt = 0.0258649170, is = 1e-14;
+  double v = 0.5;
+  for (int k = 0; k < 50; ++k) v = vt * std::log1p((5 - v) / 470e3 / is);
+  const Result op = run_lcspice("op '" + deck.string() + "'", dir);
+  ASSERT_EQ(op.code, 0) << op.err;
+  const size_t at = op.out.find("  v(a)             = ");
+  ASSERT_NE(at, std::string::npos) << op.out;
+  const double printed = std::stod(op.out.substr(at + 21, 22));
+  EXPECT_NEAR(printed, v, 1e-4) << op.out;
+  const Csv run = run_csv(deck, "", "--probe 'v(a)'");
+  EXPECT_NEAR(column(run, "v(a)").front(), printed, 1e-9);
+}
+
 // The fit report: analyze runs the deck's transient and prints the fitted line, its range and its
 // worst error, in mV and as a fraction of the diode's voltage at the low end of the range.
 TEST(DiodeFit, AnalyzePrintsTheFitRangeAndError) {
