@@ -191,6 +191,34 @@ TEST(DiodeAuto, LoweredRangesMoveOnlyTheLowEndOfRangesCarried) {
   EXPECT_TRUE(low.at("d1").reverse.empty());
   EXPECT_DOUBLE_EQ(low.at("q1:be").reverse.lo, 1e-8);
   EXPECT_TRUE(low.at("d2").forward.empty());
+  // Conducting throughout (always_on): only down to the least current carried.
+  fitted["z1"].reverse = {20e-3, 45e-3, true, 16e-3};
+  EXPECT_DOUBLE_EQ(lowered_ranges(fitted, 2).at("z1").reverse.lo, 16e-3);
+}
+
+// A Zener shunt regulator (breakdown 16-45 mA throughout, a 10 -> 40 mA load step): its line
+// never passes through a turn-on, and its output (6.51 / 6.33 V, a 0.18 V range) is within 3 mV
+// of the Shockley diode's. With the breakdown line lowered two decades (0.16-45 mA) v(out) moved
+// 27 % of its range and the plain run warned that the answer depended on the curve below the
+// currents carried; it is lowered only to the least current carried now, and no warning comes.
+TEST(DiodeAuto, AZenerConductingThroughoutIsNotJudgedByATurnOnItNeverMakes) {
+  const fs::path deck = write_deck("diode_auto_", "zener",
+                                   "Zener shunt regulator with a load step\nVin in 0 DC 12\nRs in out 100\n"
+                                   "DZ1 0 out ZEN62\n.model ZEN62 D(IS=1n N=1.5 RS=5 BV=6.2 IBV=5m)\n"
+                                   "Cout out 0 1u\n"
+                                   "Iload out 0 PWL(0 10m 1m 10m 1.001m 40m 2m 40m 2.001m 10m 3m 10m)\n"
+                                   ".tran 5u 3m\n.print tran v(out)\n.end\n");
+  const fs::path dir = deck.parent_path();
+  const Result r = run_lcspice("run '" + deck.string() + "' --stats -o '" + (dir / "out.csv").string() + "'", dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(r.err.find("depends on the junctions' curves"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("fit sensitivity: no probe moves (bound 2 %)"), std::string::npos) << r.err;
+  const Csv ideal = parse_csv(read_file(dir / "out.csv"));
+  const Csv smooth = run_csv(deck, "smooth", "--diode shockley");
+  const auto ti = column(ideal, "time"), vi = column(ideal, "v(out)");
+  const auto ts = column(smooth, "time"), vs = column(smooth, "v(out)");
+  for (double t : {0.9e-3, 1.9e-3, 2.9e-3}) EXPECT_NEAR(vi[row_at(ti, t)], vs[row_at(ts, t)], 3e-3) << t;
+  EXPECT_NEAR(vs[row_at(ts, 1.9e-3)], 6.330, 0.002);
 }
 
 }  // namespace

@@ -32,6 +32,10 @@ JunctionCurve breakdown_curve(double bv, double ibv, double n, double rs);
 // hi == 0: none carried (the default range stays).
 struct CurrentRange {
   double lo = 0, hi = 0;
+  // Set by the refit (diode_refit.h): the junction conducted at every sample of the run, never
+  // below `least`, so it never passed through the currents of a turn-on (fit_sensitivity.h).
+  bool always_on = false;
+  double least = 0;
   bool empty() const { return !(hi > 0); }
 };
 struct DiodeCurrentRanges {

@@ -15,12 +15,18 @@ CurrentRange conducting_range(std::vector<double> samples, double low_quantile) 
   double peak = 0;
   for (double i : samples) peak = std::max(peak, i);
   const double floor = std::max(1e-6 * peak, 1e-13);
+  const size_t all = samples.size();
   samples.erase(std::remove_if(samples.begin(), samples.end(), [&](double i) { return !(i > floor); }),
                 samples.end());
   if (samples.empty()) return {};
+  CurrentRange range;
+  range.always_on = samples.size() == all;
+  range.least = *std::min_element(samples.begin(), samples.end());
   const size_t k = static_cast<size_t>(low_quantile * static_cast<double>(samples.size() - 1));
   std::nth_element(samples.begin(), samples.begin() + k, samples.end());
-  return {samples[k], peak};
+  range.lo = samples[k];
+  range.hi = peak;
+  return range;
 }
 
 namespace {

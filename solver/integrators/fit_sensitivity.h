@@ -12,7 +12,8 @@
 // curve's slow tail, not through RON.
 //
 // So the circuit is asked: every fitted line is refitted over its range extended `decades`
-// lower (the currents of the turn-on: two decades are 4.6 N Vt, 120 mV of the curve at N = 1),
+// lower (the currents of the turn-on: two decades are 4.6 N Vt, 120 mV of the curve at N = 1;
+// a junction that conducted throughout is extended only to the least current it carried),
 // the ideal circuit is run with those lines and with the nominal ones, and each probe's largest
 // difference between the two runs (within one output interval in time) is measured against the
 // probe's range. Both lines are fits of the same curve to currents the junction does pass
