@@ -1,6 +1,7 @@
 #include "netlist/lexer.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cstdio>
 
 namespace lcs::parse {
@@ -13,12 +14,23 @@ bool ends_word(char c) {
   return is_space(c) || c == ',' || c == '(' || c == ')' || c == '=' || c == '{' || c == '}';
 }
 
+// Whether the word at `i` (a '$') has the form of PSpice's generated names, `$N_0001`,
+// `$G_DPWR`, `$D_HI`: letters, then '_'.
+bool pspice_generated_name(const std::string& line, std::size_t i) {
+  std::size_t j = i + 1;
+  while (j < line.size() && std::isalpha(static_cast<unsigned char>(line[j]))) ++j;
+  return j > i + 1 && j < line.size() && line[j] == '_';
+}
+
 // Index where the inline comment of a physical line starts (`;` anywhere, `$` followed by a blank
-// or the end of the line), or the line's length.
+// or the end of the line, or, as ngspice reads it, a word after a blank that starts with `$`:
+// `R1 a b 1k $load`; not PSpice's generated node names, `$N_0001`), or the line's length.
 std::size_t comment_start(const std::string& line) {
   for (std::size_t i = 0; i < line.size(); ++i) {
     if (line[i] == ';') return i;
-    if (line[i] == '$' && (i + 1 == line.size() || is_space(line[i + 1]))) return i;
+    if (line[i] != '$') continue;
+    if (i + 1 == line.size() || is_space(line[i + 1])) return i;
+    if (i > 0 && is_space(line[i - 1]) && !pspice_generated_name(line, i)) return i;
   }
   return line.size();
 }

@@ -85,8 +85,12 @@ TEST(ParseLexer, CommentsAndBlankLines) {
       "R1 a 0 1k ; inline comment R2\n"
       "R2 a 0 2k $ dollar comment\n"
       "R3 n$1 0 3k\n"  // `$` not followed by a blank is part of a name
-      "R4 a 0 4k;no space needed for semicolons\n");
-  ASSERT_EQ(n.elements.size(), 4u);
+      "R4 a 0 4k;no space needed for semicolons\n"
+      "R5 a 0 5k $comment: ngspice reads a word after a blank that starts with $ as one\n"
+      "R6 $N_0001 $G_DPWR 6k $ PSpice's generated node names are not comments\n");
+  ASSERT_EQ(n.elements.size(), 6u);
+  EXPECT_EQ(element(n, "r5").value, 5e3);
+  EXPECT_EQ(element(n, "r6").nodes, (std::vector<std::string>{"$n_0001", "$g_dpwr"}));
   EXPECT_EQ(element(n, "r1").value, 1e3);
   EXPECT_EQ(element(n, "r2").value, 2e3);
   EXPECT_EQ(element(n, "r3").nodes[0], "n$1");
