@@ -25,10 +25,11 @@ std::string seconds(double t) {
 }
 
 void consider(std::optional<SourceFeature>& finest, const Element& e, const std::string& what,
-              double length, double steps) {
+              double length, double steps, double oscillates_for = 0) {
   if (!(length > 0) || !std::isfinite(length)) return;
   const double max_step = length / steps;
-  if (!finest || max_step < finest->max_step) finest = SourceFeature{e.name, what + " " + seconds(length), max_step};
+  if (!finest || max_step < finest->max_step)
+    finest = SourceFeature{e.name, what + " " + seconds(length), max_step, oscillates_for};
 }
 
 void features_of(const Element& e, std::optional<SourceFeature>& finest) {
@@ -39,7 +40,9 @@ void features_of(const Element& e, std::optional<SourceFeature>& finest) {
     case Waveform::Kind::Dc:
       return;
     case Waveform::Kind::Sin:  // SIN(VO VA FREQ TD THETA PHASE)
-      if (p.size() >= 3 && p[1] != 0 && p[2] > 0) consider(finest, e, "period", 1.0 / p[2], kStepsPerPeriod);
+      if (p.size() >= 3 && p[1] != 0 && p[2] > 0)
+        consider(finest, e, "period", 1.0 / p[2], kStepsPerPeriod,
+                 w.sine_end());
       return;
     case Waveform::Kind::Pulse:  // PULSE(V1 V2 TD TR TF PW PER)
       if (p.size() < 7 || p[0] == p[1]) return;
@@ -55,11 +58,12 @@ void features_of(const Element& e, std::optional<SourceFeature>& finest) {
       return;
     case Waveform::Kind::Sffm:  // SFFM(VO VA FC MDI FS ...): the highest instantaneous frequency
       if (p.size() >= 5 && p[1] != 0 && p[2] > 0)
-        consider(finest, e, "shortest period", 1.0 / (p[2] + std::abs(p[3]) * std::abs(p[4])), kStepsPerPeriod);
+        consider(finest, e, "shortest period", 1.0 / (p[2] + std::abs(p[3]) * std::abs(p[4])), kStepsPerPeriod,
+                 INFINITY);
       return;
     case Waveform::Kind::Am:  // AM(VO VMO VMA FM FC ...): the upper sideband FC + FM
       if (p.size() >= 5 && (p[1] != 0 || p[2] != 0) && p[4] > 0)
-        consider(finest, e, "carrier period", 1.0 / (p[4] + std::abs(p[3])), kStepsPerPeriod);
+        consider(finest, e, "carrier period", 1.0 / (p[4] + std::abs(p[3])), kStepsPerPeriod, INFINITY);
       return;
     case Waveform::Kind::Pwl:  // PWL(t1 v1 t2 v2 ...): a segment along which the value changes
       for (std::size_t k = 2; k + 1 < p.size(); k += 2)
@@ -110,9 +114,11 @@ void guard_source_sampling(const Netlist& netlist, bool step_given, const std::s
   }
   const int k = substeps_for(finest, options);
   if (k == 0) {
-    // The event method's steps are bounded by a sine too (0.5/omega: 4 pi per period, against
-    // the 50 here), and past its own limit of 1e9 (event_driven.h) it is no remedy.
-    const bool event_would_do = options.tstop / finest->max_step * (4 * M_PI / kStepsPerPeriod) <= 1e9;
+    // The event method takes edges and PWL corners exactly, but its steps are bounded by an
+    // oscillating source too (0.5/omega: 4 pi a period, against the 50 here), and past its own
+    // limit of 1e10 steps (event_driven.h) it is no remedy.
+    const double oscillating = std::min(finest->oscillates_for, options.tstop);
+    const bool event_would_do = oscillating / finest->max_step * (4 * M_PI / kStepsPerPeriod) <= 1e10;
     const std::string remedy = event_would_do ? "use --method event (exact between events) or give --step"
                                               : "shorten the .tran or give --step";
     const std::string message = step_name + " " + seconds(options.step) + " cannot resolve " + source + ": " +

@@ -17,6 +17,9 @@ struct SourceFeature {
   std::string element;   // "v1"
   std::string what;      // "period 1 ms" / "pulse width 2 us" / "PWL segment 1 us"
   double max_step = 0;   // a step above this misrepresents the source
+  // How long it oscillates (a sine, its NCYCLES, SFFM, AM): the event method's steps are bounded
+  // there too, by 0.5/omega (4 pi a period); 0: the event method takes it exactly (edges, PWL).
+  double oscillates_for = 0;
 };
 
 // Rules (the fractions are choices, stated here and in README): a periodic source (SIN, PULSE

@@ -220,7 +220,10 @@ struct EventDriven::Impl {
   std::vector<int> guards_below(const Eigen::VectorXd& Xv) const;
   Eigen::VectorXd right;  // bisection: the violated end
   bool advance_to(const DyadicTime& target, const Progress& progress);
-  void check_projected_steps(int level) const;
+  void check_projected_steps(int level);
+  long next_projection_check = 1L << 20;
+  long steps_at_last_check = 0;
+  double t_at_last_check = 0;
   Eigen::VectorXd state() const { return X.head(n); }
   Eigen::VectorXd inputs() const { return sources->P(cur->signature) * X.tail(X.size() - n); }
 };
@@ -893,17 +896,22 @@ void EventDriven::Impl::bisect(int j) {
   event_width = std::ldexp(h0, -j);
 }
 
-void EventDriven::Impl::check_projected_steps(int level) const {
+void EventDriven::Impl::check_projected_steps(int level) {
   const double t = pos.seconds(h0);
-  if (!(t > 0) || !(prepared_tstop > t)) return;
-  const double projected = static_cast<double>(stats.steps) * prepared_tstop / t;
+  const long window = stats.steps - steps_at_last_check;
+  const double elapsed = t - t_at_last_check;
+  next_projection_check = stats.steps + (1L << 20);
+  steps_at_last_check = stats.steps;
+  t_at_last_check = t;
+  if (!(elapsed > 0) || !(prepared_tstop > t)) return;
+  const double projected = static_cast<double>(window) * (prepared_tstop - t) / elapsed;
   if (projected <= options.max_projected_steps) return;
   char buf[400];
   std::snprintf(buf, sizeof buf,
-                "the event method would take about %.2g steps to TSTOP %g s (%ld steps to here, now %.3g s "
-                "each: a step is at most 0.5/omega of the fastest oscillation of the circuit and its "
-                "sources); shorten the .tran or use a fixed step (--method euler --step H)",
-                projected, prepared_tstop, static_cast<long>(stats.steps), std::ldexp(h0, -level));
+                "the event method would take about %.2g more steps to TSTOP %g s at the pace of its last "
+                "%ld (now %.3g s each: a step is at most 0.5/omega of the fastest oscillation of the "
+                "circuit and its sources); shorten the .tran or use a fixed step (--method euler --step H)",
+                projected, prepared_tstop, window, std::ldexp(h0, -level));
   throw NumericalFailure(t, buf);
 }
 
@@ -913,7 +921,7 @@ bool EventDriven::Impl::advance_to(const DyadicTime& target, const Progress& pro
     while (j < kMaxLevel && (!pos.aligned(j) || target < pos.plus(j))) ++j;
     if (!step(j)) return false;
     if (progress && (stats.steps & 4095) == 0) progress(pos.seconds(h0));
-    if ((stats.steps & ((1L << 20) - 1)) == 0) check_projected_steps(j);
+    if (stats.steps >= next_projection_check) check_projected_steps(j);
   }
   return true;
 }
