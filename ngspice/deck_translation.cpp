@@ -108,6 +108,11 @@ TranslatedDeck translate_to_ngspice(const Netlist& netlist, const std::vector<st
     for (const auto& [node, value] : options.nodesets) set += " v(" + node + ")=" + num(value);
     deck.lines.push_back(set);
   }
+  if (!options.node_holds.empty()) {
+    std::string hold = ".ic";
+    for (const auto& [node, value] : options.node_holds) hold += " v(" + node + ")=" + num(value);
+    deck.lines.push_back(hold);
+  }
   double tmax = tran.tmax > 0 && tran.tmax < tran.tstep ? tran.tmax : tran.tstep;
   if (options.max_step > 0) tmax = options.max_step;  // asked for explicitly: it wins
   const double tstop = options.tstop > 0 ? options.tstop : tran.tstop;

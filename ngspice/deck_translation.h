@@ -58,6 +58,9 @@ struct TranslationOptions {
   // When set, `.nodeset` of these node voltages (by node name): ngspice seeks its own operating
   // point from lcspice's, for circuits with several (no UIC: its start is then its own).
   std::map<std::string, double> nodesets;
+  // When set, `.ic` of these node voltages (no UIC): ngspice's operating point held there, its
+  // t = 0 row that point, released after (where `.nodeset` let it settle elsewhere).
+  std::map<std::string, double> node_holds;
 };
 
 struct TranslatedDeck {
