@@ -132,19 +132,33 @@ class Evaluator {
     ~Depth() { --e.depth_; }
   };
 
-  // ngspice's conditional `c ? a : b` (lowest precedence, right-associative; both branches are
-  // evaluated, as if(c, a, b) is), then its logical and comparison operators, 1 for true, 0 for
-  // false: `.if (mode == 2)`, `{ IF((a < 1) & (b > 0), x, y) }`.
+  // ngspice's conditional `c ? a : b` (lowest precedence, right-associative), then its logical
+  // and comparison operators, 1 for true, 0 for false: `.if (mode == 2)`,
+  // `{ IF((a < 1) & (b > 0), x, y) }`. The branch not taken is read but its division by zero is
+  // not an error (`a > 1 ? 1k : 1/(a - 2)` at a = 2, as libngspice 39 takes it; its sqrt(-1) is
+  // an error there too, and here).
   double expr() {
     const double c = disjunction();
     if (!at('?')) return c;
     Depth d(*this, i_);
     ++i_;
-    const double a = expr();
+    const double a = branch(c != 0);
     if (!at(':')) unexpected();
     ++i_;
-    const double b = expr();
+    const double b = branch(c == 0);
     return c != 0 ? a : b;
+  }
+
+  double branch(bool taken) {
+    if (!taken) ++untaken_;
+    struct Restore {
+      int& n;
+      bool on;
+      ~Restore() {
+        if (on) --n;
+      }
+    } restore{untaken_, !taken};
+    return expr();
   }
 
   double disjunction() {
@@ -212,8 +226,8 @@ class Evaluator {
       char c = s_[i_++];
       double r = unary();
       if (c == '/') {
-        if (r == 0.0) fail(op, 1, "division by zero");
-        v = check(v / r, op, 1, "/");
+        if (r == 0.0 && untaken_ == 0) fail(op, 1, "division by zero");
+        v = r == 0.0 ? 0.0 : check(v / r, op, 1, "/");  // 0: in a branch not taken (see expr())
       } else {
         v = check(v * r, op, 1, "*");
       }
@@ -316,6 +330,7 @@ class Evaluator {
     const UserFunction* user = f || !functions_ ? nullptr : functions_(name);
     if (user) return call_user(*user, written, start);
     if (!f) fail(start, written.size(), "unknown function " + quote(written));
+    if ((name == "if" || name == "ternary_fcn") && at('(')) return conditional_call(written, start);
     const std::vector<double> args = arguments();
     bool bad = args.size() < f->min_args || (f->max_args && args.size() > f->max_args);
     if (bad) {
@@ -326,6 +341,29 @@ class Evaluator {
     double v = f->apply(args);
     if (!std::isfinite(v)) fail(start, written.size(), "invalid argument to " + quote(written));
     return v;
+  }
+
+  // if(c, a, b) and ternary_fcn(c, a, b), with the branch not taken read as in expr().
+  double conditional_call(const std::string& written, std::size_t start) {
+    Depth d(*this, i_);
+    const std::size_t open = i_++;  // at '('
+    std::vector<double> args;
+    double c = 0;
+    while (true) {
+      const std::size_t k = args.size();
+      args.push_back(k == 0 ? expr() : branch(k == 1 ? c != 0 : k == 2 ? c == 0 : true));
+      if (k == 0) c = args[0];
+      if (at(',')) {
+        ++i_;
+        continue;
+      }
+      if (at(')')) break;
+      if (i_ >= s_.size()) fail(open, 1, "missing ')'");
+      unexpected();
+    }
+    ++i_;
+    if (args.size() != 3) fail(start, written.size(), quote(written) + " takes 3 arguments");
+    return c != 0 ? args[1] : args[2];
   }
 
   // The body with the parameters bound to the arguments; other names are the caller's.
@@ -359,6 +397,7 @@ class Evaluator {
   const Lookup& lookup_;
   const FunctionLookup& functions_;
   int depth_ = 0;
+  int untaken_ = 0;  // inside a conditional's branch not taken
   std::size_t i_ = 0;
 };
 

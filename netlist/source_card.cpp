@@ -185,6 +185,7 @@ Waveform parse_source_waveform(const Card& card, std::size_t first, const ParamS
     if (t.is_word("ac")) {
       warnings.push_back(warning_line(card.at(t), "AC specification of " + quote(name) + " is ignored"));
       ++i;
+      if (i < n && card[i].is(Token::Kind::Equals)) ++i;  // `AC=1`, as `DC=5`
       for (int k = 0; k < 2 && i < n && (looks_numeric(card[i]) || card[i].is(Token::Kind::Comma)); ++i)
         if (!card[i].is(Token::Kind::Comma)) ++k;
       continue;

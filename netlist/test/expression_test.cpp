@@ -90,6 +90,14 @@ TEST(ParseExpression, ConditionalOperatorAndNgspiceFunctions) {
   EXPECT_EQ(eval("nint(-2.6)"), -3);
   EXPECT_EQ(eval("sgn(-0.1)"), -1);
   EXPECT_EQ(eval("sgn(zero)"), 0);
+  // The branch not taken is read, and its division by zero is no error (libngspice 39 takes
+  // both); the one taken still is.
+  EXPECT_EQ(eval("a > 1 ? 1k : 1/(a - 3)*2"), 1000);
+  EXPECT_EQ(eval("a < 1 ? 1/(a - 3) : 2k"), 2000);
+  EXPECT_EQ(eval("ternary_fcn(a > 1, 1k, 1/zero)"), 1000);
+  EXPECT_EQ(eval("if(zero, 1/zero, 5)"), 5);
+  expect_error("a > 1 ? 1/zero : 1", 9, 1, "division by zero");
+  expect_error("if(1, 1/zero, 5)", 7, 1, "division by zero");
   expect_error("a ? 1", 5, 1, "unexpected end of expression");
   expect_error("a ? 1 , 2", 6, 1, "unexpected ',' in expression");
 }
