@@ -7,6 +7,7 @@
 
 #include "cli/commands.h"
 #include "cli/exit_codes.h"
+#include "cli/deck_transient.h"
 #include "cli/load_circuit.h"
 #include "cli/source_sampling.h"
 #include "cli/uniqueness_report.h"
@@ -51,42 +52,6 @@ std::string fit_text(const PairInfo& p) {
                 p.fit_i1, p.fit_i2, p.circuit_fit ? "the currents it carries here" : ".options ifit",
                 1e3 * p.fit_error, 100 * p.fit_error_fraction);
   return buf;
-}
-
-// The transient `run` would make of the deck (its .tran and .options method), for the fit of its
-// diodes to the currents they carry; none without a .tran card.
-// The deck's transient as `run` integrates it, for the refit's passes: the method the deck names,
-// else the default (event where it applies), with run's steps (TMAX the fixed-step methods' step,
-// event's rows at TSTEP) and, for the default event, run's euler fallback for a pass it fails.
-std::optional<TransientOptions> deck_transient(const Netlist& netlist, const CircuitModel& model,
-                                               DiodeRefitOptions& refit_options) {
-  if (!netlist.tran) return std::nullopt;
-  TransientOptions o;
-  const TranSpec& tran = *netlist.tran;
-  o.tstop = tran.tstop;
-  o.tstart = tran.tstart;
-  o.uic = tran.uic;
-  bool named = false;
-  try {
-    const NetlistOptions read = read_netlist_options(netlist);
-    if (!read.method.empty() && find_method(read.method)) o.method = read.method, named = true;
-    if (read.theta) o.method_options.theta = *read.theta;
-  } catch (const NetlistError&) {
-  }
-  if (!named) o.method = default_method_for(model, nullptr).name;
-  const bool tmax_below = tran.tmax > 0 && tran.tmax < tran.tstep;
-  const bool fixed = find_method(o.method)->fixed_step();
-  o.step = tmax_below && fixed ? tran.tmax : tran.tstep;
-  if (tmax_below && !fixed) o.method_options.max_step = tran.tmax;
-  if (!o.IsValid(nullptr) || find_method(o.method)->smooth_model) return std::nullopt;
-  if (!named && o.method == exact_reference_method().name)
-    refit_options.fallback = fixed_step_fallback(netlist, o, tmax_below ? tran.tmax : o.step, false);
-  if (!fixed) return o;
-  // A fixed-step method at its guarded substeps, as `run` steps it (nullopt where run refuses it).
-  const std::optional<TransientOptions> guarded = fixed_step_fallback(netlist, o, o.step, false);
-  if (!guarded) return std::nullopt;
-  o.substeps = guarded->substeps;
-  return o;
 }
 
 // A loop of more than kLoopTermsShown branches is shown by its ends (the text report of a

@@ -5,6 +5,7 @@
 #include <iostream>
 
 #include "cli/commands.h"
+#include "cli/deck_transient.h"
 #include "cli/exit_codes.h"
 #include "cli/load_circuit.h"
 #include "solver/model/numerical_failure.h"
@@ -80,21 +81,33 @@ int op_command(const OpArgs& args) {
   } catch (const TopologyError& e) {
     throw CliError(kExitNetlist, e.formatted(netlist));
   }
-  // Cards without VON/RON: their lines fitted to the currents this operating point carries, as
-  // run fits them (diode_refit.h) from a transient of one tiny implicit Euler step, which stays
-  // at the operating point. Else op printed the 1 mA - 100 mA chord's answer where run starts
-  // elsewhere: a diode at 9.5 uA at 0.654 V against run's (and the Shockley curve's) 0.535 V.
+  // Cards without VON/RON: their lines fitted as run fits them (SPEC 2: run starts at op's
+  // point), over the deck's transient (deck_transient.h); without a .tran (or one run would
+  // refuse), over the currents of the operating point itself: the refit's passes over one
+  // 1e-15 s implicit Euler step, which stays there. Op used to print the 1 mA - 100 mA chord's
+  // answer: a diode at 9.5 uA at 0.654 V against run's (and the Shockley curve's) 0.535 V.
   if (!args.all) {
-    TransientOptions at_rest;
-    at_rest.method = fixed_step_default_method().name;
-    at_rest.step = 1e-15;
-    at_rest.tstop = 1e-15;
+    DiodeRefitOptions refit_options;
+    std::optional<TransientOptions> transient;
     try {
-      const DiodeRefitResult refit = refit_diodes(netlist, ModelOptions{}, at_rest);
-      if (refit.passes > 0 && refit.failure.empty()) model = build_model(netlist, 0.0, 0.0, refit.ranges);
+      transient = deck_transient(netlist, model, refit_options);
+    } catch (const std::exception&) {
+    }
+    if (!transient) {
+      transient.emplace();
+      transient->method = fixed_step_default_method().name;
+      transient->step = 1e-15;
+      transient->tstop = 1e-15;
+      refit_options = DiodeRefitOptions{};
+    }
+    ModelOptions mo;
+    mo.t1 = transient->tstop;
+    try {
+      const DiodeRefitResult refit = refit_diodes(netlist, mo, *transient, refit_options);
+      if (refit.passes > 0) model = build_model(netlist, 0.0, 0.0, refit.ranges);
       if (!refit.failure.empty())
-        warn("fitting the diodes' lines to the operating point's currents failed (" + refit.failure +
-             "): the lines between 1 mA and 100 mA are used");
+        warn("fitting the diodes' lines to the currents they carry stopped at pass " + std::to_string(refit.passes) +
+             " (" + refit.failure + "); the lines of the last pass that reached TSTOP are used");
     } catch (const NumericalFailure&) {
       // The operating point itself fails below, with its own message.
     }

@@ -82,7 +82,7 @@ TEST(DiodeFit, MicroampereRectifierAgreesWithShockley) {
   EXPECT_GT(max_of(column(ideal, "v(out)")), 0.47);  // the ifit chord: 0.346
 }
 
-// op fits the lines to the currents its operating point carries, as run does: a diode biased at
+// op fits the lines as run does: a diode biased at
 // 9.5 uA (5 V through 470 kohm, IS = 1e-14 A, N = 1) sits where its Shockley curve crosses the
 // load line, v = Vt ln(1 + (5 - v)/(470k IS)) = 0.53468 V (Vt = 25.8649 mV, ngspice 39's at
 // 27 C), within 0.1 mV; op printed the 1 mA - 100 mA chord's 0.6539 V, where run's first row was
@@ -103,6 +103,18 @@ TEST(DiodeFit, OpFitsTheLinesToItsOwnCurrentsAsRunDoes) {
   EXPECT_NEAR(printed, v, 1e-4) << op.out;
   const Csv run = run_csv(deck, "", "--probe 'v(a)'");
   EXPECT_NEAR(column(run, "v(a)").front(), printed, 1e-9);
+  // Where the transient moves the current (9 uA, then 1 mA from 1 ms), run fits each line over
+  // the whole run, and op over the same transient: its point is run's first row (it printed the
+  // line of its own 9 uA, 0.5342 V, where run starts at 0.5611 V).
+  const fs::path stepped = write_deck(dir, "stepped.cir",
+                                      "stepped bias\nV1 in 0 PWL(0 1 1m 1 1.001m 50)\nR1 in a 50k\nD1 a 0 dm\n"
+                                      ".model dm D(IS=1e-14 N=1)\n.tran 10u 3m\n.end\n");
+  const Result op2 = run_lcspice("op '" + stepped.string() + "'", dir);
+  ASSERT_EQ(op2.code, 0) << op2.err;
+  const size_t at2 = op2.out.find("  v(a)             = ");
+  ASSERT_NE(at2, std::string::npos) << op2.out;
+  const Csv run2 = run_csv(stepped, "", "--probe 'v(a)'");
+  EXPECT_NEAR(std::stod(op2.out.substr(at2 + 21, 22)), column(run2, "v(a)").front(), 1e-12) << op2.out;
 }
 
 // The fit report: analyze runs the deck's transient and prints the fitted line, its range and its
