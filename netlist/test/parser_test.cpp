@@ -131,7 +131,7 @@ TEST(ParseSources, DcWithAnEqualsSign) {
   Netlist ac = parse("t\nV1 a 0 DC=2 AC=1\nR1 a 0 1\n");
   EXPECT_EQ(element(ac, "v1").waveform.dc, 2);
   ASSERT_EQ(ac.warnings.size(), 1u);
-  EXPECT_EQ(ac.warnings[0], "t.cir:2:14: warning: AC specification of 'v1' is ignored");
+  EXPECT_EQ(ac.warnings[0], "t.cir:2:13: warning: AC specification of 'v1' is ignored");
   try {
     parse("t\nV1 a 0 DC=\n");
     ADD_FAILURE() << "DC= with no value accepted";
