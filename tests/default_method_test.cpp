@@ -157,6 +157,29 @@ TEST(DefaultMethod, ARunOfTrillionsOfStepsStopsWithTheProjectionInsteadOfHanging
   EXPECT_EQ(r.code, 0) << r.err;
 }
 
+// A 1 pF peak detector behind a 0.1 ohm diode (RON C = 1e-13 s, against a 1 us step): the event
+// method's constraint rows could not resolve the diode current (3e-7 A at most, a 3e-8 V drop on
+// 5 V) and it kept the diode on past the peak, reporting -2.9e-7 A and the capacitor at -2.6 V at
+// 57 us where it holds 4.5 exp(-32 us / 1 ms) = 4.3588 V. A conducting pair's current negative
+// beyond 1e-6 of the run's largest stops it now, and the default run falls back to euler, whose
+// first-order error here is below 1e-3 V.
+TEST(DefaultMethod, ATurnOffTheEventMethodSteppedOverStopsItInsteadOfAWrongAnswer) {
+  const fs::path dir = scratch_dir("stiff_peak");
+  const fs::path deck = write_deck(dir, "peak.cir",
+                                   "peak detector\nV1 a 0 SIN(0 5 10k)\nD1 a p dd\nC1 p 0 1p\nR1 p 0 1G\n"
+                                   ".model dd D(VON=0.5 RON=0.1)\n.tran 1u 60u\n.print tran v(p) i(d1)\n.end\n");
+  Result r = run_lcspice("run '" + deck.string() + "' --method event -o '" + (dir / "event.csv").string() + "'", dir);
+  EXPECT_EQ(r.code, 3) << r.err;
+  EXPECT_NE(r.err.find("conducts -1.08e-10 where its law needs >= 0"), std::string::npos) << r.err;
+  r = run_lcspice("run '" + deck.string() + "' -o '" + (dir / "out.csv").string() + "'", dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find("a turn-off was stepped over"), std::string::npos) << r.err;
+  const Csv csv = parse_csv(read_file(dir / "out.csv"));
+  const auto t = column(csv, "time"), v = column(csv, "v(p)"), i = column(csv, "i(d1)");
+  EXPECT_NEAR(v[row_at(t, 57e-6)], 4.5 * std::exp(-32e-6 / 1e-3), 1e-3);
+  for (double current : i) EXPECT_GE(current, -1e-15);
+}
+
 // validate steps its fixed-step methods under the same guard as run: its output step is TSTEP/10
 // (10 a source period here), so implicit Euler takes 5 steps per row, and says so. ngspice, its
 // witness, is held to 50 points a period too: at 10 (TMAX = the output step) its sharp diode lost
