@@ -647,6 +647,7 @@ int validate_with_faults(const ValidateArgs& args, const NgspiceDeckFaults& faul
   // threshold raised by it: the far wall of the tube. `smooth` integrates the deck's own Shockley
   // diodes: no gap, the tube is lcspice's answer.
   std::vector<std::pair<std::string, double>> gaps;
+  std::vector<std::string> gap_cards;  // per gap: its card and junction ("dz", "qn:be")
   double dt = run.step;  // an edge falls anywhere between two output times
   const size_t npairs = model.pairs().size();
   if (!smooth) {
@@ -657,9 +658,18 @@ int validate_with_faults(const ValidateArgs& args, const NgspiceDeckFaults& faul
       const double g = model_gap(*std::max_element(id.begin(), id.end()), args.emission, topt.saturation_current);
       if (g <= 0) continue;
       gaps.push_back({model.pairs()[k].name, g});  // the junction: "d1", or "q1:be" of a transistor
+      const std::string& pair = model.pairs()[k].name;
+      gap_cards.push_back(netlist.elements[model.pairs()[k].element].model +
+                          (pair.size() > name.size() ? pair.substr(name.size()) : std::string()));
       const double shift = turn_on_shift(ours.times, column(ours, probes.size() + npairs + k), id, g);
       dt = std::max(dt, std::min(shift, (run.tstop - run.tstart) / 100));
     }
+    // Junctions of one card are raised alike, by the largest of their gaps: each by its own made
+    // the equal thresholds of a RON = 0 bridge into a choke unequal, which stops every method at
+    // its start (a floating load side whose diodes' thresholds differ), and validate exited 3.
+    std::map<std::string, double> card_gap;
+    for (size_t k = 0; k < gaps.size(); ++k) card_gap[gap_cards[k]] = std::max(card_gap[gap_cards[k]], gaps[k].second);
+    for (size_t k = 0; k < gaps.size(); ++k) gaps[k].second = card_gap[gap_cards[k]];
   }
   std::optional<MemorySink> far_wall;
   // `holds`: node voltages the far wall's operating point is held at as well (.ic), as ngspice's
@@ -674,7 +684,14 @@ int validate_with_faults(const ValidateArgs& args, const NgspiceDeckFaults& faul
       shifted_netlist.node_ics.push_back(ic);
     }
     const CircuitModel shifted = build_model(shifted_netlist, 0.0, run.tstop, diode_ranges);
-    far_wall = run_ours(shifted, output_map_or_exit(shifted, all), run);
+    // Falls back as lcspice's own run does: its thresholds, raised each by its own gap, differ
+    // where the deck's are equal (a RON = 0 bridge into a choke, whose unequal thresholds stop
+    // the event method), and the default run's euler stands in, warned, as it would in `run`.
+    TransientOptions far_run = run;
+    far_wall = args.method.empty() && !deck_names_method
+                   ? run_ours_or_fall_back(shifted_netlist, args.step.has_value(), shifted,
+                                           output_map_or_exit(shifted, all), far_run)
+                   : run_ours(shifted, output_map_or_exit(shifted, all), run);
     // The same output times: the event method adds rows at its own events, different here.
     MemorySink resampled;
     std::vector<std::vector<double>> columns;
@@ -843,7 +860,7 @@ int validate_with_faults(const ValidateArgs& args, const NgspiceDeckFaults& faul
                 args.emission, topt.saturation_current);
   else if (!deck.ideal_diodes.empty())
     std::printf("  ideal diodes as VON sources + Shockley diodes (N = %g, IS = %g A); the model gap\n"
-                "  g = N Vt ln(I/IS) per junction at its peak current I:",
+                "  g = N Vt ln(I/IS) per junction at the peak current I of its card's junctions:",
                 args.emission, topt.saturation_current);
   if (!smooth && !deck.ideal_diodes.empty()) {
     for (size_t k = 0; k < gaps.size() && k < 6; ++k)

@@ -227,6 +227,21 @@ TEST(ValidationCanFail, SeveralOperatingPointsAreSoughtFromLcspicesChoice) {
       << out;
 }
 
+// The tube's far wall (every threshold raised by its own model gap) falls back as lcspice's own
+// run does: a RON = 0 bridge into a choke, whose equal thresholds become unequal there, stopped
+// the event method ("the switching LCP has no solution") and validate exited 3 where run works.
+TEST(ValidationCanFail, TheFarWallFallsBackAsTheRunDoes) {
+  ValidateArgs bridge;
+  bridge.netlist = write_deck("validate_", "bridge_choke",
+                              "bridge, choke input\nV1 a 0 SIN(0 20 50)\nD1 a p dz\nD2 n a dz\nD3 0 p dz\n"
+                              "D4 n 0 dz\nL1 p x 0.5\nC1 x n 470u\nRL x n 100\n.model dz D(VON=0.7 RON=0)\n"
+                              ".tran 100u 0.2\n.print tran v(x,n) i(l1)\n.end\n")
+                       .string();
+  std::string out;
+  EXPECT_EQ(validate_quietly(bridge, {}, out), kExitOk) << out;
+  EXPECT_NE(out.find("PASS: every probe within 0.02 of its range"), std::string::npos) << out;
+}
+
 // Probes the witness cannot judge are reported with the reason and left out of the verdict: a
 // node joining only an inductor and a diode (the half-wave rectifier's n1), the absolute
 // potential of a bridge's floating load side.
