@@ -53,6 +53,22 @@ TEST(Switches, RcChargedThroughARampedSwitch) {
 // a 1 k load: on at 0.705 V (t = 0.705 ms) on the way up, off at 0.295 V (t = 1.705 ms) on the
 // way down, not at 0.705 V (t = 1.295 ms). On: v(out) = 5 * 1000/1001. (Neither time is a
 // multiple of the 10 us step.)
+// A grid time within rounding of TSTOP is TSTOP: 500000 steps of 1e-7 s end at
+// 0.049999999999999996 s, and the switched fixed-step loop took one more step of 4e-18 s and
+// wrote a second row that prints as t = 0.05 (SPEC 3: times strictly increase).
+TEST(Switches, TheLastRowIsWrittenOnce) {
+  const fs::path deck = write_deck("switches_", "last_row",
+                                   "switch on a pulse\nVIN in 0 DC 10\nVG g 0 PULSE(0 5 0 10n 10n 4u 10u)\n"
+                                   "S1 in o g 0 swm\nR1 o 0 100\nC1 o 0 1u\n"
+                                   ".model swm SW(VT=2.5 VH=0.5 RON=1 ROFF=1e9)\n.tran 1u 50m\n.end\n");
+  const Csv csv = run_csv(deck, "euler", "--step 100n");
+  const auto t = column(csv, "time");
+  ASSERT_GT(t.size(), 2u);
+  EXPECT_DOUBLE_EQ(t.back(), 0.05);
+  for (size_t k = 1; k < csv.raw.size(); ++k)  // as printed
+    ASSERT_LT(std::stod(csv.raw[k - 1][0]), std::stod(csv.raw[k][0])) << "row " << k;
+}
+
 TEST(Switches, HysteresisOpensAtVtMinusVh) {
   const fs::path deck = write_deck("switch_deck_", "hysteresis", R"(switch hysteresis
 VDD dd 0 DC 5

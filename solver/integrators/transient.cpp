@@ -323,7 +323,9 @@ void run_switched_fixed_step(SwitchFamily& family, SwitchConfig config, const Ou
     long k = 0;  // the run has reached the grid time k h
     while (t < tstop) {
       const long knext = k + 1;
-      const double t_next = std::min(knext * h, tstop);
+      // A grid time within rounding of TSTOP is TSTOP: 500000 * 1e-7 is 0.049999999999999996, and
+      // a last step of 4e-18 s wrote a second row that prints as t = 0.05 (SPEC 3: times increase).
+      const double t_next = knext * h > tstop - 1e-9 * h ? tstop : knext * h;
       const double step = t_next - t;
       Eigen::VectorXd x1 = x, z1 = z;
       cur->stepper->Step(t, step, x1, z1);
