@@ -84,6 +84,14 @@ void row_scales(const Eigen::MatrixXd& Mabs, const Eigen::VectorXd& Mnorm, const
 
 // One mode (active set) with one form of the sources: the augmented linear system
 // d/dt [x; σ] = M [x; σ] and its constraint rows.
+// A time the run must stop at: a source breakpoint (the sources change form), an extra output
+// time, or TSTOP when it is not a multiple of TSTEP.
+struct Stop {
+  DyadicTime at;
+  double t;
+  bool breakpoint, output;
+};
+
 struct Mode {
   std::vector<bool> active;
   std::string signature;
@@ -150,6 +158,9 @@ struct EventDriven::Impl {
   int n = 0, m = 0;
   bool step_levels = true;  // modes get their step level (an eigenvalue problem); not to select one
   double prepared_h0 = 0, prepared_tstop = -1;  // prepare()'s grid: segments on it keep the modes
+  std::vector<Stop> stops;                       // RunSegment's, for the grid below
+  double stops_h0 = -1, stops_tstop = -1;
+  std::vector<double> stops_extra;
   // Lines' history segments read their modes (and the wave rows kept per mode) until the run
   // ends: there no mode is dropped.
   bool evict_modes = true;
@@ -983,27 +994,30 @@ std::optional<GuardCrossing> EventDriven::RunSegment(const SegmentStart& start, 
   const double h0 = r.h0;
   const int n = r.n;
 
-  // Stops: source breakpoints (the sources change form), extra output times, and TSTOP when it
-  // is not a multiple of TSTEP. Grid times k*h0 are the dyadic times with f = 0.
-  struct Stop {
-    DyadicTime at;
-    double t;
-    bool breakpoint, output;
-  };
-  std::vector<Stop> stops;
-  for (double b : r.sources->breakpoints()) stops.push_back({DyadicTime::from(b, h0), b, true, false});
-  for (double e : grid.extra)
-    if (e > 0 && e <= grid.tstop) stops.push_back({DyadicTime::from(e, h0), e, false, true});
+  // Stops: source breakpoints, extra output times, and TSTOP when it is not a multiple of TSTEP.
+  // Grid times k*h0 are the dyadic times with f = 0. The same for every segment of one grid:
+  // built once (a switch on a 100 kHz PULSE starts a segment at every crossing, and sorting the
+  // run's 8000 breakpoints for each made the run's cost grow with the square of its length).
   const long kstop = static_cast<long>(std::floor(grid.tstop / h0 * (1 + 1e-12)));
   DyadicTime end{kstop, 0};
-  if (grid.tstop - kstop * h0 > 1e-9 * h0) {
-    end = DyadicTime::from(grid.tstop, h0);
-    stops.push_back({end, grid.tstop, false, true});
+  const bool tstop_off_grid = grid.tstop - kstop * h0 > 1e-9 * h0;
+  if (tstop_off_grid) end = DyadicTime::from(grid.tstop, h0);
+  if (!(r.stops_h0 == h0 && r.stops_tstop == grid.tstop && r.stops_extra == grid.extra)) {
+    std::vector<Stop>& stops = r.stops;
+    stops.clear();
+    for (double b : r.sources->breakpoints()) stops.push_back({DyadicTime::from(b, h0), b, true, false});
+    for (double e : grid.extra)
+      if (e > 0 && e <= grid.tstop) stops.push_back({DyadicTime::from(e, h0), e, false, true});
+    if (tstop_off_grid) stops.push_back({end, grid.tstop, false, true});
+    // At one instant the sources' breakpoint comes first, so an output there sees the jump.
+    std::sort(stops.begin(), stops.end(), [](const Stop& a, const Stop& b) {
+      return a.at < b.at || (a.at == b.at && a.breakpoint && !b.breakpoint);
+    });
+    r.stops_h0 = h0;
+    r.stops_tstop = grid.tstop;
+    r.stops_extra = grid.extra;
   }
-  // At one instant the sources' breakpoint comes first, so an output there sees the jump.
-  std::sort(stops.begin(), stops.end(), [](const Stop& a, const Stop& b) {
-    return a.at < b.at || (a.at == b.at && a.breakpoint && !b.breakpoint);
-  });
+  const std::vector<Stop>& stops = r.stops;
 
   Eigen::VectorXd x_out(n), z_out(r.m), sigma;
   // A conducting pair's z (a diode's current) negative beyond 1e-6 of the largest |z| of the run
@@ -1179,8 +1193,9 @@ std::optional<GuardCrossing> EventDriven::RunSegment(const SegmentStart& start, 
   accept_here();  // the waves at the start: the history's first sample
   if (history) history->mark_break(0.0);  // the waves start (from their past before the run)
 
-  size_t next_stop = 0;
-  while (next_stop < stops.size() && stops[next_stop].at < r.pos) ++next_stop;  // before the segment
+  // The first stop not before the segment.
+  size_t next_stop = std::partition_point(stops.begin(), stops.end(), [&](const Stop& s) { return s.at < r.pos; }) -
+                     stops.begin();
   int events_here = 0, events_in_storm = 0;
   DyadicTime last_event{-1, 0};
   double last_event_t = -INFINITY;
