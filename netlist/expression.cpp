@@ -304,14 +304,16 @@ class Evaluator {
     unexpected();
   }
 
-  // The arguments of a call, from its '(' to past its ')'.
-  std::vector<double> arguments() {
+  // The arguments of a call, from its '(' to past its ')'. `conditional`: if(c, a, b) or
+  // ternary_fcn(c, a, b), whose branch not taken is read as in expr().
+  std::vector<double> arguments(bool conditional = false) {
     Depth d(*this, i_);
     std::size_t open = i_++;  // at '('
     std::vector<double> args;
     if (!at(')')) {
       while (true) {
-        args.push_back(expr());
+        const std::size_t k = args.size();
+        args.push_back(conditional && k > 0 ? branch(k == 1 ? args[0] != 0 : k == 2 ? args[0] == 0 : true) : expr());
         if (at(',')) {
           ++i_;
           continue;
@@ -330,8 +332,7 @@ class Evaluator {
     const UserFunction* user = f || !functions_ ? nullptr : functions_(name);
     if (user) return call_user(*user, written, start);
     if (!f) fail(start, written.size(), "unknown function " + quote(written));
-    if ((name == "if" || name == "ternary_fcn") && at('(')) return conditional_call(written, start);
-    const std::vector<double> args = arguments();
+    const std::vector<double> args = arguments(name == "if" || name == "ternary_fcn");
     bool bad = args.size() < f->min_args || (f->max_args && args.size() > f->max_args);
     if (bad) {
       std::string n = std::to_string(f->min_args) + (f->min_args == 1 ? " argument" : " arguments");
@@ -341,29 +342,6 @@ class Evaluator {
     double v = f->apply(args);
     if (!std::isfinite(v)) fail(start, written.size(), "invalid argument to " + quote(written));
     return v;
-  }
-
-  // if(c, a, b) and ternary_fcn(c, a, b), with the branch not taken read as in expr().
-  double conditional_call(const std::string& written, std::size_t start) {
-    Depth d(*this, i_);
-    const std::size_t open = i_++;  // at '('
-    std::vector<double> args;
-    double c = 0;
-    while (true) {
-      const std::size_t k = args.size();
-      args.push_back(k == 0 ? expr() : branch(k == 1 ? c != 0 : k == 2 ? c == 0 : true));
-      if (k == 0) c = args[0];
-      if (at(',')) {
-        ++i_;
-        continue;
-      }
-      if (at(')')) break;
-      if (i_ >= s_.size()) fail(open, 1, "missing ')'");
-      unexpected();
-    }
-    ++i_;
-    if (args.size() != 3) fail(start, written.size(), quote(written) + " takes 3 arguments");
-    return c != 0 ? args[1] : args[2];
   }
 
   // The body with the parameters bound to the arguments; other names are the caller's.
