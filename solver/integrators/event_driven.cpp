@@ -579,6 +579,7 @@ Mode& EventDriven::Impl::select(double t, const Eigen::VectorXd& x, const Eigen:
     if (consistent(at_rest, *Xt, nullptr, error)) return at_rest;
   }
   std::vector<bool> active(m, false);
+  std::string lemke_failure;    // why the switching LCP gave no first guess, if it did not
   std::vector<int> degenerate;  // pairs the switching LCP leaves at z = w = 0
   Eigen::VectorXd q;
   if (m > 0) {
@@ -598,17 +599,25 @@ Mode& EventDriven::Impl::select(double t, const Eigen::VectorXd& x, const Eigen:
     // entries span 1e9 (a 1 GOhm shunt) and 0 (RON = 0 diodes) ended Lemke's path at the first
     // event of a bridge with an inductive load. The mode that ran into the event is then the
     // first guess, and the search below decides as it does after any guess.
-    if (!answered && !(previous && previous->signature == signature))
+    // At the start the operating point's mode is that first guess: a RON = 0 bridge into an
+    // inductor with thresholds 0.05 V apart leaves every row of the inductor's current at
+    // O(eta) against the O(1) of its neighbours, below Lemke's tolerance, and the LCP "has no
+    // solution" at t = 0 where a diode at its threshold holds the floating node.
+    const bool from_previous = previous && previous->signature == signature;
+    if (!answered && !from_previous && !op_z)
       throw NumericalFailure(t, std::string("no next mode: the switching LCP has no solution (Lemke: ") +
                                     lcp_status_name(sol.status) + ")");
+    if (!answered) lemke_failure = lcp_status_name(sol.status);
     if (answered) {
       for (int i = 0; i < m; ++i) active[i] = sol.z(i) > 0;
       const double qs = q.cwiseAbs().maxCoeff(), zs = sol.z.cwiseAbs().maxCoeff() + qs;
       for (int i = 0; i < m; ++i)
         if (std::abs(sol.z(i)) <= kZeroTol * zs && std::abs(sol.w(i)) <= kZeroTol * qs)
           degenerate.push_back(i);
-    } else {
+    } else if (from_previous) {
       active = previous->active;
+    } else {
+      for (int i = 0; i < m; ++i) active[i] = (*op_z)(i) > 0;
     }
   }
   std::vector<int> near_zero;
@@ -692,6 +701,9 @@ Mode& EventDriven::Impl::select(double t, const Eigen::VectorXd& x, const Eigen:
     for (int i = 0; i < m; ++i) all[i] = i;
     if (Mode* md = search(all)) return *md;
   }
+  if (!lemke_failure.empty())
+    throw NumericalFailure(t, "no next mode: the switching LCP has no solution (Lemke: " + lemke_failure +
+                                  "), and no mode near the operating point's continues the state");
   std::string pairs;
   for (int i : near_zero)
     pairs += (pairs.empty() ? "" : ", ") + model.pairs()[i].name;
@@ -937,14 +949,15 @@ bool EventDriven::Impl::advance_to(const DyadicTime& target, const Progress& pro
   return true;
 }
 
-Eigen::VectorXd event_mode_z(const LcsProblem& model, double t0, double h_run, const Eigen::VectorXd& x) {
+Eigen::VectorXd event_mode_z(const LcsProblem& model, double t0, double h_run, const Eigen::VectorXd& x,
+                             const Eigen::VectorXd* op_z) {
   EventDriven::Impl r(model, EventOptions{});
   r.step_levels = false;         // no steps here
   r.prepare(h_run, t0 + h_run);  // sources' breakpoints only as far as the first step
   const std::string signature = r.sources->signature(t0);
   Eigen::VectorXd sigma;
   r.sources->sigma(t0, signature, sigma);
-  Mode& md = r.select(t0, x, sigma, signature, nullptr);
+  Mode& md = r.select(t0, x, sigma, signature, nullptr, false, op_z && op_z->size() == r.m ? op_z : nullptr);
   Eigen::VectorXd Xs(r.n + sigma.size());
   Xs << x, sigma;
   return md.Z * Xs;

@@ -73,13 +73,16 @@ class EventDriven : public ContinuousMethod, public GuardedMethod {
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
-  friend Eigen::VectorXd event_mode_z(const LcsProblem&, double, double, const Eigen::VectorXd&);
+  friend Eigen::VectorXd event_mode_z(const LcsProblem&, double, double, const Eigen::VectorXd&,
+                                      const Eigen::VectorXd*);
 };
 
 // z at t0+ in the mode the event method would start in from the state x (x taken as it is, no
 // jump): the switching LCP's mode, checked against its derivatives and index-one constraints,
 // and searched around where that fails. For the time-stepping methods' start
-// (start_complementarity.h). Throws NumericalFailure when no mode fits x.
-Eigen::VectorXd event_mode_z(const LcsProblem& model, double t0, double h_run, const Eigen::VectorXd& x);
+// (start_complementarity.h). `op_z` (the operating point's z), where given, is the first guess
+// when the switching LCP has no answer. Throws NumericalFailure when no mode fits x.
+Eigen::VectorXd event_mode_z(const LcsProblem& model, double t0, double h_run, const Eigen::VectorXd& x,
+                             const Eigen::VectorXd* op_z = nullptr);
 
 }  // namespace lcs

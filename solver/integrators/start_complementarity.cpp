@@ -144,9 +144,20 @@ Eigen::VectorXd consistent_start_z(const LcsProblem& model, double t0, double h_
   stats.lcp += lcp.stats();
   MultistabilityNotes own;
   (notes ? *notes : own).check(lcp, model, t0);
-  if (sol.status != LcpStatus::Solved)
+  if (sol.status != LcpStatus::Solved) {
+    // Rows whose entries are all O(h) (an inductor's current through RON = 0 diodes with unequal
+    // thresholds) can fall below Lemke's tolerance against their O(1) neighbours: the event
+    // method's mode selection, from the operating point's mode, decides then.
+    if (prefer.size() == s.pairs() && s.pairs() > 0) {
+      try {
+        return event_mode_z(model, t0, h_run, x, &prefer);
+      } catch (const NumericalFailure&) {
+      } catch (const std::invalid_argument&) {  // sources the event method cannot hold (SFFM)
+      }
+    }
     throw NumericalFailure(t0, std::string("no consistent initial complementarity state (Lemke: ") +
                                    lcp_status_name(sol.status) + ")");
+  }
   // The LCP alone is not enough where a pair's own row has no O(1) entry (D_ii = 0: a diode whose
   // only other path is an inductor, w = i_L) or where it leaves a pair at z = w = 0. Its z is
   // then set by O(h) entries: the 1e-15 A of rounding an operating point leaves in i_L, divided
