@@ -68,7 +68,10 @@ std::string to_utf8(const std::string& bytes) {
     const auto b0 = static_cast<unsigned char>(bytes[0]), b1 = static_cast<unsigned char>(bytes[1]);
     if (b0 == 0xFF && b1 == 0xFE) return from_utf16(bytes, 2, true);
     if (b0 == 0xFE && b1 == 0xFF) return from_utf16(bytes, 2, false);
+    // Without a mark: a deck starts with an ASCII character (a title or a comment), whose
+    // zero high byte comes second in little-endian order and first in big-endian.
     if (bytes.size() >= 4 && b0 != 0 && b0 < 0x80 && b1 == 0 && bytes[3] == 0) return from_utf16(bytes, 0, true);
+    if (bytes.size() >= 4 && b0 == 0 && b1 != 0 && b1 < 0x80 && bytes[2] == 0) return from_utf16(bytes, 0, false);
   }
   // UTF-8 sequences are kept; each byte that starts none is a Windows-1252 character (a deck with
   // a UTF-8 "1µF" and a Latin-1 degree sign in a comment keeps both).

@@ -27,6 +27,12 @@ std::string utf16le(const std::string& ascii_or_utf8, bool bom) {
   return out;
 }
 
+std::string utf16be(const std::string& ascii_or_utf8) {
+  std::string out = utf16le(ascii_or_utf8, false);
+  for (std::size_t k = 0; k + 1 < out.size(); k += 2) std::swap(out[k], out[k + 1]);
+  return out;
+}
+
 Netlist parse_bytes(const std::string& name, const std::string& bytes) {
   const fs::path path = fs::temp_directory_path() / ("lcspice_encoding_" + name + ".cir");
   std::ofstream(path, std::ios::binary) << bytes;
@@ -42,7 +48,7 @@ Netlist parse_bytes(const std::string& name, const std::string& bytes) {
 TEST(TextEncoding, Utf16AndWindows1252DecksReadAsUtf8) {
   for (const auto& [name, bytes] :
        {std::pair<std::string, std::string>{"utf8", kDeck}, {"utf16_bom", utf16le(kDeck, true)},
-        {"utf16", utf16le(kDeck, false)},
+        {"utf16", utf16le(kDeck, false)}, {"utf16be", utf16be(kDeck)},
         {"cp1252", "lt\nV1 a 0 SIN(0 1 1k)\nR1 a b 1k\nC1 b 0 10\xb5\n.tran 10u 2m\n.end\n"}}) {
     SCOPED_TRACE(name);
     const Netlist n = parse_bytes(name, bytes);
@@ -57,6 +63,9 @@ TEST(TextEncoding, ConversionsOfTheRawBytes) {
   EXPECT_EQ(parse::to_utf8("abc"), "abc");
   EXPECT_EQ(parse::to_utf8("\xef\xbb\xbf" "a"), "\xef\xbb\xbf" "a");  // UTF-8 with its mark: as it is
   EXPECT_EQ(parse::to_utf8(std::string("\xfe\xff\x00" "a\x00\xb5", 6)), "a\xc2\xb5");  // UTF-16BE
+  // UTF-16BE without a mark (before: read as Windows-1252, "unknown element type '\x00'").
+  EXPECT_EQ(parse::to_utf8(std::string("\x00" "a\x00\n\x00" "b", 6)), "a\nb");
+  EXPECT_EQ(parse::to_utf8(std::string("\x00" "a", 2)), std::string("\x00" "a", 2));  // too short to tell
   EXPECT_EQ(parse::to_utf8(std::string("\xff\xfe\x3d\xd8\x00\xde", 6)), "\xf0\x9f\x98\x80");  // a surrogate pair
   EXPECT_EQ(parse::to_utf8("\x80 10\xb5"), "\xe2\x82\xac 10\xc2\xb5");  // Windows-1252: the euro sign, micro
   // Mixed: a UTF-8 micro sign kept, a Latin-1 degree sign (0xB0) beside it read as Windows-1252.
