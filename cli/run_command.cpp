@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -8,6 +9,7 @@
 #include "cli/csv_writer.h"
 #include "cli/exit_codes.h"
 #include "cli/load_circuit.h"
+#include "cli/measure.h"
 #include "cli/progress.h"
 #include "cli/source_sampling.h"
 #include "solver/integrators/diode_refit.h"
@@ -243,7 +245,16 @@ int run_command(const RunArgs& args) {
     warn("--emission is used only by --method " + smooth_method_name() + "; method " + options.method +
          " ignores it");
   const std::vector<Probe> probes = probes_for(netlist, model, args.probes);
-  OutputMap outputs = output_map_or_exit(model, probes);
+  // `.meas`: the probes the measures read that the CSV does not write are run as hidden columns
+  // after the CSV's own (MeasureTap keeps them out of the CSV).
+  std::vector<Probe> run_probes = probes;
+  std::vector<std::string> measured;
+  for (const Probe& p : measure_probes(netlist.measures)) {
+    measured.push_back(p.name());
+    if (std::none_of(probes.begin(), probes.end(), [&](const Probe& q) { return q.name() == p.name(); }))
+      run_probes.push_back(p);
+  }
+  OutputMap outputs = output_map_or_exit(model, run_probes);
   for (const std::string& w : floating_probe_warnings(model, probes)) warn(w);
   if (!options.uic)
     for (const std::string& w : dc_floating_start_warnings(model, netlist, &probes)) warn(w);
@@ -262,13 +273,14 @@ int run_command(const RunArgs& args) {
     RecordedRows nominal;
     RowTee sink_and_nominal(out, nominal);
     TransientSummary failed;  // the summary up to a numerical failure
+    OutputSink& csv_side = lowered ? static_cast<OutputSink&>(sink_and_nominal) : out;
+    MeasureTap tap(csv_side, probes.size(), measured);
     try {
       TransientSummary summary;
       {
         ProgressLine progress("run " + options.method);
         if (progress.enabled()) options.progress = [&progress](double f) { progress.update(f); };
-        summary = run_transient(model, outputs, options, lowered ? static_cast<OutputSink&>(sink_and_nominal) : out,
-                                &failed);
+        summary = run_transient(model, outputs, options, netlist.measures.empty() ? csv_side : tap, &failed);
       }
       if (default_failure) sink.finish();
       for (const std::string& w : summary.warnings) warn(w);
@@ -285,6 +297,8 @@ int run_command(const RunArgs& args) {
       if (args.stats) std::cerr << summary.BriefReport() << "\n";
       if (!sink.path().empty() && sink.path() != "-")
         std::cerr << "lcspice: wrote " << summary.rows << " rows to " << sink.path() << "\n";
+      // After a numerical failure (below) there are no measures: the run did not reach TSTOP.
+      if (!netlist.measures.empty()) report_measures(evaluate_measures(netlist.measures, tap.waveforms()), std::cerr);
       return kExitOk;
     } catch (const NumericalFailure& e) {
       if (args.stats) std::cerr << failed.BriefReport() << "\n";

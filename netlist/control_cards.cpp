@@ -11,8 +11,7 @@
 namespace lcs::parse {
 namespace {
 
-const char* const kIgnoredCards[] = {".ac", ".dc", ".noise", ".tf", ".meas", ".measure", ".four",
-                                     ".temp", ".width", ".sens", ".disto", ".pz"};
+const char* const kIgnoredCards[] = {".ac", ".dc", ".noise", ".tf", ".four", ".temp", ".width", ".sens", ".disto", ".pz"};
 const char* const kOtherAnalyses[] = {"ac", "dc", "op", "noise", "tf", "disto", "pz", "sens"};
 
 [[noreturn]] void expected_ic(const Card& card, std::size_t i) {
@@ -38,6 +37,7 @@ DotCard classify_dot_card(const std::string& k) {
   if (k == ".global") return DotCard::Global;
   if (k == ".title") return DotCard::Title;
   if (k == ".endc") return DotCard::Endc;
+  if (k == ".meas" || k == ".measure") return DotCard::Measure;
   for (const char* c : kIgnoredCards)
     if (k == c) return DotCard::Ignored;
   return DotCard::Unknown;

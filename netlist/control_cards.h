@@ -26,7 +26,8 @@ enum class DotCard {
   Op,        // accepted silently (and LTspice's `.backanno`, an annotation marker)
   Global,    // .global NODE...: nodes shared by every subcircuit instance
   Title,     // .title text
-  Ignored,   // analyses and cards lcspice does not run (.ac .dc .noise .tf .meas .four ...): warning
+  Measure,   // .measure, .meas (measure_card.h)
+  Ignored,   // analyses and cards lcspice does not run (.ac .dc .noise .tf .four ...): warning
   Endc,      // a stray .endc (the lexer takes .control blocks out)
   Unknown,
 };

@@ -8,6 +8,7 @@
 
 #include "netlist/control_cards.h"
 #include "netlist/element_card.h"
+#include "netlist/measure_card.h"
 #include "netlist/model_card.h"
 #include "netlist/number.h"
 #include "netlist/parallel_copies.h"
@@ -84,6 +85,7 @@ class Elaborator {
     resolve_controls();
     check_node_ics();
     check_probes();
+    check_measures();
     double tstep = net_.tran ? net_.tran->tstep : 0.0, tstop = net_.tran ? net_.tran->tstop : 0.0;
     for (Element& e : net_.elements)
       if (e.kind == ElementKind::VoltageSource || e.kind == ElementKind::CurrentSource) e.waveform.resolve(tstep, tstop);
@@ -242,6 +244,15 @@ class Elaborator {
         return;
       case DotCard::Title:
         net_.title = card.size() > 1 ? card.text(card[1].begin, card.tokens.back().end) : "";
+        return;
+      case DotCard::Measure:
+        if (std::optional<Measure> m = parse_measure(card, *in.scope, net_.warnings)) {
+          for (const Measure& other : net_.measures)
+            if (other.name == m->name)
+              throw NetlistError(m->loc, "duplicate measure name " + quote(m->name) + " (first defined at " +
+                                             where(other.loc, m->loc) + ")");
+          net_.measures.push_back(std::move(*m));
+        }
         return;
       case DotCard::Ignored:
         net_.warnings.push_back(warning_line(card.at(0), quote(k) + " is not supported and is ignored"));
@@ -531,43 +542,72 @@ class Elaborator {
     }
   }
 
+  // A probe as `.print` or `.meas` wrote it, checked against the circuit: an unknown node or
+  // element is a located error. i(element) of an element left out (both terminals on one node)
+  // reads zero: v(0,0) under the probe's own name.
+  Probe checked_probe(const Probe& p, const std::set<std::string>& all) const {
+    if (p.kind == Probe::Kind::ElementCurrent && shorted_.count(p.a)) {
+      Probe zero = p;
+      zero.kind = Probe::Kind::NodePairVoltage;
+      zero.a = zero.b = "0";
+      zero.label = p.name();
+      return zero;
+    }
+    if (p.kind == Probe::Kind::ElementCurrent) {
+      const Element* e = net_.find_element(p.a);
+      if (!e) throw NetlistError(p.loc, "unknown element " + quote(p.a));
+      if (e->kind == ElementKind::Coupling) throw NetlistError(p.loc, quote(p.a) + " has no current (it is a coupling)");
+      if (e->kind == ElementKind::Bjt)
+        throw NetlistError(p.loc, quote(p.a) + " is a transistor: probe its terminal currents ic(" + p.a +
+                                      "), ib(" + p.a + ") or ie(" + p.a + ")");
+    } else if (p.kind == Probe::Kind::TerminalCurrent) {
+      const Element* e = net_.find_element(p.a);
+      if (!e) throw NetlistError(p.loc, "unknown element " + quote(p.a));
+      if (p.terminal == '2') {
+        if (e->kind != ElementKind::Line && e->kind != ElementKind::LossyLine)
+          throw NetlistError(p.loc, p.name() + ": " + quote(p.a) + " is not a transmission line (use i(" + p.a + "))");
+      } else if (e->kind != ElementKind::Bjt) {
+        throw NetlistError(p.loc, p.name() + ": " + quote(p.a) + " is not a transistor (use i(" + p.a + "))");
+      }
+    } else {
+      for (const std::string* n : {&p.a, &p.b})
+        if (!n->empty() && !all.count(*n)) throw NetlistError(p.loc, "unknown node " + quote(*n));
+    }
+    return p;
+  }
+
   void check_probes() {
     const std::set<std::string> all = nodes();
     std::vector<Probe> unique;
     std::set<std::string> seen;
     for (const Probe& p : net_.probes) {
-      if (p.kind == Probe::Kind::ElementCurrent && shorted_.count(p.a)) {
-        // The element was left out: its current is zero, and v(0,0) is a probe that reads zero.
-        Probe zero = p;
-        zero.kind = Probe::Kind::NodePairVoltage;
-        zero.a = zero.b = "0";
-        zero.label = p.name();
-        if (seen.insert(zero.name()).second) unique.push_back(zero);
-        continue;
-      }
-      if (p.kind == Probe::Kind::ElementCurrent) {
-        const Element* e = net_.find_element(p.a);
-        if (!e) throw NetlistError(p.loc, "unknown element " + quote(p.a));
-        if (e->kind == ElementKind::Coupling) throw NetlistError(p.loc, quote(p.a) + " has no current (it is a coupling)");
-        if (e->kind == ElementKind::Bjt)
-          throw NetlistError(p.loc, quote(p.a) + " is a transistor: probe its terminal currents ic(" + p.a +
-                                        "), ib(" + p.a + ") or ie(" + p.a + ")");
-      } else if (p.kind == Probe::Kind::TerminalCurrent) {
-        const Element* e = net_.find_element(p.a);
-        if (!e) throw NetlistError(p.loc, "unknown element " + quote(p.a));
-        if (p.terminal == '2') {
-          if (e->kind != ElementKind::Line && e->kind != ElementKind::LossyLine)
-            throw NetlistError(p.loc, p.name() + ": " + quote(p.a) + " is not a transmission line (use i(" + p.a + "))");
-        } else if (e->kind != ElementKind::Bjt) {
-          throw NetlistError(p.loc, p.name() + ": " + quote(p.a) + " is not a transistor (use i(" + p.a + "))");
-        }
-      } else {
-        for (const std::string* n : {&p.a, &p.b})
-          if (!n->empty() && !all.count(*n)) throw NetlistError(p.loc, "unknown node " + quote(*n));
-      }
-      if (seen.insert(p.name()).second) unique.push_back(p);
+      Probe checked = checked_probe(p, all);
+      if (seen.insert(checked.name()).second) unique.push_back(std::move(checked));
     }
     net_.probes = std::move(unique);
+  }
+
+  // The probes of `.meas` cards, checked as `.print`'s are.
+  void check_measures() {
+    if (net_.measures.empty()) return;
+    const std::set<std::string> all = nodes();
+    auto check = [&](Probe& p) { p = checked_probe(p, all); };
+    for (Measure& m : net_.measures) {
+      switch (m.kind) {
+        case Measure::Kind::When:
+          break;
+        case Measure::Kind::TrigTarg:
+          for (MeasureCrossing* c : {&m.when, &m.targ})
+            if (!c->at) check(c->probe);
+          break;
+        default:
+          check(m.probe);
+      }
+      if (m.kind == Measure::Kind::FindWhen || m.kind == Measure::Kind::When) {
+        check(m.when.probe);
+        if (m.when.other) check(*m.when.other);
+      }
+    }
   }
 
   static std::string to_upper(std::string s) {

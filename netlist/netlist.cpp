@@ -24,6 +24,24 @@ const char* element_kind_name(ElementKind kind) {
   return "element";
 }
 
+const char* measure_kind_name(Measure::Kind kind) {
+  switch (kind) {
+    case Measure::Kind::Avg: return "AVG";
+    case Measure::Kind::Rms: return "RMS";
+    case Measure::Kind::Min: return "MIN";
+    case Measure::Kind::Max: return "MAX";
+    case Measure::Kind::Pp: return "PP";
+    case Measure::Kind::Integ: return "INTEG";
+    case Measure::Kind::MinAt: return "MIN_AT";
+    case Measure::Kind::MaxAt: return "MAX_AT";
+    case Measure::Kind::FindAt: return "FIND AT";
+    case Measure::Kind::FindWhen: return "FIND WHEN";
+    case Measure::Kind::When: return "WHEN";
+    case Measure::Kind::TrigTarg: return "TRIG/TARG";
+  }
+  return "measure";
+}
+
 std::string Probe::name() const {
   if (!label.empty()) return label;
   switch (kind) {

@@ -150,6 +150,46 @@ struct Probe {
 // Throws NetlistError (with `loc` adjusted by the column offset inside `text`).
 Probe parse_probe(const std::string& text, const SourceLocation& loc);
 
+// `.measure tran` (alias `.meas`): one measurement of the transient's waveforms, evaluated
+// after `run` (cli/measure.h). Times are seconds; every window is [from, to] of the run's rows,
+// its ends interpolated.
+struct MeasureCrossing {
+  // The instant a probe crosses a level (WHEN, TRIG, TARG), or a fixed time (TRIG/TARG AT=).
+  std::optional<double> at;            // AT=t: the instant itself, no probe
+  Probe probe;                         // the probe that crosses
+  std::optional<Probe> other;          // WHEN p1=p2: the level is another probe
+  double level = 0;                    // VAL=v, or WHEN p=v
+  // Which crossing (ngspice's counting): the first of any kind when none is written, else the
+  // count-th rise, fall or crossing of either kind, or the last one (count 0 with `last`).
+  enum class Edge { First, Rise, Fall, Cross };
+  Edge edge = Edge::First;
+  int count = 0;
+  bool last = false;
+  double td = 0;                       // TD=: crossings before it do not count
+  double from = 0;                     // FROM=
+  std::optional<double> to;            // TO=
+};
+
+struct Measure {
+  enum class Kind {
+    Avg, Rms, Min, Max, Pp, Integ, MinAt, MaxAt,  // of `probe` over [from, to]
+    FindAt,     // FIND probe AT=at
+    FindWhen,   // FIND probe WHEN ...: probe's value at the crossing `when`
+    When,       // WHEN ...: the crossing's time
+    TrigTarg,   // TRIG ... TARG ...: targ's time minus trig's
+  };
+  std::string name;                    // lower-case, as printed ("trise = 2.197e-04")
+  Kind kind = Kind::Avg;
+  Probe probe;                         // AVG .. MAX_AT, FIND
+  double from = 0;                     // AVG .. MAX_AT
+  std::optional<double> to;
+  double at = 0;                       // FIND AT=
+  MeasureCrossing when;                // FIND .. WHEN, WHEN; TRIG for TrigTarg
+  MeasureCrossing targ;                // TrigTarg
+  SourceLocation loc;                  // the measure's name on the card
+};
+const char* measure_kind_name(Measure::Kind kind);  // "AVG", "FIND", "TRIG/TARG", ...
+
 struct Netlist {
   std::string file;                    // path of the top-level file as given
   std::string title;                   // first line, as written
@@ -162,6 +202,7 @@ struct Netlist {
   std::vector<NodeIc> node_ics;
   std::vector<NodeIc> node_sets;       // `.nodeset`: choose among several operating points
   std::vector<Probe> probes;           // `.print tran` and `.save`, in order, duplicates removed
+  std::vector<Measure> measures;       // `.meas tran`, in card order (probes checked like .print's)
   std::map<std::string, std::string> options;  // `.options` name (lower-case) -> value text ("" for flags)
   // Set by smooth_netlist (solver/model): every diode is a Shockley junction with the card's
   // VON in series, so the checks of the ideal law (impedance-free diode loops) do not apply.
