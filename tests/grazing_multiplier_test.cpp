@@ -6,8 +6,8 @@
 // twice there (event_driven.cpp):
 //  - at 0.172 s, on its own check for a stepped-over turn-off: the mode that began at an event
 //    had D4's current at -1.5e-7 A (9.9e-10 of its terms: what the mode check accepted as zero),
-//    1e-6 of the run's largest current 0.0628 A being the bound. The row a mode begins with is
-//    no longer judged; a current that falls from there still is.
+//    1e-6 of the run's largest current 0.0628 A being the bound. A pair that has just closed is
+//    judged from where it closed now; a current that falls from there still stops the run.
 //  - at 1.54 s, "no consistent mode after a switching event (pairs at zero: d2, d4)": the
 //    closing diode's z' = 1.52 A/s sat at kZeroTol of its stiff row's terms (1.5e9) and counted
 //    as zero; its z'' < 0 then refused the only right mode. Where no mode fits, the derivatives

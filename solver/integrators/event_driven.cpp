@@ -1044,24 +1044,36 @@ std::optional<GuardCrossing> EventDriven::RunSegment(const SegmentStart& start, 
 
   Eigen::VectorXd x_out(n), z_out(r.m), sigma;
   // A conducting pair's z (a diode's current) negative beyond 1e-6 of the largest |z| of the run
-  // so far, and fallen that far since the mode began, means a turn-off was stepped over, not
-  // rounding: a 1 pF peak detector behind a 0.1 ohm diode (RON C = 1e-13 s) kept its diode on
-  // past the peak and reported -2.9e-7 A and a capacitor at -2.6 V where it holds 4.36 V.
-  // Stopped (exit 3; the default run falls back to euler). The row a mode begins with is not
-  // judged: its z is what the mode check accepted as zero, to kZeroTol of the terms that make it
-  // up. (Judged there, a 2-stage multiplier with no load, its diodes grazing their thresholds
-  // near the steady state, stopped at 0.17 s on a current of -1.5e-7 A, 9.9e-10 of its terms, and
-  // the pair's current then rose, as the mode had it; tests/grazing_multiplier_test.cpp.)
+  // so far means a turn-off was stepped over, not rounding: a 1 pF peak detector behind a 0.1 ohm
+  // diode (RON C = 1e-13 s) kept its diode on past the peak and reported -2.9e-7 A and a capacitor
+  // at -2.6 V where it holds 4.36 V. Stopped (exit 3; the default run falls back to euler).
+  // A pair that has just closed is judged from where it closed: its z there is what the mode
+  // check accepted as zero, to kZeroTol of the terms that make it up, and only a fall from
+  // there counts. (Judged from zero, a 2-stage multiplier with no load, two diodes grazing their
+  // thresholds near the steady state, stopped at 0.17 s on a closing diode's -1.5e-7 A, 9.9e-10
+  // of its terms, whose current then rose, as the mode had it; tests/grazing_multiplier_test.cpp.
+  // A pair that stays closed through an event keeps zero as its floor: exempting it too let the
+  // peak detector with RON = 0.01 keep its diode on at -1.1e-9 A past the peak, 660 times the
+  // bound, and end 5.5 mV off with exit 0.)
   double largest_z = 0;
-  Eigen::VectorXd z_at_mode_start;
+  Eigen::VectorXd z_floor;  // per pair: 0, or the z a pair closed at when that was below zero
+  std::vector<bool> active_before;
   auto emit_now = [&](double t, bool event) {
     x_out = r.X.head(n);
     z_out.noalias() = r.cur->Z * r.X;
     for (int i = 0; i < r.m; ++i) largest_z = std::max(largest_z, std::abs(z_out(i)));
     const double tol = std::max(1e-6 * largest_z, 1e-15);
-    if (event || z_at_mode_start.size() != r.m) z_at_mode_start = z_out;
+    if (z_floor.size() != r.m) {
+      z_floor = Eigen::VectorXd::Zero(r.m);
+      active_before.assign(r.m, false);
+    }
+    for (int i = 0; i < r.m; ++i) {
+      if (!r.cur->active[i]) z_floor(i) = 0;
+      else if (!active_before[i]) z_floor(i) = std::min(0.0, z_out(i));
+      active_before[i] = r.cur->active[i];
+    }
     for (int i = 0; i < r.m; ++i)
-      if (r.cur->active[i] && z_out(i) < -tol && z_out(i) < z_at_mode_start(i) - tol) {
+      if (r.cur->active[i] && z_out(i) < -tol && z_out(i) < z_floor(i) - tol) {
         char buf[300];
         std::snprintf(buf, sizeof buf,
                       "complementarity pair %d conducts %.3g where its law needs >= 0 (largest |z| of the run "
