@@ -693,24 +693,26 @@ Mode& EventDriven::Impl::select(double t, const Eigen::VectorXd& x, const Eigen:
     }
     return nullptr;
   };
-  if (Mode* md = search(near_zero)) return *md;
   // A pair that is not at zero in the LCP's mode may still have to change with one that is:
   // the voltage of an RON = 0 diode in an inductor's path jumps when the diode opens, and an
   // antiparallel one must close at the same instant. The switching LCP should say so, but its
   // O(eta) entries can sit at its own tolerance. Last resort for small circuits: every pair.
-  if (m <= 10 && static_cast<int>(near_zero.size()) < m) {
-    std::vector<int> all(m);
-    for (int i = 0; i < m; ++i) all[i] = i;
-    if (Mode* md = search(all)) return *md;
-  }
+  std::vector<int> all;
+  if (m <= 10 && static_cast<int>(near_zero.size()) < m)
+    for (int i = 0; i < m; ++i) all.push_back(i);
+  if (Mode* md = search(near_zero)) return *md;
+  if (Mode* md = all.empty() ? nullptr : search(all)) return *md;
   // No mode fits with the slopes judged against kZeroTol of their terms. A stiff mode's rows
   // of z' and z'' add terms of V / (RON^2 C) that cancel: at a grazing contact (a multiplier
   // with no load near its steady state, two diodes touching their thresholds at the source's
   // peak) the closing diode's z' = -w' / RON = 1.52 A/s sat at exactly kZeroTol of its terms
   // (1.5e9), counted as zero, and z'' = -z' / (RON C) < 0 then refused the mode, while the
   // open mode's w' = -0.76 V/s, resolved, refused the others. The derivatives are then judged
-  // against the rounding of their terms (kTol), the levels the values' own test uses.
+  // against the rounding of their terms (kTol), the levels the values' own test uses, over the
+  // same candidates, the LCP's own mode first (with RON = 0.02 it was the one that fits).
+  if (consistent(first, *Xt, nullptr, error, nullptr, kTol)) return first;
   if (Mode* md = search(near_zero, kTol)) return *md;
+  if (Mode* md = all.empty() ? nullptr : search(all, kTol)) return *md;
   if (!lemke_failure.empty())
     throw NumericalFailure(t, "no next mode: the switching LCP has no solution (Lemke: " + lemke_failure +
                                   "), and no mode near the operating point's continues the state");
