@@ -3,7 +3,9 @@
 // rows; AVG is its trapezoid integral over the window divided by the window's length, RMS the
 // square root of the trapezoid integral of its square over that length, INTEG the trapezoid
 // integral; MIN/MAX (and _AT) take the last extreme when it repeats; a crossing is located by
-// linear interpolation and counted as ngspice counts RISE=, FALL= and CROSS=. One deliberate
+// linear interpolation and counted as ngspice 39.3 counts RISE=, FALL= and CROSS= (crossing_time in
+// measure.cpp: a waveform on the level changes side on every row, and a crossing asked for
+// between two rows on the level fails, as ngspice's 0/0 does). One deliberate
 // difference: a window's ends (FROM=, TO=, TD=) are interpolated points of the waveform, where
 // ngspice's AVG, MIN, MAX and crossings start and stop at the nearest rows inside the window.
 #pragma once
