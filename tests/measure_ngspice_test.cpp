@@ -198,6 +198,7 @@ const char* kFlatDeck =
     ".meas tran z1 when v(a)=0 rise=1\n"
     ".meas tran z0 when v(a)=0\n"
     ".meas tran fl when v(a)=0 fall=last\n"
+    ".meas tran h1 when v(a)=0.5 last\n"
     ".end\n";
 
 const char* kStartOnLevelDeck =
@@ -232,13 +233,14 @@ void check_failures_too(const std::vector<Compared>& cs, double tolerance) {
 
 TEST(MeasureNgspice, WaveformOnTheLevelFailsOrAgreesAsNgspice) {
   const std::vector<Compared> cs = compare("flat", kFlatDeck);
-  ASSERT_EQ(cs.size(), 8u);
+  ASSERT_EQ(cs.size(), 9u);
   check_failures_too(cs, 1e-12);
-  // ngspice 39.3: r1 1e-3, rl 5e-3, z1 0, z0 3e-3; f1, r2, c3 and fl fail.
+  // ngspice 39.3: r1 1e-3, rl 5e-3, z1 0, z0 3e-3, h1 (a bare LAST) 4.5e-3; f1, r2, c3 and fl fail.
   EXPECT_DOUBLE_EQ(cs[0].ngspice, 1e-3);
   EXPECT_TRUE(std::isnan(cs[1].ngspice));
   EXPECT_TRUE(std::isnan(cs[4].ngspice));
   EXPECT_DOUBLE_EQ(cs[6].ngspice, 3e-3);
+  EXPECT_DOUBLE_EQ(cs[8].ngspice, 4.5e-3);
 }
 
 TEST(MeasureNgspice, WindowStartingOnTheLevelAsNgspice) {
