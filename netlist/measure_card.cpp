@@ -1,6 +1,7 @@
 #include "netlist/measure_card.h"
 
 #include <cmath>
+#include <string>
 
 namespace lcs::parse {
 namespace {
@@ -188,8 +189,10 @@ class Reader {
     const int b = t.begin, e = card_[close].end;
     Probe p = parse_probe(card_.text(b, e), card_.span(b, e));
     i_ = close + 1;
-    // `v(a)*2`, `v(a)-v(b)`: an expression written against the probe.
-    if (i_ < n_ && card_[i_].begin == e && card_[i_].is_word())
+    // `v(a)*2`, `v(a)-v(b)`: an expression written against the probe; `v(a) * 2`, `v(a) -v(b)`:
+    // one with spaces, an operator after the probe.
+    if (i_ < n_ && card_[i_].is_word() &&
+        (card_[i_].begin == e || std::string("+-*/^").find(card_[i_].text[0]) != std::string::npos))
       throw Skip{card_.span(b, card_[i_].end),
                  "expressions of probes are not measured by lcspice (only " + std::string(kProbeForms) + ")"};
     return p;

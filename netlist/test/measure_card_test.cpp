@@ -159,6 +159,15 @@ TEST(MeasureCard, SkippedWithAWarning) {
       {".meas tran x max v(b)*2",
        "t.cir:6:18: warning: expressions of probes are not measured by lcspice (only v(node), v(node1,node2) or "
        "i(element)): measure 'x' is skipped"},
+      {".meas tran x avg v(b) * 2",
+       "t.cir:6:18: warning: expressions of probes are not measured by lcspice (only v(node), v(node1,node2) or "
+       "i(element)): measure 'x' is skipped"},
+      {".meas tran x avg v(b) -v(a) from=1m",
+       "t.cir:6:18: warning: expressions of probes are not measured by lcspice (only v(node), v(node1,node2) or "
+       "i(element)): measure 'x' is skipped"},
+      {".meas tran x when v(b)=v(a) / 2 rise=1",
+       "t.cir:6:24: warning: expressions of probes are not measured by lcspice (only v(node), v(node1,node2) or "
+       "i(element)): measure 'x' is skipped"},
       {".meas tran x max par('v(b)*2')",
        "t.cir:6:18: warning: expressions of probes are not measured by lcspice (only v(node), v(node1,node2) or "
        "i(element)): measure 'x' is skipped"},
