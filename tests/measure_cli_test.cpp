@@ -175,6 +175,7 @@ TEST(MeasureCli, SineMatchesTheClosedForms) {
   EXPECT_NEAR(m["above"], 4.0 / 12 * ms, 1e-9);  // 1/12 ms to 5/12 ms
 }
 
+// No results, but one warning line that the measures were not computed.
 TEST(MeasureCli, NoMeasuresAfterANumericalFailure) {
   // The flip-flop of bjt_multistability_test.cpp: three operating points, none chosen (exit 3).
   const fs::path deck = write_deck("measure_", "flipflop",
@@ -185,6 +186,10 @@ TEST(MeasureCli, NoMeasuresAfterANumericalFailure) {
   const Result r = run_deck(deck);
   EXPECT_EQ(r.code, 3) << r.err;
   EXPECT_EQ(r.err.find("vc1"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("lcspice: warning: .meas results not computed: the run stopped early at a numerical failure "
+                       "(1 measure)\n"),
+            std::string::npos)
+      << r.err;
 }
 
 }  // namespace
