@@ -81,7 +81,7 @@ double trapezoid(const std::vector<double>& t, const std::vector<double>& y) {
 
 double statistic(const Measure& m, const MeasureWaveforms& w) {
   const Window win = window(w, m.from, m.to);
-  std::vector<double> y = win.values(w.times, column(w, m.probe));
+  const std::vector<double> y = win.values(w.times, column(w, m.probe));
   const double span = win.to - win.from;
   switch (m.kind) {
     case Measure::Kind::Integ:
@@ -90,8 +90,12 @@ double statistic(const Measure& m, const MeasureWaveforms& w) {
     case Measure::Kind::Rms: {
       if (!(span > 0)) throw Failure{"the window t = " + number(win.from) + " to " + number(win.to) + " s has no length"};
       if (m.kind == Measure::Kind::Avg) return trapezoid(win.t, y) / span;
-      for (double& v : y) v *= v;
-      return std::sqrt(trapezoid(win.t, y) / span);
+      // The exact integral of the square of the waveform, linear between the points: a segment
+      // from a to b over dt contributes dt (a^2 + a b + b^2) / 3.
+      double squares = 0;
+      for (std::size_t k = 1; k < y.size(); ++k)
+        squares += (win.t[k] - win.t[k - 1]) * (y[k - 1] * y[k - 1] + y[k - 1] * y[k] + y[k] * y[k]) / 3;
+      return std::sqrt(squares / span);
     }
     default:
       break;

@@ -49,8 +49,10 @@ TEST(MeasureEval, StatisticsOverTheWholeRun) {
   EXPECT_DOUBLE_EQ(value(".meas tran x avg v(a)"), 2.0);           // area 16 over 8 s
   EXPECT_DOUBLE_EQ(value(".meas tran x integ v(a)"), 16.0);
   EXPECT_DOUBLE_EQ(value(".meas tran x integral v(c)"), 320.0);    // 10 t^2 / 2 at t = 8
-  // RMS: the trapezoid of the squares 0 1 4 9 16 9 4 1 0 is 44; sqrt(44 / 8).
-  EXPECT_DOUBLE_EQ(value(".meas tran x rms v(a)"), std::sqrt(5.5));
+  // RMS: the exact integral of the triangle's square, 2 * 4^3 / 3, over 8 s (the trapezoid of the
+  // squares would give 44 / 8).
+  EXPECT_DOUBLE_EQ(value(".meas tran x rms v(a)"), 4 / std::sqrt(3.0));
+  EXPECT_DOUBLE_EQ(value(".meas tran x rms v(a) from=1 to=3"), std::sqrt(13.0 / 3));  // (27 - 1) / 3 / 2
   EXPECT_DOUBLE_EQ(value(".meas tran x max v(a)"), 4.0);
   EXPECT_DOUBLE_EQ(value(".meas tran x min v(a)"), 0.0);
   EXPECT_DOUBLE_EQ(value(".meas tran x pp v(a)"), 4.0);

@@ -131,8 +131,10 @@ double relative(double a, double b, double scale) { return std::abs(a - b) / sca
 
 void check(const Compared& c, double scale) {
   SCOPED_TRACE(c.name);
-  // ngspice prints 7 significant digits (10 for WHEN, RMS, INTEG).
-  EXPECT_LT(relative(c.ngspice_rule, c.ngspice, scale), 1e-6);
+  // ngspice prints 7 significant digits (10 for WHEN, RMS, INTEG). Its RMS is Simpson's rule
+  // where lcspice's is exact for the rows joined by lines: on the sine's 1 us rows they differ by
+  // theta^2 / 12 = 3.3e-6 (the lines cut inside the curve), on the RC's by 1.2e-8.
+  EXPECT_LT(relative(c.ngspice_rule, c.ngspice, scale), c.kind == Measure::Kind::Rms ? 5e-6 : 1e-6);
   if (c.kind == Measure::Kind::MaxAt || c.kind == Measure::Kind::MinAt)
     EXPECT_LE(std::abs(c.lcspice - c.same_rows), 1e-6);  // a row of each, TSTEP = 1 us apart at most
   else
