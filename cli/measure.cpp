@@ -171,12 +171,14 @@ double crossing_time(const MeasureCrossing& c, const MeasureWaveforms& w) {
     }
   }
   if (last) return time_on(*last);
-  if (last) return *last;
   const std::string level = c.other ? c.other->name() : number(c.level);
   const std::string between = " between t = " + number(win.from) + " and " + number(win.to) + " s";
   const char* verb = c.edge == Edge::Rise ? "rises through " : c.edge == Edge::Fall ? "falls through " : "crosses ";
   const int seen = c.edge == Edge::Rise ? rises : c.edge == Edge::Fall ? falls : crosses;
   if (seen == 0) throw Failure{c.probe.name() + " never " + verb + level + between};
+  if (c.last || c.edge == Edge::First)  // seen: the rise on the first interval
+    throw Failure{c.probe.name() + " " + verb + level + between + " only on the window's first interval, which " +
+                  (c.last ? "LAST" : "the first crossing") + " does not take (ngspice 39)"};
   const char* key = c.edge == Edge::Rise ? "RISE=" : c.edge == Edge::Fall ? "FALL=" : "CROSS=";
   throw Failure{c.probe.name() + " " + verb + level + " only " + std::to_string(seen) +
                 (seen == 1 ? " time" : " times") + between + " (" + key + std::to_string(c.count) + ")"};

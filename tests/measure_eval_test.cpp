@@ -108,6 +108,14 @@ TEST(MeasureEval, CrossingsCountedAsNgspice) {
   EXPECT_DOUBLE_EQ(value(".meas tran x when v(a)=0"), 8.0);
   EXPECT_DOUBLE_EQ(value(".meas tran x when v(a)=0 cross=2"), 8.0);
   EXPECT_DOUBLE_EQ(value(".meas tran x when v(a)=0 cross=last"), 8.0);
+  // Only the first interval's rise: RISE=1 finds it, the default and LAST do not (ngspice 39.3).
+  EXPECT_DOUBLE_EQ(value(".meas tran x when v(a)=2.5 rise=1 from=2.2 to=4.2"), 2.5);
+  EXPECT_EQ(failure(".meas tran x when v(a)=2.5 rise=last from=2.2 to=4.2"),
+            "v(a) rises through 2.5 between t = 2.2 and 4.2 s only on the window's first interval, which LAST does not "
+            "take (ngspice 39)");
+  EXPECT_EQ(failure(".meas tran x when v(a)=2.5 from=2.2 to=4.2"),
+            "v(a) crosses 2.5 between t = 2.2 and 4.2 s only on the window's first interval, which the first crossing "
+            "does not take (ngspice 39)");
   // Starting on the level and going down is no fall (and below, there is none to come); nor is a
   // fall through the level on the first interval.
   EXPECT_EQ(failure(".meas tran x when v(a)=4 fall=1 from=4"), "v(a) never falls through 4 between t = 4 and 8 s");
