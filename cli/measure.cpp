@@ -81,7 +81,7 @@ double trapezoid(const std::vector<double>& t, const std::vector<double>& y) {
 
 double statistic(const Measure& m, const MeasureWaveforms& w) {
   const Window win = window(w, m.from, m.to);
-  std::vector<double> y = win.values(w.times, column(w, m.probe));
+  const std::vector<double> y = win.values(w.times, column(w, m.probe));
   const double span = win.to - win.from;
   switch (m.kind) {
     case Measure::Kind::Integ:
@@ -90,8 +90,12 @@ double statistic(const Measure& m, const MeasureWaveforms& w) {
     case Measure::Kind::Rms: {
       if (!(span > 0)) throw Failure{"the window t = " + number(win.from) + " to " + number(win.to) + " s has no length"};
       if (m.kind == Measure::Kind::Avg) return trapezoid(win.t, y) / span;
-      for (double& v : y) v *= v;
-      return std::sqrt(trapezoid(win.t, y) / span);
+      // The exact integral of the square of the waveform, linear between the points: a segment
+      // from a to b over dt contributes dt (a^2 + a b + b^2) / 3.
+      double squares = 0;
+      for (std::size_t k = 1; k < y.size(); ++k)
+        squares += (win.t[k] - win.t[k - 1]) * (y[k - 1] * y[k - 1] + y[k - 1] * y[k] + y[k] * y[k]) / 3;
+      return std::sqrt(squares / span);
     }
     default:
       break;
@@ -119,53 +123,62 @@ double crossing_time(const MeasureCrossing& c, const MeasureWaveforms& w) {
   const std::vector<double> y2 =
       c.other ? win.values(w.times, column(w, *c.other)) : std::vector<double>(win.t.size(), c.level);
   const std::vector<double>& t = win.t;
-  // Where y1 - y2 changes sign on [k-1, k], by linear interpolation (as ngspice).
+  // ngspice 39's interpolation on [k-1, k], also for a transition it counted on the window's first
+  // interval (then [1, 2] is extrapolated back). A waveform level with the level on both rows has
+  // no crossing time (ngspice divides 0 by 0 and fails the measure).
   auto time_on = [&](std::size_t k) {
     const double slope = (y1[k] - y1[k - 1]) - (y2[k] - y2[k - 1]);
-    if (slope == 0) return t[k - 1];  // level with the other from row k-1 on
+    if (slope == 0)
+      throw Failure{c.probe.name() + " is level with " + (c.other ? c.other->name() : number(c.level)) + " from t = " +
+                    number(t[k - 1]) + " to " + number(t[k]) +
+                    " s where the crossing asked for is counted (ngspice fails such a measure)"};
     return t[k - 1] + (y2[k - 1] - y1[k - 1]) * (t[k] - t[k - 1]) / slope;
   };
   using Edge = MeasureCrossing::Edge;
   int rises = 0, falls = 0, crosses = 0;
-  std::optional<double> last;
-  // One transition on [k-1, k]; true when it is the one asked for.
-  auto transition = [&](bool rise, std::size_t k) {
-    ++crosses;
-    ++(rise ? rises : falls);
+  std::optional<std::size_t> last;  // the interval of the last transition LAST asks for
+  auto matched = [&] {
     switch (c.edge) {
-      case Edge::First:
-        return true;
-      case Edge::Cross:
-        if (c.last) last = time_on(k);
-        return !c.last && crosses == c.count;
-      case Edge::Rise:
-      case Edge::Fall:
-        if (rise != (c.edge == Edge::Rise)) return false;
-        if (c.last) last = time_on(k);
-        return !c.last && (rise ? rises : falls) == c.count;
+      case Edge::Cross: return !c.last && crosses == c.count;
+      case Edge::Rise: return !c.last && rises == c.count;
+      case Edge::Fall: return !c.last && falls == c.count;
+      default: return false;
     }
-    return false;
   };
-  // ngspice's counting: the side of the level is set by the second point of the window (a
-  // transition counted when the first is on the other side, equal counting as above), then
-  // below -> above when y1 >= y2 and above -> below when y1 <= y2.
+  // ngspice 39's counting (com_measure2.c): the second point of the window sets the side, below
+  // when y1 < y2, else above; a rise is counted there when the first point is not above
+  // (y1 <= y2), never a fall. From the third point on, below -> above when y1 >= y2 (a rise) and
+  // above -> below when y1 <= y2 (a fall): a waveform sitting on the level changes side on every
+  // row. After each of these points the counts are compared with the one asked for, and a
+  // transition there is the one the default (the first) and LAST take; those counted on the
+  // first interval never are.
   if (t.size() >= 2) {
     bool below = y1[1] < y2[1];
-    if ((below && y1[0] >= y2[0]) || (!below && y1[0] < y2[0]))
-      if (transition(!below, 1)) return time_on(1);
+    if (!below && y1[0] <= y2[0]) ++rises, ++crosses;
     for (std::size_t k = 2; k < t.size(); ++k) {
-      if (below ? y1[k] >= y2[k] : y1[k] <= y2[k]) {
-        below = !below;
-        if (transition(!below, k)) return time_on(k);
+      bool rise = false, fall = false;
+      if (below && y1[k] >= y2[k]) rise = true;
+      else if (!below && y1[k] <= y2[k]) fall = true;
+      if (rise || fall) {
+        below = fall;
+        ++crosses;
+        ++(rise ? rises : falls);
       }
+      if (matched()) return time_on(k);
+      if (!(rise || fall)) continue;
+      if (c.edge == Edge::First) return time_on(k);
+      if (c.last && (c.edge == Edge::Cross || rise == (c.edge == Edge::Rise))) last = k;
     }
   }
-  if (last) return *last;
+  if (last) return time_on(*last);
   const std::string level = c.other ? c.other->name() : number(c.level);
   const std::string between = " between t = " + number(win.from) + " and " + number(win.to) + " s";
   const char* verb = c.edge == Edge::Rise ? "rises through " : c.edge == Edge::Fall ? "falls through " : "crosses ";
   const int seen = c.edge == Edge::Rise ? rises : c.edge == Edge::Fall ? falls : crosses;
   if (seen == 0) throw Failure{c.probe.name() + " never " + verb + level + between};
+  if (c.last || c.edge == Edge::First)  // seen: the rise on the first interval
+    throw Failure{c.probe.name() + " " + verb + level + between + " only on the window's first interval, which " +
+                  (c.last ? "LAST" : "the first crossing") + " does not take (ngspice 39)"};
   const char* key = c.edge == Edge::Rise ? "RISE=" : c.edge == Edge::Fall ? "FALL=" : "CROSS=";
   throw Failure{c.probe.name() + " " + verb + level + " only " + std::to_string(seen) +
                 (seen == 1 ? " time" : " times") + between + " (" + key + std::to_string(c.count) + ")"};

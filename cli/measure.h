@@ -1,9 +1,12 @@
 // `.meas tran` measures evaluated on the waveform `run` computed (netlist/measure_card.h parses
 // them). ngspice's definitions (com_measure2.c, ngspice 39): the waveform is linear between the
-// rows; AVG is its trapezoid integral over the window divided by the window's length, RMS the
-// square root of the trapezoid integral of its square over that length, INTEG the trapezoid
-// integral; MIN/MAX (and _AT) take the last extreme when it repeats; a crossing is located by
-// linear interpolation and counted as ngspice counts RISE=, FALL= and CROSS=. One deliberate
+// rows; AVG is its trapezoid integral over the window divided by the window's length, INTEG the
+// trapezoid integral, RMS the square root of the exact integral of its square (a segment from a
+// to b over dt: dt (a^2 + a b + b^2) / 3) over that length (ngspice uses Simpson's rule over equal
+// steps, not the trapezoid); MIN/MAX (and _AT) take the last extreme when it repeats; a crossing is
+// located by linear interpolation and counted as ngspice 39.3 counts RISE=, FALL= and CROSS=
+// (crossing_time in measure.cpp: a waveform on the level changes side on every row, and a
+// crossing asked for between two rows on the level fails, as ngspice's 0/0 does). One deliberate
 // difference: a window's ends (FROM=, TO=, TD=) are interpolated points of the waveform, where
 // ngspice's AVG, MIN, MAX and crossings start and stop at the nearest rows inside the window.
 #pragma once

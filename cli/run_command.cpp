@@ -297,7 +297,7 @@ int run_command(const RunArgs& args) {
       if (args.stats) std::cerr << summary.BriefReport() << "\n";
       if (!sink.path().empty() && sink.path() != "-")
         std::cerr << "lcspice: wrote " << summary.rows << " rows to " << sink.path() << "\n";
-      // After a numerical failure (below) there are no measures: the run did not reach TSTOP.
+      // After a numerical failure (below) there are no measures (the run did not reach TSTOP), a warning.
       if (!netlist.measures.empty()) report_measures(evaluate_measures(netlist.measures, tap.waveforms()), std::cerr);
       return kExitOk;
     } catch (const NumericalFailure& e) {
@@ -306,10 +306,19 @@ int run_command(const RunArgs& args) {
       if (!sink.path().empty() && sink.path() != "-")
         where = sink.rows() > 0 ? "; rows computed so far are in " + sink.path()
                                 : "; no row was computed (" + sink.path() + " holds the header only)";
-      if (default_failure)
+      // No measures after a numerical failure (the run did not reach TSTOP), but a word that they
+      // were not computed.
+      auto measures_not_computed = [&] {
+        if (!netlist.measures.empty())
+          warn(".meas results not computed: the run stopped early at a numerical failure (" +
+               std::to_string(netlist.measures.size()) + (netlist.measures.size() == 1 ? " measure)" : " measures)"));
+      };
+      if (default_failure) {
+        measures_not_computed();
         throw CliError(kExitNumerical, std::string("lcspice: error: numerical failure ") + default_failure->what() +
                                            " (--method " + options.method + ", tried next, failed too " + e.what() +
                                            ")" + default_where);
+      }
       // The fixed-step default stands in unless it too would refuse (a source it would need more
       // than kMaxGuardedSteps steps to resolve, a step count that stopped the event method too):
       // then the event method's failure and rows stand.
@@ -324,6 +333,7 @@ int run_command(const RunArgs& args) {
         lowered.reset();  // judged against the event run's rows: not this run's
         continue;
       }
+      measures_not_computed();
       throw CliError(kExitNumerical, std::string("lcspice: error: numerical failure ") + e.what() + where);
     }
   }

@@ -1,6 +1,7 @@
 #include "netlist/measure_card.h"
 
 #include <cmath>
+#include <string>
 
 namespace lcs::parse {
 namespace {
@@ -188,8 +189,10 @@ class Reader {
     const int b = t.begin, e = card_[close].end;
     Probe p = parse_probe(card_.text(b, e), card_.span(b, e));
     i_ = close + 1;
-    // `v(a)*2`, `v(a)-v(b)`: an expression written against the probe.
-    if (i_ < n_ && card_[i_].begin == e && card_[i_].is_word())
+    // `v(a)*2`, `v(a)-v(b)`: an expression written against the probe; `v(a) * 2`, `v(a) -v(b)`:
+    // one with spaces, an operator after the probe.
+    if (i_ < n_ && card_[i_].is_word() &&
+        (card_[i_].begin == e || std::string("+-*/^").find(card_[i_].text[0]) != std::string::npos))
       throw Skip{card_.span(b, card_[i_].end),
                  "expressions of probes are not measured by lcspice (only " + std::string(kProbeForms) + ")"};
     return p;
@@ -216,6 +219,14 @@ class Reader {
       else if (name == "val") bit = kVal;
       else if (name == "rise" || name == "fall" || name == "cross") bit = kEdge;
       const bool assigned = i_ + 1 < n_ && card_[i_ + 1].is(Token::Kind::Equals);
+      // A bare LAST is CROSS=LAST (ngspice 39.3: `WHEN v(a)=0.5 LAST`, TRIG/TARG alike).
+      if (!assigned && name == "last" && (allowed & kEdge)) {
+        if (p.edge != MeasureCrossing::Edge::First) fail_at(i_, "only one of RISE=, FALL=, CROSS= and LAST may be given");
+        p.edge = MeasureCrossing::Edge::Cross;
+        p.last = true;
+        ++i_;
+        continue;
+      }
       if (!assigned) {
         if (bit || name == "at") fail_at(i_ + 1, "missing '=' after " + quote(t.text));
         fail_at(i_, "unexpected extra token " + quote(t.text));
@@ -224,7 +235,7 @@ class Reader {
       if (!(allowed & bit)) fail_at(i_, upper(name) + "= does not apply to " + context_);
       const std::size_t v = i_ + 2;
       if (bit == kEdge) {
-        if (p.edge != MeasureCrossing::Edge::First) fail_at(i_, "only one of RISE=, FALL= and CROSS= may be given");
+        if (p.edge != MeasureCrossing::Edge::First) fail_at(i_, "only one of RISE=, FALL=, CROSS= and LAST may be given");
         p.edge = name == "rise" ? MeasureCrossing::Edge::Rise
                  : name == "fall" ? MeasureCrossing::Edge::Fall
                                   : MeasureCrossing::Edge::Cross;

@@ -7,7 +7,8 @@
 //   .meas [tran] NAME WHEN probe=value|probe2 [crossing]
 //   .meas [tran] NAME TRIG probe VAL=v [crossing] | TRIG AT=t   TARG probe VAL=v [crossing] | TARG AT=t
 //
-// crossing: RISE=n|LAST, FALL=n|LAST or CROSS=n|LAST (one of them; TRIG and TARG need one),
+// crossing: RISE=n|LAST, FALL=n|LAST, CROSS=n|LAST or a bare LAST (CROSS=LAST, as ngspice reads
+// it; one of them; TRIG and TARG need one),
 // TD=t, FROM=t, TO=t. Values are numbers with SPICE suffixes or {expressions} of the deck's
 // parameters. Without an analysis name the measure is a transient one (LTspice).
 #pragma once

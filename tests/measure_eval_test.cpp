@@ -49,8 +49,10 @@ TEST(MeasureEval, StatisticsOverTheWholeRun) {
   EXPECT_DOUBLE_EQ(value(".meas tran x avg v(a)"), 2.0);           // area 16 over 8 s
   EXPECT_DOUBLE_EQ(value(".meas tran x integ v(a)"), 16.0);
   EXPECT_DOUBLE_EQ(value(".meas tran x integral v(c)"), 320.0);    // 10 t^2 / 2 at t = 8
-  // RMS: the trapezoid of the squares 0 1 4 9 16 9 4 1 0 is 44; sqrt(44 / 8).
-  EXPECT_DOUBLE_EQ(value(".meas tran x rms v(a)"), std::sqrt(5.5));
+  // RMS: the exact integral of the triangle's square, 2 * 4^3 / 3, over 8 s (the trapezoid of the
+  // squares would give 44 / 8).
+  EXPECT_DOUBLE_EQ(value(".meas tran x rms v(a)"), 4 / std::sqrt(3.0));
+  EXPECT_DOUBLE_EQ(value(".meas tran x rms v(a) from=1 to=3"), std::sqrt(13.0 / 3));  // (27 - 1) / 3 / 2
   EXPECT_DOUBLE_EQ(value(".meas tran x max v(a)"), 4.0);
   EXPECT_DOUBLE_EQ(value(".meas tran x min v(a)"), 0.0);
   EXPECT_DOUBLE_EQ(value(".meas tran x pp v(a)"), 4.0);
@@ -89,16 +91,79 @@ TEST(MeasureEval, CrossingsCountedAsNgspice) {
   EXPECT_DOUBLE_EQ(value(".meas tran x when v(a)=2.5 from=3"), 5.5);
   EXPECT_EQ(failure(".meas tran x when v(a)=2.5 cross=2 to=5"),
             "v(a) crosses 2.5 only 1 time between t = 0 and 5 s (CROSS=2)");
-  // A crossing on the window's first interval counts (ngspice's default misses it).
-  EXPECT_DOUBLE_EQ(value(".meas tran x when v(a)=0.5"), 0.5);
+  // The window's first interval (ngspice 39): a rise there is counted (here v(a) = 0.5 at t = 0.5)
+  // and reported by interpolating [1, 2], but the default (the first) and LAST skip it.
+  EXPECT_DOUBLE_EQ(value(".meas tran x when v(a)=0.5 rise=1"), 0.5);
+  EXPECT_DOUBLE_EQ(value(".meas tran x when v(a)=0.5 cross=1"), 0.5);
+  EXPECT_DOUBLE_EQ(value(".meas tran x when v(a)=0.5"), 7.5);
+  EXPECT_DOUBLE_EQ(value(".meas tran x when v(a)=0.5 cross=2"), 7.5);
   // Reaching the level is crossing it: v(a) = 2 at t = 2 (a rise) and t = 6 (a fall).
   EXPECT_DOUBLE_EQ(value(".meas tran x when v(a)=v(b)"), 2.0);
   EXPECT_DOUBLE_EQ(value(".meas tran x when v(a)=v(b) cross=2"), 6.0);
   EXPECT_DOUBLE_EQ(value(".meas tran x when v(b)=v(a) fall=1"), 2.0);  // v(b) - v(a) falls at t = 2
-  // Starting on the level is being above it (ngspice): v(a) = 0 at t = 0 is no rise; its return
-  // to 0 at t = 8 is a fall.
+  // Starting on the level and going up is a rise on the first interval (ngspice 39: RISE=1 is
+  // t = 0); the default takes the return to 0 at t = 8, a fall.
+  EXPECT_DOUBLE_EQ(value(".meas tran x when v(a)=0 rise=1"), 0.0);
+  EXPECT_DOUBLE_EQ(value(".meas tran x when v(a)=0 cross=1"), 0.0);
   EXPECT_DOUBLE_EQ(value(".meas tran x when v(a)=0"), 8.0);
-  EXPECT_EQ(failure(".meas tran x when v(a)=0 rise=1"), "v(a) never rises through 0 between t = 0 and 8 s");
+  EXPECT_DOUBLE_EQ(value(".meas tran x when v(a)=0 cross=2"), 8.0);
+  EXPECT_DOUBLE_EQ(value(".meas tran x when v(a)=0 cross=last"), 8.0);
+  // Only the first interval's rise: RISE=1 finds it, the default and LAST do not (ngspice 39.3).
+  EXPECT_DOUBLE_EQ(value(".meas tran x when v(a)=2.5 rise=1 from=2.2 to=4.2"), 2.5);
+  EXPECT_EQ(failure(".meas tran x when v(a)=2.5 rise=last from=2.2 to=4.2"),
+            "v(a) rises through 2.5 between t = 2.2 and 4.2 s only on the window's first interval, which LAST does not "
+            "take (ngspice 39)");
+  EXPECT_EQ(failure(".meas tran x when v(a)=2.5 from=2.2 to=4.2"),
+            "v(a) crosses 2.5 between t = 2.2 and 4.2 s only on the window's first interval, which the first crossing "
+            "does not take (ngspice 39)");
+  // Starting on the level and going down is no fall (and below, there is none to come); nor is a
+  // fall through the level on the first interval.
+  EXPECT_EQ(failure(".meas tran x when v(a)=4 fall=1 from=4"), "v(a) never falls through 4 between t = 4 and 8 s");
+  EXPECT_EQ(failure(".meas tran x when v(a)=4 cross=1 from=4"), "v(a) never crosses 4 between t = 4 and 8 s");
+  EXPECT_EQ(failure(".meas tran x when v(a)=3.5 fall=1 from=4"), "v(a) never falls through 3.5 between t = 4 and 8 s");
+}
+
+// t = 0..10: v(a) 0 0.5 1 1 1 0 0 0 1 2 1, sitting on 1 (t = 2..4) and on 0 (t = 5..7).
+MeasureWaveforms flat() {
+  MeasureWaveforms w;
+  const double a[] = {0, 0.5, 1, 1, 1, 0, 0, 0, 1, 2, 1};
+  for (int k = 0; k <= 10; ++k) {
+    w.times.push_back(k);
+    w.columns["v(a)"].push_back(a[k]);
+    w.columns["v(b)"].push_back(1);
+    w.columns["v(c)"].push_back(10.0 * k);
+  }
+  return w;
+}
+
+TEST(MeasureEval, WaveformSittingOnTheLevel) {
+  auto on_flat = [](const std::string& card) { return evaluate_measure(meas(card), flat()); };
+  auto at = [&](const std::string& card) {
+    const MeasureResult r = on_flat(card);
+    EXPECT_TRUE(r.value.has_value()) << card << ": " << r.failure;
+    return r.value.value_or(NAN);
+  };
+  // ngspice 39 changes side on every row equal to the level: on v(a) = 1 the rise at t = 2, a fall
+  // at t = 3 and a rise at t = 4 (both 1 to 1: no time, the measure fails), the fall at t = 5, ...
+  EXPECT_DOUBLE_EQ(at(".meas tran x when v(a)=1 rise=1"), 2.0);
+  const MeasureResult f1 = on_flat(".meas tran x when v(a)=1 fall=1");
+  EXPECT_FALSE(f1.value);
+  EXPECT_EQ(f1.failure, "v(a) is level with 1 from t = 2 to 3 s where the crossing asked for is counted "
+                        "(ngspice fails such a measure)");
+  EXPECT_FALSE(on_flat(".meas tran x when v(a)=1 rise=2").value);
+  EXPECT_DOUBLE_EQ(at(".meas tran x when v(a)=1 fall=2"), 4.0);
+  EXPECT_DOUBLE_EQ(at(".meas tran x when v(a)=1 rise=3"), 8.0);
+  EXPECT_DOUBLE_EQ(at(".meas tran x when v(a)=1 rise=last"), 8.0);
+  EXPECT_DOUBLE_EQ(at(".meas tran x when v(a)=1 fall=last"), 10.0);
+  // On v(a) = 0: a rise counted on [0, 1], the fall at t = 5, then a rise and a fall 0 to 0 on
+  // [5, 6] and [6, 7] (failed), the rise at t = 7.
+  EXPECT_DOUBLE_EQ(at(".meas tran x when v(a)=0 cross=2"), 5.0);
+  EXPECT_FALSE(on_flat(".meas tran x when v(a)=0 cross=3").value);
+  EXPECT_FALSE(on_flat(".meas tran x when v(a)=0 fall=last").value);
+  EXPECT_DOUBLE_EQ(at(".meas tran x when v(a)=0 cross=last"), 7.0);
+  EXPECT_FALSE(on_flat(".meas tran x when v(a)=v(b) fall=1").value);  // the same against a probe
+  EXPECT_DOUBLE_EQ(at(".meas tran x when v(a)=v(b) fall=2"), 4.0);
+  EXPECT_FALSE(on_flat(".meas tran x trig v(a) val=1 fall=1 targ v(c) val=50 rise=1").value);
 }
 
 TEST(MeasureEval, FindWhenAndTrigTarg) {

@@ -95,6 +95,22 @@ TEST(MeasureCard, WhenProbeEqualsProbe) {
   EXPECT_DOUBLE_EQ(first.when.level, 0.5);
 }
 
+// A bare LAST is CROSS=LAST (ngspice 39.3: `when v(a)=0.5 last` is the last crossing), also in TRIG/TARG.
+TEST(MeasureCard, BareLastIsCrossLast) {
+  const Measure m = only_measure(parse(deck(".meas tran tl when v(b)=0.5 LAST td=1m")));
+  EXPECT_EQ(m.when.edge, MeasureCrossing::Edge::Cross);
+  EXPECT_TRUE(m.when.last);
+  EXPECT_DOUBLE_EQ(m.when.td, 1e-3);
+  const Measure f = only_measure(parse(deck(".meas tran fl find v(a) when v(b)=v(a) last")));
+  EXPECT_EQ(f.when.edge, MeasureCrossing::Edge::Cross);
+  EXPECT_TRUE(f.when.last);
+  const Measure t = only_measure(parse(deck(".meas tran d trig v(b) val=0.5 last targ v(b) val=0.5 last")));
+  EXPECT_EQ(t.when.edge, MeasureCrossing::Edge::Cross);
+  EXPECT_TRUE(t.when.last);
+  EXPECT_EQ(t.targ.edge, MeasureCrossing::Edge::Cross);
+  EXPECT_TRUE(t.targ.last);
+}
+
 TEST(MeasureCard, TrigTarg) {
   const Measure m = only_measure(parse(deck(".meas tran trise trig v(b) val=0.1 rise=1 targ v(b) val=0.9 rise=last")));
   EXPECT_EQ(m.kind, Measure::Kind::TrigTarg);
@@ -142,6 +158,15 @@ TEST(MeasureCard, SkippedWithAWarning) {
        "measure 'x' is skipped"},
       {".meas tran x max v(b)*2",
        "t.cir:6:18: warning: expressions of probes are not measured by lcspice (only v(node), v(node1,node2) or "
+       "i(element)): measure 'x' is skipped"},
+      {".meas tran x avg v(b) * 2",
+       "t.cir:6:18: warning: expressions of probes are not measured by lcspice (only v(node), v(node1,node2) or "
+       "i(element)): measure 'x' is skipped"},
+      {".meas tran x avg v(b) -v(a) from=1m",
+       "t.cir:6:18: warning: expressions of probes are not measured by lcspice (only v(node), v(node1,node2) or "
+       "i(element)): measure 'x' is skipped"},
+      {".meas tran x when v(b)=v(a) / 2 rise=1",
+       "t.cir:6:24: warning: expressions of probes are not measured by lcspice (only v(node), v(node1,node2) or "
        "i(element)): measure 'x' is skipped"},
       {".meas tran x max par('v(b)*2')",
        "t.cir:6:18: warning: expressions of probes are not measured by lcspice (only v(node), v(node1,node2) or "
@@ -210,8 +235,13 @@ TEST(MeasureCard, SyntaxErrors) {
        "t.cir:6:34: error: CROSS= must be a whole number from 1, or LAST\n.meas tran x when v(b)=0.5 cross=1.5\n"
        "                                 ^~~"},
       {".meas tran x when v(b)=0.5 rise=1 fall=2",
-       "t.cir:6:35: error: only one of RISE=, FALL= and CROSS= may be given\n.meas tran x when v(b)=0.5 rise=1 fall=2\n"
+       "t.cir:6:35: error: only one of RISE=, FALL=, CROSS= and LAST may be given\n.meas tran x when v(b)=0.5 rise=1 fall=2\n"
        "                                  ^~~~"},
+      {".meas tran x when v(b)=0.5 rise=1 last",
+       "t.cir:6:35: error: only one of RISE=, FALL=, CROSS= and LAST may be given\n.meas tran x when v(b)=0.5 rise=1 last\n"
+       "                                  ^~~~"},
+      {".meas tran x avg v(b) last",
+       "t.cir:6:23: error: unexpected extra token 'last'\n.meas tran x avg v(b) last\n                      ^~~~"},
       {".meas tran x when v(b) 0.5",
        "t.cir:6:24: error: expected '=' after 'v(b)' (WHEN probe=level or probe=probe2)\n.meas tran x when v(b) 0.5\n"
        "                       ^~~"},
