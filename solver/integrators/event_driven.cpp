@@ -191,6 +191,10 @@ struct EventDriven::Impl {
   Eigen::VectorXd X;       // [x; σ]
   Eigen::VectorXd W;       // rounding weights of [x; σ] for the current source form
   Eigen::VectorXd ga, da;  // constraint values and slopes at X
+  // RunSegment's check for a stepped-over turn-off, across the run's segments (a switch starts
+  // one): per pair, 0 or the z it closed at below zero, and whether it was closed at the last row.
+  Eigen::VectorXd z_floor;
+  std::vector<bool> closed_at_last_row;
   std::vector<char> below_at_start;  // constraints that began the mode just below zero
   Eigen::VectorXd start_value;       // their values then: an excused one may not fall below it
   Eigen::VectorXd scale, slope_scale;
@@ -493,7 +497,14 @@ bool EventDriven::Impl::consistent(Mode& md, const Eigen::VectorXd& Xs,
     double t0 = kZeroTol * sg(i);
     if (error)
       for (Eigen::Index c = 0; c < error->cols(); ++c) t0 += std::abs(md.G.row(i).dot(error->col(c)));
-    const double t1 = slope_tol * sd(i), t2 = slope_tol * sdd(i);
+    double t1 = slope_tol * sd(i), t2 = slope_tol * sdd(i);
+    // Below kZeroTol (the retry in select()) the slopes are known only to what the crossing's
+    // estimate changes in them.
+    if (error && slope_tol < kZeroTol)
+      for (Eigen::Index c = 0; c < error->cols(); ++c) {
+        t1 += std::abs(md.GM.row(i).dot(error->col(c)));
+        t2 += std::abs(md.GMM.row(i).dot(error->col(c)));
+      }
     if (g(i) > t0) continue;
     if (near_zero && g(i) >= -t0) near_zero->push_back(i);
     if (g(i) < -t0) {
@@ -1057,9 +1068,12 @@ std::optional<GuardCrossing> EventDriven::RunSegment(const SegmentStart& start, 
   // A pair that stays closed through an event keeps zero as its floor: exempting it too let the
   // peak detector with RON = 0.01 keep its diode on at -1.1e-9 A past the peak, 660 times the
   // bound, and end 5.5 mV off with exit 0.)
+  // (A pair's floor goes back to zero once its current is not negative: a turn-off stepped over
+  // after a pulse is judged from zero.)
   double largest_z = 0;
-  Eigen::VectorXd z_floor;  // per pair: 0, or the z a pair closed at when that was below zero
-  std::vector<bool> active_before;
+  Eigen::VectorXd& z_floor = r.z_floor;
+  std::vector<bool>& closed_before = r.closed_at_last_row;
+  if (start.t == 0) z_floor.resize(0);
   auto emit_now = [&](double t, bool event) {
     x_out = r.X.head(n);
     z_out.noalias() = r.cur->Z * r.X;
@@ -1067,12 +1081,12 @@ std::optional<GuardCrossing> EventDriven::RunSegment(const SegmentStart& start, 
     const double tol = std::max(1e-6 * largest_z, 1e-15);
     if (z_floor.size() != r.m) {
       z_floor = Eigen::VectorXd::Zero(r.m);
-      active_before.assign(r.m, false);
+      closed_before.assign(r.m, false);
     }
     for (int i = 0; i < r.m; ++i) {
-      if (!r.cur->active[i]) z_floor(i) = 0;
-      else if (!active_before[i]) z_floor(i) = std::min(0.0, z_out(i));
-      active_before[i] = r.cur->active[i];
+      if (!r.cur->active[i] || z_out(i) >= 0) z_floor(i) = 0;
+      else if (!closed_before[i]) z_floor(i) = z_out(i);
+      closed_before[i] = r.cur->active[i];
     }
     for (int i = 0; i < r.m; ++i)
       if (r.cur->active[i] && z_out(i) < -tol && z_out(i) < z_floor(i) - tol) {
