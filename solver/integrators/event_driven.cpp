@@ -712,7 +712,7 @@ Mode& EventDriven::Impl::select(double t, const Eigen::VectorXd& x, const Eigen:
   if (m <= 10 && static_cast<int>(near_zero.size()) < m)
     for (int i = 0; i < m; ++i) all.push_back(i);
   if (Mode* md = search(near_zero)) return *md;
-  if (Mode* md = all.empty() ? nullptr : search(all)) return *md;
+  if (Mode* md = search(all)) return *md;
   // No mode fits with the slopes judged against kZeroTol of their terms. A stiff mode's rows
   // of z' and z'' add terms of V / (RON^2 C) that cancel: at a grazing contact (a multiplier
   // with no load near its steady state, two diodes touching their thresholds at the source's
@@ -723,7 +723,7 @@ Mode& EventDriven::Impl::select(double t, const Eigen::VectorXd& x, const Eigen:
   // same candidates, the LCP's own mode first (with RON = 0.02 it was the one that fits).
   if (consistent(first, *Xt, nullptr, error, nullptr, kTol)) return first;
   if (Mode* md = search(near_zero, kTol)) return *md;
-  if (Mode* md = all.empty() ? nullptr : search(all, kTol)) return *md;
+  if (Mode* md = search(all, kTol)) return *md;
   if (!lemke_failure.empty())
     throw NumericalFailure(t, "no next mode: the switching LCP has no solution (Lemke: " + lemke_failure +
                                   "), and no mode near the operating point's continues the state");
@@ -1067,22 +1067,20 @@ std::optional<GuardCrossing> EventDriven::RunSegment(const SegmentStart& start, 
   // of its terms, whose current then rose, as the mode had it; tests/grazing_multiplier_test.cpp.
   // A pair that stays closed through an event keeps zero as its floor: exempting it too let the
   // peak detector with RON = 0.01 keep its diode on at -1.1e-9 A past the peak, 660 times the
-  // bound, and end 5.5 mV off with exit 0.)
-  // (A pair's floor goes back to zero once its current is not negative: a turn-off stepped over
-  // after a pulse is judged from zero.)
+  // bound, and end 5.5 mV off with exit 0.) A pair's floor goes back to zero once its current is
+  // not negative: a turn-off stepped over after a pulse is judged from zero.
   double largest_z = 0;
   Eigen::VectorXd& z_floor = r.z_floor;
   std::vector<bool>& closed_before = r.closed_at_last_row;
-  if (start.t == 0) z_floor.resize(0);
+  if (start.t == 0 || z_floor.size() != r.m) {
+    z_floor = Eigen::VectorXd::Zero(r.m);
+    closed_before.assign(r.m, false);
+  }
   auto emit_now = [&](double t, bool event) {
     x_out = r.X.head(n);
     z_out.noalias() = r.cur->Z * r.X;
     for (int i = 0; i < r.m; ++i) largest_z = std::max(largest_z, std::abs(z_out(i)));
     const double tol = std::max(1e-6 * largest_z, 1e-15);
-    if (z_floor.size() != r.m) {
-      z_floor = Eigen::VectorXd::Zero(r.m);
-      closed_before.assign(r.m, false);
-    }
     for (int i = 0; i < r.m; ++i) {
       if (!r.cur->active[i] || z_out(i) >= 0) z_floor(i) = 0;
       else if (!closed_before[i]) z_floor(i) = z_out(i);
