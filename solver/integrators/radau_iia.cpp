@@ -119,6 +119,7 @@ void RadauIIA::DoStep(double t, double h, Eigen::VectorXd& x, Eigen::VectorXd& z
   q_.noalias() = f.Qx * x;
   q_.noalias() += f.Qu * U_;
   if (f.lcp->stats().solves == 0 && m > 0) f.lcp->prefer(z.replicate(stages(), 1));
+  else f.lcp->continue_last_block(stages());
   const LcpSolution* sol_ptr = &f.lcp->solve(q_);
   if (sol_ptr->status == LcpStatus::NotUnique) sol_ptr = &mode_from_euler(f, t, h, x, z);
   const LcpSolution& sol = *sol_ptr;

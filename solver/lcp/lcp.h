@@ -124,6 +124,12 @@ class LcpWarmSolver {
   // point, or the last step's z when a new step size gets its own solver) is the first guess.
   // `always`: also after solves (the next solve tries this active set first).
   void prefer(const Eigen::VectorXd& z, bool always = false);
+  // M stacks `blocks` copies of the same pairs (a collocation step's stages). Makes the next
+  // first guess the last block's active set in every block, where the last answer's blocks
+  // differ: a step whose stages sit in different modes had a switching inside it, and the step
+  // after it continues the mode of its end, not that pattern (several stage patterns can solve
+  // one step's LCP, and a kept one is then kept for good: radau_iia.cpp).
+  void continue_last_block(int blocks);
 
   // M may admit several solutions (neither symmetric positive semidefinite nor M + M^T
   // positive definite: transistor feedback). Then each solve reports what it found:

@@ -106,6 +106,17 @@ void LcpWarmSolver::prefer(const Eigen::VectorXd& z, bool always) {
   preferred_ = true;
 }
 
+void LcpWarmSolver::continue_last_block(int blocks) {
+  const int n = static_cast<int>(M_.rows());
+  if (blocks <= 1 || n % blocks != 0 || n == 0) return;
+  const int m = n / blocks;
+  const std::string last = active_.substr(n - m);
+  bool uniform = true;
+  for (int b = 0; b + 1 < blocks && uniform; ++b) uniform = active_.compare(b * m, m, last) == 0;
+  if (uniform) return;
+  for (int b = 0; b + 1 < blocks; ++b) active_.replace(b * m, m, last);
+}
+
 // Several solutions (Stewart 5.4.7: transistor feedback): the warm start keeps the one
 // continuous with the previous state. Enumeration (2^n solves) tells whether others exist: on
 // warm hits only until the first time it finds them and only for n <= kMaxCountedOnWarmHit, at

@@ -410,5 +410,38 @@ TEST(RadauAllocation, SteadyStepsDoNotAllocate) {
 #endif
 }
 
+// A bridge with no load, its capacitor (1 uF) referenced by 1 GOhm, RON = 0.05: once D1 and D4
+// conduct, tau i' + i = C Vs'(t) with tau = 2 RON C = 0.1 us, so a few tau after turn-on
+// i = C A w (cos wt + tau w sin wt) / (1 + (tau w)^2). The stage LCP of a collocation step is
+// not a P-matrix here (the 1 GOhm loops make its diagonal blocks rank one): seven stage patterns
+// solve it at h = 0.1 us. The turn-on step ends with its first stage blocking, and when that
+// pattern was kept as the next steps' first guess it kept solving them: i(d1) sat at 0.088 A
+// (C dv/dt of the rows 0.062 A) for the whole conduction. Each step now starts from the mode the
+// last one ended in, in every stage (LcpWarmSolver::continue_last_block).
+TEST(RadauNoLoadBridge, StagesContinueTheModeTheLastStepEndedIn) {
+  const double amplitude = 10, freq = 1e3, C = 1e-6, ron = 0.05;
+  NetlistBuilder b;
+  b.tran(1e-7, 200e-6, true);
+  b.v("v1", "a", "b", NetlistBuilder::sin(0, amplitude, freq)).r("rg", "b", "0", 1e9);
+  b.d("d1", "a", "p", 0.7, ron).d("d2", "b", "p", 0.7, ron).d("d3", "n", "a", 0.7, ron);
+  b.d("d4", "n", "b", 0.7, ron).c("c1", "p", "n", C, 0.0).r("rc", "n", "0", 1e9);
+  const double w = 2 * M_PI * freq, tau = 2 * ron * C;
+  for (const char* method : {"radau3", "radau5"}) {
+    const RunResult r = simulate(b.build(), {i("d1")}, method, 1e-7, 200e-6, true);
+    double worst = 0;
+    int rows = 0;
+    for (size_t n = 0; n < r.sink.times.size(); ++n) {
+      const double t = r.sink.times[n];
+      if (t < 30e-6) continue;  // turn-on at 22.4 us; its transient is e^-76 by 30 us
+      const double closed = C * amplitude * w * (std::cos(w * t) + tau * w * std::sin(w * t)) /
+                            (1 + tau * w * tau * w);
+      worst = std::max(worst, std::abs(r.sink.rows[n](0) - closed));
+      ++rows;
+    }
+    EXPECT_GT(rows, 1600) << method;
+    EXPECT_LT(worst, 1e-6) << method;  // i(d1) up to 0.062 A
+  }
+}
+
 }  // namespace
 }  // namespace lcs
