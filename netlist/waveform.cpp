@@ -155,7 +155,9 @@ PulseShape pulse_shape(const std::vector<double>& p) {
 // The phase of t >= td in its period, in [0, per) (t - td for a single pulse). Phases within a
 // few ulps of a knot (or of the period end) are snapped onto it, so breakpoints computed as
 // td + k*per + knot land exactly on the corner and a jump there yields its right value.
-double pulse_phase(const PulseShape& s, double t) {
+// Shape: td, per and knots (a Knots list or a view of one, sorted by t).
+template <class Shape>
+double pulse_phase(const Shape& s, double t) {
   double tau = t - s.td;
   if (s.per > 0) {
     double k = std::floor(tau / s.per);
@@ -166,9 +168,12 @@ double pulse_phase(const PulseShape& s, double t) {
     if (!(tau >= 0)) tau = 0;  // also NaN
   }
   double tol = 64 * DBL_EPSILON * std::max({std::fabs(t), std::fabs(s.td), s.per});
-  for (const Knot& n : s.knots)
-    if (std::fabs(tau - n.t) <= tol) {
-      tau = n.t;
+  // The first knot within tol of tau: the first at or after tau - tol (or, by rounding, the one
+  // before it), found by bisection (a scan cost a 2000-point PWL with r= 15 us a step).
+  const std::size_t j = knots_before(s.knots, tau - tol);
+  for (std::size_t i = j > 0 ? j - 1 : 0; i < s.knots.size() && i <= j; ++i)
+    if (std::fabs(tau - s.knots[i].t) <= tol) {
+      tau = s.knots[i].t;
       break;
     }
   if (tau < 0) tau = 0;
@@ -202,6 +207,47 @@ std::optional<PulseShape> pwl_repeat(const std::vector<double>& p, std::optional
   s.knots.push_back({per, pl_left(full, per)});
   s.v1 = s.knots.front().v;
   return s;
+}
+
+// pwl_repeat's shape read in place from the parameters, for the evaluations at every step (a
+// copy of the points each time cost a 2000-point PWL with r= 15 us a step): the points from the
+// first at or after r to the last, shifted to start at 0, those before the period's end, then
+// the period's end at the stretch's left limit there. Same knots as pwl_repeat's.
+struct ShiftedKnots {
+  const std::vector<double>& p;
+  std::size_t first, end;  // point indices [first, end)
+  double from;
+  std::size_t size() const { return end - first; }
+  bool empty() const { return end == first; }
+  Knot operator[](std::size_t i) const { return {p[2 * (first + i)] - from, p[2 * (first + i) + 1]}; }
+  Knot front() const { return (*this)[0]; }
+};
+struct RepeatKnots {
+  ShiftedKnots stretch;  // the points before the period's end
+  Knot closing;          // (per, the left limit at per)
+  std::size_t size() const { return stretch.size() + 1; }
+  bool empty() const { return false; }
+  Knot operator[](std::size_t i) const { return i < stretch.size() ? stretch[i] : closing; }
+  Knot front() const { return (*this)[0]; }
+};
+struct PwlRepeatView {
+  double td, per;
+  RepeatKnots knots;
+};
+
+std::optional<PwlRepeatView> pwl_repeat_view(const std::vector<double>& p,
+                                             std::optional<double> repeat_from) {
+  if (!repeat_from || p.size() < 4) return std::nullopt;
+  const double from = *repeat_from;
+  const ParamKnots all{p};
+  const double last = all[all.size() - 1].t, per = last - from;
+  if (!(per > 0)) return std::nullopt;
+  const std::size_t first = knots_before(all, from);
+  const ShiftedKnots full{p, first, all.size(), from};
+  const std::size_t before_end = knots_before(full, per);
+  return PwlRepeatView{last, per,
+                       RepeatKnots{ShiftedKnots{p, first, first + before_end, from},
+                                   Knot{per, pl_left(full, per)}}};
 }
 
 // Bounds over [a, b] of a periodic shape from its phase 0 at s.td on (a >= s.td).
@@ -429,7 +475,7 @@ double Waveform::value(double t) const {
       return pl_value(s.knots, pulse_phase(s, t));
     }
     case Kind::Pwl:
-      if (const std::optional<PulseShape> r = pwl_repeat(params, repeat_from); r && t >= r->td)
+      if (const std::optional<PwlRepeatView> r = pwl_repeat_view(params, repeat_from); r && t >= r->td)
         return pl_value(r->knots, pulse_phase(*r, t));
       return pl_value(ParamKnots{params}, t);
     case Kind::Exp:
@@ -462,7 +508,7 @@ double Waveform::value_before(double t) const {
       return pl_left(s.knots, tau);
     }
     case Kind::Pwl:
-      if (const std::optional<PulseShape> r = pwl_repeat(params, repeat_from); r && t > r->td) {
+      if (const std::optional<PwlRepeatView> r = pwl_repeat_view(params, repeat_from); r && t > r->td) {
         const double tau = pulse_phase(*r, t);
         return pl_left(r->knots, tau == 0 ? r->per : tau);  // at a period's start: the last one's end
       }
@@ -496,7 +542,7 @@ double Waveform::derivative(double t) const {
       return pl_slope(s.knots, pulse_phase(s, t));
     }
     case Kind::Pwl:
-      if (const std::optional<PulseShape> r = pwl_repeat(params, repeat_from); r && t >= r->td)
+      if (const std::optional<PwlRepeatView> r = pwl_repeat_view(params, repeat_from); r && t >= r->td)
         return pl_slope(r->knots, pulse_phase(*r, t));
       return pl_slope(ParamKnots{params}, t);
     case Kind::Exp:

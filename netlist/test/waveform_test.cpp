@@ -557,6 +557,59 @@ TEST(WaveformScaled, MultipliesLevelsNotTimes) {
 }  // namespace lcs
 
 namespace lcs {
+// A 1000-point PWL with jumps and r= at one of its points, read in place (the repeated stretch
+// is not copied out at each evaluation): against the same waveform written out as a plain PWL
+// over four periods (the stretch's points shifted by last + k per, each period closing with its
+// left limit and a jump to the stretch's first value), at random times and midway between points.
+TEST(WaveformPwl, RepeatOfManyPointsAgreesWithItsCopiesWrittenOut) {
+  Waveform w;
+  w.kind = Waveform::Kind::Pwl;
+  unsigned seed = 777;
+  auto next = [&seed] {
+    seed = seed * 1103515245u + 12345u;
+    return static_cast<double>((seed >> 8) & 0xffff) / 65536.0;
+  };
+  double t = 0;
+  for (int i = 0; i < 1000; ++i) {
+    if (i % 7 != 3) t += 1e-6 * (0.1 + next());
+    w.params.push_back(t);
+    w.params.push_back(10 * next() - 5);
+  }
+  const std::size_t n = w.params.size() / 2, r_index = 400;
+  const double from = w.params[2 * r_index], last = t, per = last - from;
+  w.repeat_from = from;
+  w.resolve(1e-6, last + 5 * per);
+  Waveform plain;
+  plain.kind = Waveform::Kind::Pwl;
+  plain.params = std::vector<double>(w.params.begin(), w.params.end());
+  const double end_value = w.params[2 * n - 1];  // the left limit at the period's end
+  for (int k = 0; k < 4; ++k) {
+    for (std::size_t i = r_index; i < n && w.params[2 * i] < last; ++i) {
+      plain.params.push_back(last + k * per + (w.params[2 * i] - from));
+      plain.params.push_back(w.params[2 * i + 1]);
+    }
+    plain.params.push_back(last + (k + 1) * per);
+    plain.params.push_back(end_value);
+  }
+  plain.resolve(1e-6, last + 5 * per);
+  std::vector<double> times;
+  for (int i = 0; i < 4000; ++i) times.push_back(last + 4 * per * next());
+  for (std::size_t i = r_index; i + 1 < n; ++i)
+    for (int k = 0; k < 4 && w.params[2 * i] < w.params[2 * i + 2]; ++k)  // not at a jump
+      times.push_back(last + k * per + 0.5 * (w.params[2 * i] + w.params[2 * i + 2]) - from);
+  int compared = 0;
+  for (double x : times) {
+    if (x >= last + 4 * per) continue;
+    // slopes are up to 1e8 V/s: 1e-9 V is a shift of 1e-17 s, a few ulps of x
+    EXPECT_NEAR(w.value(x), plain.value(x), 1e-9) << x;
+    EXPECT_NEAR(w.value_before(x), plain.value_before(x), 1e-9) << x;
+    const double slope = plain.derivative(x);
+    EXPECT_NEAR(w.derivative(x), slope, 1e-9 * std::max(1.0, std::fabs(slope))) << x;
+    ++compared;
+  }
+  EXPECT_GT(compared, 6000);
+}
+
 namespace {
 
 // A PWL is searched in place (binary search over its parameters, no copy of its points: a
