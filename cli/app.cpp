@@ -107,6 +107,10 @@ int run_cli(int argc, char** argv) {
   bench_cmd->add_flag("--no-smooth-reference", bench.no_smooth_reference,
                       "no smooth (Shockley) reference: ngspice against the event reference only, smooth not run "
                       "(the reference's rtol 1e-10 run can take longer than the rest)");
+  bench_cmd->add_option("--reference", bench.reference,
+                        "the ideal circuit's reference: event (default; rtol 1e-13, checked at 1e-14 with TSTEP/2) "
+                        "or euler (implicit Euler at TSTEP/64, checked at TSTEP/128, read linearly between its "
+                        "rows at ngspice's times: for circuits whose event reference takes too long)");
   bench_cmd->add_option("--method,--methods", bench.methods,
                         "comma-separated methods (default: all; --scaling and --scale: euler)");
   bench_cmd->add_option("--probe", bench.probes, "comma-separated probes for the netlists given");

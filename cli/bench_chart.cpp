@@ -31,7 +31,9 @@ void write_bench_chart(const CircuitStudy& study, const std::string& png) {
     script += "EOD\n";
   }
   script += "set xlabel 'CPU time [s] (in-process; ngspice: its own analysis time)'\n";
-  script += "set ylabel 'max |error| / range (vs event reference; smooth, ngspice: vs smooth reference)'\n";
+  const std::string reference = study.ideal_reference_setting.substr(0, study.ideal_reference_setting.find(' '));
+  script += "set ylabel 'max |error| / range (vs " + reference +
+            " reference; smooth, ngspice: vs smooth reference)'\n";
   script += "set grid\nset key outside right\nset format x '%g'\nset format y '%g'\n";
   script += "plot ";
   for (size_t k = 0; k < order.size(); ++k)

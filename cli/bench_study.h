@@ -25,6 +25,12 @@ struct BenchSettings {
   // false: no smooth reference (ngspice is compared with the ideal one, the smooth method is not
   // run). Its rtol 1e-10 run can outlast the rest of the study: 310 s on a 50-stage multiplier.
   bool smooth_reference = true;
+  // The ideal circuit's reference: "event" (exact between switchings; rtol 1e-13, checked at
+  // 1e-14 with TSTEP/2) or "euler" (implicit Euler at TSTEP/64, checked at TSTEP/128; first
+  // order, so its error is about its check's; read linearly between its rows at ngspice's
+  // times). The event method is O(n^3) per mode: no reference in reasonable time for a
+  // 1000-diode multiplier or ladder, where euler's costs 64 of its steps per TSTEP.
+  std::string ideal_reference = "event";
 };
 
 struct BenchPoint {
@@ -43,7 +49,8 @@ struct CircuitStudy {
   std::string circuit;        // the netlist path
   std::string title;
   std::vector<BenchPoint> points;
-  double ideal_reference_check = 0;   // event at rtol 1e-13 against rtol 1e-14 with TSTEP/2
+  double ideal_reference_check = 0;   // the reference against its tightening (ideal_reference_setting)
+  std::string ideal_reference_setting;  // "event rtol=1e-13 vs 1e-14 at TSTEP/2", "euler h=TSTEP/64 vs TSTEP/128"
   double smooth_reference_check = 0;  // smooth at rtol 1e-10 against 1e-11 (NaN: no smooth)
   double emission = 0.05;             // N of the Shockley diodes in the smooth model
 };

@@ -55,6 +55,7 @@ struct BenchArgs {
   double ngspice_timeout = 300;
   bool quick = false, no_ngspice = false;
   bool no_smooth_reference = false;  // BenchSettings::smooth_reference
+  std::string reference = "event";   // BenchSettings::ideal_reference
   // --scaling: CPU against the number of steps instead (cli/bench_scaling.h).
   bool scaling = false;
   std::optional<double> tstop;  // the first run's TSTOP (default: the netlist's)

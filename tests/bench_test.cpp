@@ -178,6 +178,55 @@ TEST(Bench, WithoutTheSmoothReferenceNgspiceIsJudgedAgainstTheEventOne) {
   EXPECT_EQ(scale.err_line(0), "error: --no-smooth-reference belongs to the work-precision study");
 }
 
+// --reference euler (for circuits whose event reference takes too long: a 1000-diode multiplier
+// or ladder): implicit Euler at TSTEP/64, checked at TSTEP/128. Being first order, its own error
+// is about twice its check (3.33e-4 of the tank's range measured): theta at h = 5e-7 (1.8e-5
+// from the event reference) reads 6.68e-4 against it; euler's and ngspice's errors (ngspice at
+// its own times, the reference read linearly between its rows) move by less than that from
+// their errors against the event reference.
+TEST(Bench, ImplicitEulerReferenceIsWithinItsOwnErrorOfTheEventOne) {
+  const fs::path dir = scratch_dir("bench_euler_ref");
+  const std::string deck = "'" + source_path("circuits/lc_tank_bridge.cir").string() + "'";
+  const Result a = run_lcspice("bench --quick --methods euler,theta " + deck + " -o '" + (dir / "event").string() + "'", dir);
+  ASSERT_EQ(a.code, 0) << a.err;
+  const Result b = run_lcspice("bench --quick --methods euler,theta --reference euler " + deck + " -o '" +
+                                   (dir / "euler").string() + "'",
+                               dir);
+  ASSERT_EQ(b.code, 0) << b.err;
+  const std::vector<BenchRow> by_event = read_bench(dir / "event" / "bench.csv");
+  const std::vector<BenchRow> by_euler = read_bench(dir / "euler" / "bench.csv");
+  EXPECT_EQ(find(by_euler, "reference-check", "event rtol=1e-13 vs 1e-14 at TSTEP/2"), nullptr);
+  const BenchRow* check = find(by_euler, "reference-check", "euler h=TSTEP/64 vs TSTEP/128");
+  ASSERT_NE(check, nullptr);
+  EXPECT_GT(check->error, 1e-4);
+  EXPECT_LT(check->error, 1e-3);
+  const double own_error = 2 * check->error;
+  const BenchRow* theta = find(by_euler, "theta", "h=5e-07");
+  const BenchRow* theta_exact = find(by_event, "theta", "h=5e-07");
+  ASSERT_TRUE(theta && theta_exact);
+  EXPECT_LT(theta_exact->error, 0.05 * own_error);
+  EXPECT_NEAR(theta->error, own_error, 0.1 * own_error);
+  for (const char* setting : {"h=2e-06", "h=5e-07"}) {
+    const BenchRow* e = find(by_euler, "euler", setting);
+    const BenchRow* e_exact = find(by_event, "euler", setting);
+    ASSERT_TRUE(e && e_exact) << setting;
+    EXPECT_NEAR(e->error, e_exact->error, 1.1 * own_error) << setting;
+  }
+  const BenchRow* ng = find(by_euler, "ngspice", "reltol=0.001");
+  const BenchRow* ng_exact = find(by_event, "ngspice", "reltol=0.001");
+  ASSERT_TRUE(ng && ng_exact);
+  EXPECT_GT(ng->steps, 100);
+  EXPECT_NEAR(ng->error_vs_ideal, ng_exact->error_vs_ideal, 1.1 * own_error);
+  EXPECT_EQ(ng->error, ng_exact->error);  // against the smooth reference, as before
+
+  const Result bad = run_lcspice("bench --quick --reference lemke " + deck + " -o '" + (dir / "x").string() + "'", dir);
+  EXPECT_EQ(bad.code, 1);
+  EXPECT_EQ(bad.err_line(0), "error: --reference: 'lemke' (known: event, euler)");
+  const Result scale = run_lcspice("bench --scale cw --reference euler -o '" + (dir / "s").string() + "'", dir);
+  EXPECT_EQ(scale.code, 1);
+  EXPECT_EQ(scale.err_line(0), "error: --reference belongs to the work-precision study");
+}
+
 TEST(Bench, LongRunsAreQuietWhenStandardErrorIsNotATerminal) {
   const fs::path dir = scratch_dir("quiet_run");
   const Result r = run_lcspice("run '" + source_path("circuits/lc_tank_bridge.cir").string() +
