@@ -2,6 +2,7 @@
 #include <cmath>
 #include "netlist/control_cards.h"
 
+#include <cctype>
 #include <cstdio>
 #include <algorithm>
 #include <cstdlib>
@@ -158,8 +159,14 @@ std::vector<Probe> parse_probe_card(const Card& card, std::vector<std::string>& 
       ++i;
       continue;
     }
-    if (t.is_word("format") && i + 1 < n && card[i + 1].is(Token::Kind::Equals)) {
-      warnings.push_back(warning_line(card.at(t), quote(card[0].lower) + ": FORMAT= is ignored (lcspice writes CSV)"));
+    // Xyce's output options (`.PRINT TRAN FORMAT=CSV FILE=out.csv ...`).
+    if (i + 1 < n && card[i + 1].is(Token::Kind::Equals) &&
+        (t.is_word("format") || t.is_word("file") || t.is_word("width") || t.is_word("precision") ||
+         t.is_word("delimiter") || t.is_word("filter") || t.is_word("timescalefactor"))) {
+      const char* why = t.is_word("format") ? " (lcspice writes CSV)" : t.is_word("file") ? " (lcspice writes to -o)" : "";
+      std::string option = t.lower;
+      for (char& c : option) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+      warnings.push_back(warning_line(card.at(t), quote(card[0].lower) + ": " + option + "= is ignored" + why));
       i = std::min(n, i + 3);
       continue;
     }
@@ -174,8 +181,9 @@ std::vector<Probe> parse_probe_card(const Card& card, std::vector<std::string>& 
                          (card[end].is(Token::Kind::LParen) && card[end - 1].is_word())));
     // PSpice writes `.PROBE64 V(alias(*)) I(alias(*)) W(alias(*)) D(alias(*)) NOISE(alias(*))` into
     // every deck it exports: every voltage and current (lcspice's default probes), and power,
-    // digital and noise waveforms, which lcspice does not compute.
-    if (save) {
+    // digital and noise waveforms, which lcspice does not compute. Xyce's `.PRINT TRAN V(*) I(*)`
+    // asks for the same voltages and currents.
+    if (save || card.keyword() == ".print") {
       const std::string entry = to_lower(card.text(t.begin, card[end - 1].end));
       const std::size_t open = entry.find('(');
       const std::string kind = entry.substr(0, open), inside = open == std::string::npos ? "" : entry.substr(open);

@@ -198,6 +198,18 @@ void diode_instance_params(const Card& card, const Reader& r, std::size_t i, Ele
     }
     if (!(t.is_word() && i + 1 < card.size() && card[i + 1].is(Token::Kind::Equals))) r.extra(i);
     if (i + 2 >= card.size()) throw NetlistError(card.after_last(), "missing value for " + quote(t.lower));
+    // ngspice's other instance parameters (Qucs-S writes Temp= on every diode): read, checked
+    // and ignored with a warning, as on R, L, C and Q cards.
+    const char* ignored = t.lower == "temp" || t.lower == "dtemp" ? "no temperature model"
+                          : t.lower == "ic"                       ? "use .ic on the nodes"
+                          : t.lower == "pj"                       ? "no sidewall junction model"
+                                                                  : nullptr;
+    if (ignored) {
+      r.value(i + 2);
+      r.warnings_->push_back(warning_line(card.at(t), quote(r.name) + ": " + t.lower + "= is ignored (" + ignored + ")"));
+      i += 3;
+      continue;
+    }
     if (t.lower != "area" && t.lower != "m") r.extra(i);
     const double v = r.value(i + 2);
     r.positive(i + 2, v, t.lower == "area" ? "area" : "multiplier m");

@@ -14,6 +14,22 @@ bool ends_word(char c) {
   return is_space(c) || c == ',' || c == '(' || c == ')' || c == '=' || c == '{' || c == '}';
 }
 
+// KiCad names a net it was given no name for after a pin, `Net-(R1-Pad1)` (also
+// `unconnected-(U1-Pad3)`): a word ending in '-' right before '(', then only name characters up to
+// ')'. Returns the end of that ')' (the node name's end), or `i` when the word at [b, i) does not
+// continue so. (ngspice reads these nodes too; no SPICE keyword ends in '-' before a parenthesis.)
+int kicad_net_name_end(const std::string& s, int b, int i) {
+  const int n = static_cast<int>(s.size());
+  if (i - b < 2 || s[i - 1] != '-' || i >= n || s[i] != '(') return i;
+  int k = i + 1;
+  while (k < n && (std::isalnum(static_cast<unsigned char>(s[k])) || s[k] == '_' || s[k] == '-' ||
+                   s[k] == '+' || s[k] == '.' || s[k] == '/'))
+    ++k;
+  if (k == i + 1 || k >= n || s[k] != ')') return i;
+  if (k + 1 < n && !ends_word(s[k + 1])) return i;
+  return k + 1;
+}
+
 // Whether the word at `i` (a '$') has the form of PSpice's generated names, `$N_0001`,
 // `$G_DPWR`, `$D_HI`: letters, then '_'.
 bool pspice_generated_name(const std::string& line, std::size_t i) {
@@ -112,6 +128,7 @@ void tokenize(Card& card) {
     } else {
       int b = i;
       while (i < n && !ends_word(s[i])) ++i;
+      i = kicad_net_name_end(s, b, i);
       push(Token::Kind::Word, b, i, s.substr(b, i - b));
     }
   }

@@ -113,6 +113,8 @@ class Reader {
     const std::string k = t.lower;
     if (k == "param" && i_ + 1 < n_ && card_[i_ + 1].is(Token::Kind::Equals))
       throw Skip{card_.at(i_), "'.meas' PARAM= (a value computed from other measures) is not supported by lcspice"};
+    if (k == "param")  // LTspice's `.meas TRAN eff PARAM vout_avg**2/5/24`
+      throw Skip{card_.at(i_), "'.meas' PARAM (a value computed from other measures) is not supported by lcspice"};
     if (k == "deriv" || k == "derivative") throw Skip{card_.at(i_), "'.meas' DERIV is not supported by lcspice"};
     if (k == "err" || k == "err1" || k == "err2" || k == "err3")
       throw Skip{card_.at(i_), "'.meas' " + upper(k) + " is not supported by lcspice"};

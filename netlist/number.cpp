@@ -82,6 +82,10 @@ bool scan_number(std::string_view s, std::size_t& i, double& value) {
     while (k < s.size() && is_letter(s[k])) ++k;
     scale = scale_of(s.substr(letters, k - letters));
   }
+  // A unit written as the ohm symbol, Ω (U+03A9, CE A9) or the ohm sign (U+2126, E2 84 A6), after
+  // the suffix: `1.5kΩ` (schematic exports), read as ngspice reads unit letters.
+  if (s.substr(k, 2) == "\xCE\xA9") k += 2;
+  else if (s.substr(k, 3) == "\xE2\x84\xA6") k += 3;
   // One decimal conversion of mantissa * 10^(exponent + suffix), so 10u is exactly 1e-05.
   std::string decimal = mantissa + "e" + std::to_string(exponent + scale.exponent);
   value = std::strtod(decimal.c_str(), nullptr);

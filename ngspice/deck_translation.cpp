@@ -38,7 +38,13 @@ class NameBook {
 
 }  // namespace
 
-std::string ngspice_node_vector(const std::string& node) { return node == "0" ? "" : node; }
+// ngspice 39 reads KiCad's `net-(r1-pad1)` as the node `net-(r1-pad1`: its net-name tokenizer
+// ends a name at ')' (lexer.cpp reads the whole as one name).
+std::string ngspice_node_vector(const std::string& node) {
+  if (node == "0") return "";
+  if (node.size() > 2 && node.back() == ')' && node.find("-(") != std::string::npos) return node.substr(0, node.size() - 1);
+  return node;
+}
 
 TranslatedDeck translate_to_ngspice(const CircuitModel& model, const std::vector<Probe>& probes,
                                     const TranslationOptions& options) {

@@ -56,7 +56,7 @@ TEST(ParseDiagnostics, SyntaxAndElements) {
       {"t\nR1 a b 1k IC=1\n", "t.cir:2:11: error: unknown parameter 'IC' for 'r1'\nR1 a b 1k IC=1\n          ^~"},
       {"t\nD1 a b dm 0\n.model dm D\n", "t.cir:2:11: error: area of 'd1' must be positive\nD1 a b dm 0\n          ^"},
       {"t\nD1 a b dm m=0\n.model dm D\n", "t.cir:2:13: error: multiplier m of 'd1' must be positive\nD1 a b dm m=0\n            ^"},
-      {"t\nD1 a b dm pj=2\n.model dm D\n", "t.cir:2:11: error: unknown parameter 'pj' for 'd1'\nD1 a b dm pj=2\n          ^~"},
+      {"t\nD1 a b dm xyz=2\n.model dm D\n", "t.cir:2:11: error: unknown parameter 'xyz' for 'd1'\nD1 a b dm xyz=2\n          ^~~"},
       {"t\nL1 a b -1m\n", "t.cir:2:8: error: inductance of 'l1' must be positive\nL1 a b -1m\n       ^~~"},
       {"t\nC1 a b {0*1}\n", "t.cir:2:8: error: capacitance of 'c1' must be positive\nC1 a b {0*1}\n       ^~~~~"},
       {"t\nD1 a b (m)\n", "t.cir:2:8: error: expected a model name, got '('\nD1 a b (m)\n       ^"},
