@@ -1,5 +1,8 @@
 #include "netlist/param_scope.h"
 
+#include <cctype>
+#include <string>
+
 #include "netlist/expression.h"
 #include "netlist/number.h"
 
@@ -131,6 +134,26 @@ double evaluate_at(const Card& card, int begin, int end, const ParamScope& scope
   }
 }
 
+namespace {
+
+// `4k7`, `2u2`, `1R5`: the suffix in place of the decimal point (European schematics; LTspice
+// reads 4k7 as 4.7k, ngspice as 4k). Neither is guessed here: the message says how to write it.
+std::string decimal_in_suffix_hint(const std::string& text) {
+  std::size_t i = 0;
+  while (i < text.size() && std::isdigit(static_cast<unsigned char>(text[i]))) ++i;
+  if (i == 0 || i + 1 >= text.size()) return "";
+  const char suffix = static_cast<char>(std::tolower(static_cast<unsigned char>(text[i])));
+  if (std::string("kmunpfgtr").find(suffix) == std::string::npos) return "";
+  std::size_t j = i + 1;
+  while (j < text.size() && std::isdigit(static_cast<unsigned char>(text[j]))) ++j;
+  if (j == i + 1 || j != text.size()) return "";
+  const std::string written = suffix == 'r' ? "" : std::string(1, text[i]);
+  return " (a suffix in place of the decimal point is not read: write " + text.substr(0, i) + "." +
+         text.substr(i + 1) + written + ")";
+}
+
+}  // namespace
+
 double value_of(const Card& card, std::size_t first, std::size_t last, const ParamScope& scope,
                 bool bare_expressions) {
   const Token& t = card[first];
@@ -138,7 +161,7 @@ double value_of(const Card& card, std::size_t first, std::size_t last, const Par
     if (t.is_expression()) return evaluate_at(card, t.begin + 1, t.end - 1, scope);
     if (t.is_word() && !bare_expressions) {
       if (auto v = parse_number(t.text)) return *v;
-      throw NetlistError(card.at(t), "invalid number " + quote(t.text));
+      throw NetlistError(card.at(t), "invalid number " + quote(t.text) + decimal_in_suffix_hint(t.text));
     }
   }
   if (!bare_expressions) {

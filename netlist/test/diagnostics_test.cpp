@@ -113,7 +113,7 @@ TEST(ParseDiagnostics, UnsupportedCards) {
 TEST(ParseDiagnostics, Numbers) {
   check({
       {"t\nR1 a b 1x2\n", "t.cir:2:8: error: invalid number '1x2'\nR1 a b 1x2\n       ^~~"},
-      {"t\nR1 a b 1k5\n", "t.cir:2:8: error: invalid number '1k5'\nR1 a b 1k5\n       ^~~"},
+      {"t\nR1 a b 1k5\n", "t.cir:2:8: error: invalid number '1k5' (a suffix in place of the decimal point is not read: write 1.5k)\nR1 a b 1k5\n       ^~~"},
       {"t\nV1 a 0 SIN(0 1 x)\n", "t.cir:2:16: error: invalid number 'x'\nV1 a 0 SIN(0 1 x)\n               ^"},
       {"t\nR1 a b 1k}\n", "t.cir:2:10: error: unmatched '}'\nR1 a b 1k}\n         ^"},
   });

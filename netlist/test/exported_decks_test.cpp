@@ -80,5 +80,17 @@ TEST(ExportedDecks, OhmSymbolAfterAValueIsAUnit) {
   EXPECT_DOUBLE_EQ(test::element(n, "r3").value, 4.7e6);
 }
 
+// `4k7`, `2u2`, `1R5` (European schematics): LTspice reads 4k7 as 4.7k, ngspice as 4k. Neither is
+// guessed; the error says how to write the value.
+TEST(ExportedDecks, ASuffixInPlaceOfTheDecimalPointIsRefusedWithTheWayToWriteIt) {
+  EXPECT_EQ(test::diag("t\nR1 a 0 4k7\n"), "t.cir:2:8: error: invalid number '4k7' (a suffix in place of the decimal "
+                                            "point is not read: write 4.7k)\nR1 a 0 4k7\n       ^~~");
+  EXPECT_EQ(test::diag("t\nC1 a 0 2u2\n"), "t.cir:2:8: error: invalid number '2u2' (a suffix in place of the decimal "
+                                            "point is not read: write 2.2u)\nC1 a 0 2u2\n       ^~~");
+  EXPECT_EQ(test::diag("t\nR1 a 0 1R5\n"), "t.cir:2:8: error: invalid number '1R5' (a suffix in place of the decimal "
+                                            "point is not read: write 1.5)\nR1 a 0 1R5\n       ^~~");
+  EXPECT_EQ(test::diag("t\nR1 a 0 4x7\n"), "t.cir:2:8: error: invalid number '4x7'\nR1 a 0 4x7\n       ^~~");
+}
+
 }  // namespace
 }  // namespace lcs

@@ -593,6 +593,7 @@ Mode& EventDriven::Impl::select(double t, const Eigen::VectorXd& x, const Eigen:
   }
   std::vector<bool> active(m, false);
   std::string lemke_failure;    // why the switching LCP gave no first guess, if it did not
+  std::string guess;            // the first guess instead, for the message
   std::vector<int> degenerate;  // pairs the switching LCP leaves at z = w = 0
   Eigen::VectorXd q;
   if (m > 0) {
@@ -616,8 +617,12 @@ Mode& EventDriven::Impl::select(double t, const Eigen::VectorXd& x, const Eigen:
     // inductor with thresholds 0.05 V apart leaves every row of the inductor's current at
     // O(eta) against the O(1) of its neighbours, below Lemke's tolerance, and the LCP "has no
     // solution" at t = 0 where a diode at its threshold holds the floating node.
+    // With neither at the start (UIC), nothing conducting is the first guess: a half-wave
+    // rectifier into an RL load with a freewheeling diode starts with the inductor's current
+    // tied to the two diodes' (both off, at zero), the switching LCP's rows of it O(eta), and
+    // Lemke's path ended on a ray at t = 0.
     const bool from_previous = previous && previous->signature == signature;
-    if (!answered && !from_previous && !op_z)
+    if (!answered && !from_previous && !op_z && previous)
       throw NumericalFailure(t, std::string("no next mode: the switching LCP has no solution (Lemke: ") +
                                     lcp_status_name(sol.status) + ")");
     if (!answered) lemke_failure = lcp_status_name(sol.status);
@@ -629,8 +634,12 @@ Mode& EventDriven::Impl::select(double t, const Eigen::VectorXd& x, const Eigen:
           degenerate.push_back(i);
     } else if (from_previous) {
       active = previous->active;
-    } else {
+      guess = "the mode before the event";
+    } else if (op_z) {
       for (int i = 0; i < m; ++i) active[i] = (*op_z)(i) > 0;
+      guess = "the operating point's";
+    } else {
+      guess = "the one with nothing conducting";
     }
   }
   std::vector<int> near_zero;
@@ -726,7 +735,7 @@ Mode& EventDriven::Impl::select(double t, const Eigen::VectorXd& x, const Eigen:
   if (Mode* md = search(all, kTol)) return *md;
   if (!lemke_failure.empty())
     throw NumericalFailure(t, "no next mode: the switching LCP has no solution (Lemke: " + lemke_failure +
-                                  "), and no mode near the operating point's continues the state");
+                                  "), and no mode near " + guess + " continues the state");
   std::string pairs;
   for (int i : near_zero)
     pairs += (pairs.empty() ? "" : ", ") + model.pairs()[i].name;
