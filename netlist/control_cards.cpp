@@ -137,6 +137,7 @@ std::vector<Probe> parse_probe_card(const Card& card, std::vector<std::string>& 
   const std::size_t n = card.size();
   const bool save = classify_dot_card(card.keyword()) == DotCard::Save;
   std::vector<std::string> pspice_other;  // W(alias(*)), D(alias(*)), NOISE(alias(*))
+  bool wildcard = false;                  // V(*) or I(*): every voltage and current
   std::size_t i = 1;
   if (!save && i < n && card[i].is_word() && !(i + 1 < n && card[i + 1].is(Token::Kind::LParen))) {
     if (card[i].lower == "tran") {
@@ -189,6 +190,7 @@ std::vector<Probe> parse_probe_card(const Card& card, std::vector<std::string>& 
       const std::string kind = entry.substr(0, open), inside = open == std::string::npos ? "" : entry.substr(open);
       if (inside == "(alias(*))" || inside == "(*)") {
         if (kind == "v" || kind == "i") {
+          wildcard = true;
           i = end;
           continue;
         }
@@ -222,6 +224,10 @@ std::vector<Probe> parse_probe_card(const Card& card, std::vector<std::string>& 
     out.push_back(parse_probe(card.text(b, e), card.span(b, e)));
     i = end;
   }
+  // Every voltage and current are lcspice's default probes, which an empty list asks for; they
+  // include whatever else a .print card names (Xyce's `.PRINT TRAN V(*) I(R1)`). (.save and
+  // .probe keep their named entries, as `.save all v(a)` does.)
+  if (wildcard && !save) out.clear();
   if (!pspice_other.empty()) {
     std::string list;
     for (const std::string& e : pspice_other) list += (list.empty() ? "" : ", ") + e;

@@ -147,7 +147,8 @@ std::string decimal_in_suffix_hint(const std::string& text) {
   std::size_t j = i + 1;
   while (j < text.size() && std::isdigit(static_cast<unsigned char>(text[j]))) ++j;
   if (j == i + 1 || j != text.size()) return "";
-  const std::string written = suffix == 'r' ? "" : std::string(1, text[i]);
+  // (M is mega there, as in 1M5: SPICE's Meg; m stays milli.)
+  const std::string written = suffix == 'r' ? "" : text[i] == 'M' ? "Meg" : std::string(1, text[i]);
   return " (a suffix in place of the decimal point is not read: write " + text.substr(0, i) + "." +
          text.substr(i + 1) + written + ")";
 }

@@ -38,13 +38,46 @@ class NameBook {
 
 }  // namespace
 
-// ngspice 39 reads KiCad's `net-(r1-pad1)` as the node `net-(r1-pad1`: its net-name tokenizer
-// ends a name at ')' (lexer.cpp reads the whole as one name).
-std::string ngspice_node_vector(const std::string& node) {
-  if (node == "0") return "";
-  if (node.size() > 2 && node.back() == ')' && node.find("-(") != std::string::npos) return node.substr(0, node.size() - 1);
-  return node;
+// KiCad's net names, `net-(r1-pad1)` (lexer.cpp reads them as one name): ngspice 39 ends a name
+// at ')' and refuses a D card with one ("could not find a valid modelname"), so the deck names
+// such a node with its parentheses spelled out.
+std::string ngspice_node_name(const std::string& node) {
+  if (node.find_first_of("()") == std::string::npos) return node;
+  std::string out;
+  for (char c : node) out += c == '(' ? "_lp_" : c == ')' ? "_rp_" : std::string(1, c);
+  return out;
 }
+
+std::string ngspice_node_vector(const std::string& node) { return node == "0" ? "" : ngspice_node_name(node); }
+
+namespace {
+
+// The devices write their nodes' own names into their cards: those ngspice cannot read are
+// renamed there, as whole blank-separated words.
+void rename_nodes_in_cards(const Netlist& netlist, std::vector<std::string>& lines) {
+  std::set<std::string> renamed;
+  for (const Element& e : netlist.elements)
+    for (const std::string& n : e.nodes)
+      if (ngspice_node_name(n) != n) renamed.insert(n);
+  if (renamed.empty()) return;
+  for (std::string& line : lines) {
+    if (line.find('(') == std::string::npos) continue;
+    std::string out;
+    std::size_t i = 0;
+    while (i < line.size()) {
+      const std::size_t blank = line.find(' ', i);
+      const std::size_t end = blank == std::string::npos ? line.size() : blank;
+      const std::string word = line.substr(i, end - i);
+      out += renamed.count(word) ? ngspice_node_name(word) : word;
+      if (blank == std::string::npos) break;
+      out += ' ';
+      i = blank + 1;
+    }
+    line = out;
+  }
+}
+
+}  // namespace
 
 TranslatedDeck translate_to_ngspice(const CircuitModel& model, const std::vector<Probe>& probes,
                                     const TranslationOptions& options) {
@@ -102,21 +135,26 @@ TranslatedDeck translate_to_ngspice(const Netlist& netlist, const std::vector<st
     if (!cards.witness.empty()) deck.witnesses.push_back(cards.witness);
   }
   deck.lines.insert(deck.lines.end(), after.begin(), after.end());
+  rename_nodes_in_cards(netlist, deck.lines);
+  for (auto& [probe, source] : deck.probes) {
+    source.plus = ngspice_node_name(source.plus);
+    source.minus = ngspice_node_name(source.minus);
+  }
   for (const std::string& m : models) deck.lines.push_back(m);
 
   if (!netlist.node_ics.empty()) {
     std::string ic = ".ic";
-    for (const NodeIc& n : netlist.node_ics) ic += " v(" + n.node + ")=" + num(n.value);
+    for (const NodeIc& n : netlist.node_ics) ic += " v(" + ngspice_node_name(n.node) + ")=" + num(n.value);
     deck.lines.push_back(ic);
   }
   if (!options.nodesets.empty()) {
     std::string set = ".nodeset";
-    for (const auto& [node, value] : options.nodesets) set += " v(" + node + ")=" + num(value);
+    for (const auto& [node, value] : options.nodesets) set += " v(" + ngspice_node_name(node) + ")=" + num(value);
     deck.lines.push_back(set);
   }
   if (!options.node_holds.empty()) {
     std::string hold = ".ic";
-    for (const auto& [node, value] : options.node_holds) hold += " v(" + node + ")=" + num(value);
+    for (const auto& [node, value] : options.node_holds) hold += " v(" + ngspice_node_name(node) + ")=" + num(value);
     deck.lines.push_back(hold);
   }
   double tmax = tran.tmax > 0 && tran.tmax < tran.tstep ? tran.tmax : tran.tstep;

@@ -80,7 +80,9 @@ TranslatedDeck translate_to_ngspice(const CircuitModel& model, const std::vector
 TranslatedDeck translate_to_ngspice(const Netlist& netlist, const std::vector<std::shared_ptr<Device>>& devices,
                                     const std::vector<Probe>& probes, const TranslationOptions& options);
 
-// The ngspice vector name of a node ("0" is not a vector: ground).
+// The name a node has in the ngspice deck (KiCad's `net-(r1-pad1)` spelled `net-_lp_r1-pad1_rp_`),
+// and its vector's name ("0" is not a vector: ground).
+std::string ngspice_node_name(const std::string& node);
 std::string ngspice_node_vector(const std::string& node);
 
 }  // namespace lcs

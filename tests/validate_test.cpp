@@ -792,18 +792,26 @@ TEST(ValidationTranslation, InnerCapacitorsEachGetTheirStartUnderUic) {
   }
 }
 
-// KiCad's net names, `Net-(D1-Pad1)`: ngspice 39 reads the node as `net-(d1-pad1` (its net-name
-// tokenizer ends a name at ')'), so validate asks for that vector (it stopped with "ngspice
-// returned no vector 'net-(d1-pad1)'"). A half-wave rectifier: PASS, v(net-(d1-pad1)) 1.7e-3 of
-// its range, v(/out) 4.3e-3 (the model gap) measured.
-TEST(ValidateExportedDecks, KicadNetNamesAreFoundInNgspicesVectors) {
+// KiCad's net names, `Net-(D1-Pad1)`: ngspice 39 ends a node name at ')' and refuses a D card
+// with such a node ("could not find a valid modelname"), so the translated deck spells the
+// parentheses out (`net-_lp_c1-pad1_rp_`), in the cards, .ic and the vectors asked for (validate
+// stopped with "ngspice returned no vector", then with ngspice refusing the deck). A half-wave
+// rectifier with KiCad names on both of its diode's ends and an .ic: PASS.
+TEST(ValidateExportedDecks, KicadNetNamesAreSpelledOutForNgspice) {
   const fs::path deck = write_deck("validate_", "kicad",
                                    "kicad net\nV1 Net-(R1-Pad1) 0 SIN(0 10 50)\nR1 Net-(R1-Pad1) Net-(D1-Pad1) 10\n"
-                                   "D1 Net-(D1-Pad1) /out dm\nC1 /out GND 100u\nR2 /out GND 1k\n"
-                                   ".model dm D(VON=0.7 RON=0.1)\n.tran 100u 40m\n.print tran v(Net-(D1-Pad1)) v(/out)\n.end\n");
+                                   "D1 Net-(D1-Pad1) Net-(C1-Pad1) dm\nC1 Net-(C1-Pad1) GND 100u\nR2 Net-(C1-Pad1) GND 1k\n"
+                                   ".model dm D(VON=0.7 RON=0.1)\n.ic v(Net-(C1-Pad1))=1\n.tran 100u 40m\n"
+                                   ".print tran v(Net-(D1-Pad1)) v(Net-(C1-Pad1))\n.end\n");
+  const Result printed = run_lcspice("validate --print-deck '" + deck.string() + "'", deck.parent_path());
+  EXPECT_EQ(printed.code, 0) << printed.err;
+  EXPECT_NE(printed.out.find(" net-_lp_d1-pad1_rp_ "), std::string::npos) << printed.out;
+  EXPECT_NE(printed.out.find(".ic v(net-_lp_c1-pad1_rp_)=1"), std::string::npos) << printed.out;
+  EXPECT_EQ(printed.out.find("net-("), std::string::npos) << printed.out;
   const Result r = run_lcspice("validate '" + deck.string() + "'", deck.parent_path());
   EXPECT_EQ(r.code, 0) << r.out << r.err;
   EXPECT_NE(r.out.find("  v(net-(d1-pad1)) "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("  v(net-(c1-pad1)) "), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("PASS: every probe within 0.02 of its range"), std::string::npos) << r.out;
 }
 

@@ -59,6 +59,10 @@ TEST(ExportedDecks, XycePrintOptionsAndWildcards) {
   EXPECT_EQ(n.warnings[0], "t.cir:5:13: warning: '.print': FORMAT= is ignored (lcspice writes CSV)");
   EXPECT_EQ(n.warnings[1], "t.cir:5:24: warning: '.print': FILE= is ignored (lcspice writes to -o)");
   EXPECT_EQ(n.warnings[2], "t.cir:5:37: warning: '.print': WIDTH= is ignored");
+  // With named entries beside it, V(*) still asks for every voltage and current (they include
+  // the named ones).
+  const Netlist mixed = test::parse("t\nV1 a 0 1\nR1 a 0 1\n.tran 1u 2u\n.PRINT TRAN I(R1) V(*)\n");
+  EXPECT_TRUE(mixed.probes.empty()) << names(mixed.probes);
 }
 
 // LTspice's own help writes `.meas TRAN eff PARAM vout_avg**2/5/24` (no '='): it stopped the deck
@@ -89,6 +93,10 @@ TEST(ExportedDecks, ASuffixInPlaceOfTheDecimalPointIsRefusedWithTheWayToWriteIt)
                                             "point is not read: write 2.2u)\nC1 a 0 2u2\n       ^~~");
   EXPECT_EQ(test::diag("t\nR1 a 0 1R5\n"), "t.cir:2:8: error: invalid number '1R5' (a suffix in place of the decimal "
                                             "point is not read: write 1.5)\nR1 a 0 1R5\n       ^~~");
+  EXPECT_EQ(test::diag("t\nR1 a 0 1M5\n"), "t.cir:2:8: error: invalid number '1M5' (a suffix in place of the decimal "
+                                            "point is not read: write 1.5Meg)\nR1 a 0 1M5\n       ^~~");
+  EXPECT_EQ(test::diag("t\nC1 a 0 4m7\n"), "t.cir:2:8: error: invalid number '4m7' (a suffix in place of the decimal "
+                                            "point is not read: write 4.7m)\nC1 a 0 4m7\n       ^~~");
   EXPECT_EQ(test::diag("t\nR1 a 0 4x7\n"), "t.cir:2:8: error: invalid number '4x7'\nR1 a 0 4x7\n       ^~~");
 }
 
