@@ -9,11 +9,7 @@
 namespace lcs {
 namespace {
 
-std::string names(const std::vector<Probe>& probes) {
-  std::string out;
-  for (const Probe& p : probes) out += p.name() + " ";
-  return out;
-}
+std::string names(const std::vector<Probe>& probes) { return test::probe_names(probes); }
 
 // KiCad names every net it was given no name for after a pin: `Net-(R1-Pad1)`, and leaves pins
 // `unconnected-(U1-Pad3)`. They were "expected a node name, got '('".

@@ -8,11 +8,7 @@
 namespace lcs {
 namespace {
 
-std::string names(const std::vector<Probe>& probes) {
-  std::string out;
-  for (const Probe& p : probes) out += p.name() + " ";
-  return out;
-}
+std::string names(const std::vector<Probe>& probes) { return test::probe_names(probes); }
 
 TEST(NgspiceDialect, ProbeCardIsLikeSave) {
   Netlist n = test::parse("t\nR1 a 0 1\nV1 a 0 1\n.probe alli\n");

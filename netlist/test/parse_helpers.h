@@ -3,6 +3,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "netlist/netlist.h"
 
@@ -18,6 +19,13 @@ inline std::string diag(const std::string& text, const std::string& file = "t.ci
     return e.formatted();
   }
   return "<no error>";
+}
+
+// The probes' names, each followed by a blank ("v(a) i(r1) ").
+inline std::string probe_names(const std::vector<Probe>& probes) {
+  std::string out;
+  for (const Probe& p : probes) out += p.name() + " ";
+  return out;
 }
 
 inline const Element& element(const Netlist& n, const std::string& name) {
