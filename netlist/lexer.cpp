@@ -14,10 +14,8 @@ bool ends_word(char c) {
   return is_space(c) || c == ',' || c == '(' || c == ')' || c == '=' || c == '{' || c == '}';
 }
 
-// KiCad names a net it was given no name for after a pin, `Net-(R1-Pad1)` (also
-// `unconnected-(U1-Pad3)`): a word ending in '-' right before '(', then only name characters up to
-// ')'. Returns the end of that ')' (the node name's end), or `i` when the word at [b, i) does not
-// continue so. (ngspice reads these nodes too; no SPICE keyword ends in '-' before a parenthesis.)
+}  // namespace
+
 int kicad_net_name_end(const std::string& s, int b, int i) {
   const int n = static_cast<int>(s.size());
   if (i - b < 2 || s[i - 1] != '-' || i >= n || s[i] != '(') return i;
@@ -29,6 +27,8 @@ int kicad_net_name_end(const std::string& s, int b, int i) {
   if (k + 1 < n && !ends_word(s[k + 1])) return i;
   return k + 1;
 }
+
+namespace {
 
 // Whether the word at `i` (a '$') has the form of PSpice's generated names, `$N_0001`,
 // `$G_DPWR`, `$D_HI`: letters, then '_'.

@@ -94,4 +94,11 @@ std::string quote(const std::string& text);
 
 std::string to_lower(std::string s);
 
+// KiCad names a net it was given no name for after a pin, `Net-(R1-Pad1)` (also
+// `unconnected-(U1-Pad3)`): a word ending in '-' right before '(', then only name characters up to
+// ')'. For the word at [b, i) of `s`, returns the end of that ')' (the node name's end), or `i`
+// when the word does not continue so. (No SPICE keyword ends in '-' before a parenthesis.) The
+// lexer and the probe parser read node names with it.
+int kicad_net_name_end(const std::string& s, int b, int i);
+
 }  // namespace lcs::parse

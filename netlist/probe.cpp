@@ -33,12 +33,7 @@ Probe parse_probe(const std::string& text, const SourceLocation& loc) {
     skip();
     std::size_t start = i;
     while (i < lower.size() && name_char(lower[i])) ++i;
-    // KiCad's `Net-(R1-Pad1)` (lexer.cpp): the parenthesised part belongs to the node's name.
-    if (i > start + 1 && lower[i - 1] == '-' && i < lower.size() && lower[i] == '(') {
-      std::size_t k = i + 1;
-      while (k < lower.size() && name_char(lower[k])) ++k;
-      if (k > i + 1 && k < lower.size() && lower[k] == ')') i = k + 1;
-    }
+    i = static_cast<std::size_t>(parse::kicad_net_name_end(lower, static_cast<int>(start), static_cast<int>(i)));
     return lower.substr(start, i - start);
   };
   if (lower.empty() || (lower[0] != 'v' && lower[0] != 'i')) return fail();

@@ -188,31 +188,11 @@ Knots pwl_knots(const std::vector<double>& p) {
 
 // PWL with ngspice's `r=` (vsrcload.c): from its last time point on, the waveform repeats the
 // stretch from the time point r to the last one, period last - r. That stretch, as a periodic
-// shape whose phase 0 is at the last point (td = last, never ending); nullopt without a repeat
-// (or a stretch of zero length). Before the last point the PWL is as written.
-std::optional<PulseShape> pwl_repeat(const std::vector<double>& p, std::optional<double> repeat_from) {
-  if (!repeat_from || p.size() < 4) return std::nullopt;
-  const double from = *repeat_from;
-  const Knots k = pwl_knots(p);
-  const double last = k.back().t, per = last - from;
-  if (!(per > 0)) return std::nullopt;
-  PulseShape s;
-  s.td = last;
-  s.per = per;
-  Knots full;
-  for (const Knot& n : k)
-    if (n.t >= from) full.push_back({n.t - from, n.v});
-  for (const Knot& n : full)
-    if (n.t < per) s.knots.push_back(n);
-  s.knots.push_back({per, pl_left(full, per)});
-  s.v1 = s.knots.front().v;
-  return s;
-}
-
-// pwl_repeat's shape read in place from the parameters, for the evaluations at every step (a
-// copy of the points each time cost a 2000-point PWL with r= 15 us a step): the points from the
-// first at or after r to the last, shifted to start at 0, those before the period's end, then
-// the period's end at the stretch's left limit there. Same knots as pwl_repeat's.
+// shape whose phase 0 is at the last point (td = last, never ending), read in place from the
+// parameters (a copy of the points at each evaluation cost a 2000-point PWL 15 us a step): the
+// points from the first at or after r, shifted to start at 0, those before the period's end,
+// then the period's end at the stretch's left limit there. nullopt without a repeat (or a
+// stretch of zero length). Before the last point the PWL is as written.
 struct ShiftedKnots {
   const std::vector<double>& p;
   std::size_t first, end;  // point indices [first, end)
@@ -250,8 +230,10 @@ std::optional<PwlRepeatView> pwl_repeat_view(const std::vector<double>& p,
                                    Knot{per, pl_left(full, per)}}};
 }
 
-// Bounds over [a, b] of a periodic shape from its phase 0 at s.td on (a >= s.td).
-void periodic_range(const PulseShape& s, double a, double b, double& lo, double& hi) {
+// Bounds over [a, b] of a periodic shape (PulseShape or PwlRepeatView) from its phase 0 at s.td
+// on (a >= s.td).
+template <class Shape>
+void periodic_range(const Shape& s, double a, double b, double& lo, double& hi) {
   auto take = [&](double v) {
     lo = std::min(lo, v);
     hi = std::max(hi, v);
@@ -260,7 +242,7 @@ void periodic_range(const PulseShape& s, double a, double b, double& lo, double&
   if (s.per <= 0) {
     pl_range(s.knots, tau_a, b - s.td, lo, hi);
   } else if (b - a >= s.per) {
-    for (const Knot& n : s.knots) take(n.v);  // a whole period is covered
+    for (std::size_t i = 0; i < s.knots.size(); ++i) take(s.knots[i].v);  // a whole period is covered
   } else {
     double tau_b = tau_a + (b - a);
     if (tau_b <= s.per) {
@@ -273,15 +255,17 @@ void periodic_range(const PulseShape& s, double a, double b, double& lo, double&
 }
 
 // The corners of a periodic shape in (t0, t1), from its phase 0 at s.td on, to `add`.
-template <typename Add>  // Add: bool(double), false once it takes no more
-void periodic_breakpoints(const PulseShape& s, double t0, double t1, std::size_t limit, const Add& add) {
+template <class Shape, typename Add>  // Add: bool(double), false once it takes no more
+void periodic_breakpoints(const Shape& s, double t0, double t1, std::size_t limit, const Add& add) {
   if (s.per <= 0) {
-    for (const Knot& n : s.knots) add(s.td + n.t);
+    for (std::size_t i = 0; i < s.knots.size(); ++i) add(s.td + s.knots[i].t);
     return;
   }
   std::vector<double> corners;
-  for (const Knot& n : s.knots)
+  for (std::size_t i = 0; i < s.knots.size(); ++i) {
+    const Knot n = s.knots[i];
     if (n.t < s.per && (corners.empty() || corners.back() != n.t)) corners.push_back(n.t);
+  }
   double kfirst = std::max(0.0, std::floor((t0 - s.td) / s.per));
   double klast = std::ceil((t1 - s.td) / s.per);
   if (!std::isfinite(kfirst) || !std::isfinite(klast) || klast < kfirst) return;  // no period in [t0, t1]
@@ -574,7 +558,7 @@ std::pair<double, double> Waveform::range(double t0, double t1) const {
       take(dc);
       break;
     case Kind::Pwl: {
-      const std::optional<PulseShape> r = pwl_repeat(params, repeat_from);
+      const std::optional<PwlRepeatView> r = pwl_repeat_view(params, repeat_from);
       if (!r || t1 < r->td) {
         pl_range(ParamKnots{params}, t0, t1, lo, hi);
         break;
@@ -691,7 +675,7 @@ std::vector<double> Waveform::breakpoints(double t0, double t1) const {
       break;
     case Kind::Pwl:
       for (const Knot& n : pwl_knots(params)) add(n.t);
-      if (const std::optional<PulseShape> r = pwl_repeat(params, repeat_from))
+      if (const std::optional<PwlRepeatView> r = pwl_repeat_view(params, repeat_from))
         periodic_breakpoints(*r, t0, t1, kMaxBreakpoints, add);
       break;
     case Kind::Pulse: {

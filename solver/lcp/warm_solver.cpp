@@ -110,11 +110,11 @@ void LcpWarmSolver::continue_last_block(int blocks) {
   const int n = static_cast<int>(M_.rows());
   if (blocks <= 1 || n % blocks != 0 || n == 0) return;
   const int m = n / blocks;
-  const std::string last = active_.substr(n - m);
+  const auto last = active_.begin() + (n - m);  // in place: radau's steady steps do not allocate
   bool uniform = true;
-  for (int b = 0; b + 1 < blocks && uniform; ++b) uniform = active_.compare(b * m, m, last) == 0;
+  for (int b = 0; b + 1 < blocks && uniform; ++b) uniform = std::equal(last, active_.end(), active_.begin() + b * m);
   if (uniform) return;
-  for (int b = 0; b + 1 < blocks; ++b) active_.replace(b * m, m, last);
+  for (int b = 0; b + 1 < blocks; ++b) std::copy(last, active_.end(), active_.begin() + b * m);
 }
 
 // Several solutions (Stewart 5.4.7: transistor feedback): the warm start keeps the one
