@@ -64,6 +64,9 @@ int run_cli(int argc, char** argv) {
                       "shockley (smooth diodes, --method smooth), auto (ideal where the fit to the circuit's "
                       "currents serves it, else the smooth method with Shockley diodes)");
   run_cmd->add_flag("--stats", run.stats, "print a run summary to standard error");
+  run_cmd->add_flag("--no-euler-at-switching", run.no_euler_at_switching,
+                    "theta and radau: keep the method's own step where the mode changes (by default implicit "
+                    "Euler's is taken where it ends in another mode or the two steps diverge)");
 
   OpArgs op;
   CLI::App* op_cmd = app.add_subcommand("op", "DC operating point at t = 0");

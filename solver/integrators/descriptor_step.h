@@ -46,6 +46,9 @@ class DescriptorStep {
   // The same step, ending at t_end (its inputs read there): a step of length h is taken, but
   // t_end - h + h need not round to t_end when h is large (descriptor_operating_point.h).
   bool step_ending_at(const LcsProblem& model, double t_end, Eigen::VectorXd& x, Eigen::VectorXd& z);
+  // The next step's first guess is the mode of the z it is given, not the last step's (another
+  // method took the last step: euler_at_switching.h).
+  void guess_from_given_mode() { fresh_ = true; }
   const SparseActiveSetStats& stats() const { return lcp_->stats(); }
   const Eigen::VectorXd& last_w() const { return w_; }  // w+ of the last step
 

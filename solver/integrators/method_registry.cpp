@@ -118,12 +118,12 @@ std::vector<MethodEntry> make_table() {
 
   MethodEntry radau3 = fixed_step(
       "radau3", "Radau IIA, 2 stages (order 3), fixed step, one LCP of size 2m per step",
-      [](const LcsProblem& m, const MethodOptions&) { return std::make_unique<RadauIIA>(m, 2); });
+      [](const LcsProblem& m, const MethodOptions& o) { return std::make_unique<RadauIIA>(m, 2, o.euler_at_switching); });
   radau3.history_degree = 2;
   table.push_back(radau3);
   MethodEntry radau5 = fixed_step(
       "radau5", "Radau IIA, 3 stages (order 5), fixed step, one LCP of size 3m per step",
-      [](const LcsProblem& m, const MethodOptions&) { return std::make_unique<RadauIIA>(m, 3); });
+      [](const LcsProblem& m, const MethodOptions& o) { return std::make_unique<RadauIIA>(m, 3, o.euler_at_switching); });
   radau5.history_degree = 4;
   table.push_back(radau5);
 
@@ -157,7 +157,9 @@ std::vector<MethodEntry> make_table() {
 
   MethodEntry theta = fixed_step(
       "theta", "theta-method (--theta, default 0.5: trapezoidal), fixed step, one LCP per step",
-      [](const LcsProblem& m, const MethodOptions& o) { return std::make_unique<ThetaMethod>(m, o.theta, o.sparse); });
+      [](const LcsProblem& m, const MethodOptions& o) {
+        return std::make_unique<ThetaMethod>(m, o.theta, o.sparse, kDescriptorPairs, o.euler_at_switching);
+      });
   theta.uses_theta = true;
   theta.large_circuit_steps = true;
   table.push_back(theta);

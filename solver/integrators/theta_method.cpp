@@ -21,11 +21,14 @@ struct ThetaMethod::SparseStep {
   bool fresh = true;  // no step taken yet: the last mode is its first guess
 };
 
-ThetaMethod::ThetaMethod(const LcsProblem& model, double theta, bool sparse, int descriptor_pairs)
+ThetaMethod::ThetaMethod(const LcsProblem& model, double theta, bool sparse, int descriptor_pairs,
+                         bool euler_at_switching)
     : TimeStepper(model), theta_(theta) {
   if (sparse && !model.has_history()) sparse_lcs_ = model.sparse_lcs();
   if (sparse && model.pair_count() >= descriptor_pairs) descriptor_ = model.sparse_descriptor();
   if (descriptor_) stats_.descriptor_unknowns = descriptor_->unknowns();
+  if (theta < 1 && euler_at_switching)
+    switching_ = std::make_unique<EulerAtSwitching>(model, sparse, true);
 }
 
 ThetaMethod::SparseStep* ThetaMethod::sparse_step(double h) {
@@ -78,10 +81,23 @@ void ThetaMethod::DoStart(double t0, double h_run, const Eigen::VectorXd& x, Eig
 }
 
 void ThetaMethod::DoStep(double t, double h, Eigen::VectorXd& x, Eigen::VectorXd& z) {
+  if (!switching_) return theta_step(t, h, x, z);
+  if (switching_->euler_step_if_due(t, h, x, z)) {
+    resume_ = true;
+    return;
+  }
+  switching_->remember(x, z);
+  theta_step(t, h, x, z);
+  resume_ = switching_->replace_switching_step(t, h, x, z);
+}
+
+void ThetaMethod::theta_step(double t, double h, Eigen::VectorXd& x, Eigen::VectorXd& z) {
+  const bool resume = resume_;
+  resume_ = false;
   if (sparse_lcs_) {
     // K x+ + L z+ = a: x+ - hθ(A x+ + B z+) = x + h(1-θ)(A x + B z + E u) + hθ E u+.
     SparseStep* step = sparse_step(h);
-    if (step->fresh) step->lcp->prefer(z);
+    if (step->fresh || resume) step->lcp->prefer(z);
     step->fresh = false;
     const SparseLcs& s = *sparse_lcs_;
     u1_ = model_.input_values(t + h);
@@ -107,6 +123,7 @@ void ThetaMethod::DoStep(double t, double h, Eigen::VectorXd& x, Eigen::VectorXd
       found = descriptor_cache_.emplace(h, std::make_unique<DescriptorStep>(*descriptor_, h, theta_)).first;
       ++stats_.factorisations;
     }
+    if (resume) found->second->guess_from_given_mode();
     if (found->second->step(model_, t, x, z)) return;
     ++stats_.sparse_fallbacks;
   }
@@ -120,7 +137,7 @@ void ThetaMethod::DoStep(double t, double h, Eigen::VectorXd& x, Eigen::VectorXd
     u0_ = model_.input_values(t);
     q_ += f.CPz * z + f.CPu0 * u0_;
   }
-  f.lcp->prefer(z);  // a new step size's solver starts from the last mode
+  f.lcp->prefer(z, resume);  // a new step size's solver (or after an Euler step) starts from z's mode
   const LcpSolution& sol = f.lcp->solve(q_);
   multistability_.check(*f.lcp, model_, t + h);
   if (sol.status != LcpStatus::Solved)
@@ -137,6 +154,7 @@ StepperStats ThetaMethod::stats() const {
   for (const auto& [h, f] : cache_) s.lcp += f->lcp->stats();
   for (const auto& [h, step] : sparse_cache_) s.sparse += step->lcp->stats();
   for (const auto& [h, step] : descriptor_cache_) s.sparse += step->stats();
+  if (switching_) switching_->add_cost_to(s);
   return s;
 }
 

@@ -69,6 +69,11 @@ std::string TransientSummary::BriefReport() const {
       out += buf;
     }
   }
+  if (stepper.switching_steps_by_euler > 0) {  // euler_at_switching.h
+    std::snprintf(buf, sizeof buf, "\nsteps taken by implicit Euler at mode changes: %ld",
+                  stepper.switching_steps_by_euler);
+    out += buf;
+  }
   if (stepper.sparse.solves > 0 && stepper.descriptor_unknowns > 0) {  // sparse_descriptor.h
     std::snprintf(buf, sizeof buf, "\nstep path: descriptor (node) form, %d unknowns",
                   stepper.descriptor_unknowns);

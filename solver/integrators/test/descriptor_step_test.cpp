@@ -105,7 +105,8 @@ struct Agreement {
 
 Agreement step_both(const CircuitModel& model, double theta, double h, int steps) {
   const Lcs& s = model.lcs();
-  ThetaMethod descriptor(model, theta, true, 0), dense(model, theta, false);  // either path at any size
+  // Either path at any size; every step the θ-method's (the step equation below is its own).
+  ThetaMethod descriptor(model, theta, true, 0, false), dense(model, theta, false, kDescriptorPairs, false);
   Eigen::VectorXd x = Eigen::VectorXd::Zero(s.states()), z = Eigen::VectorXd::Zero(s.pairs());
   descriptor.Start(0.0, h, x, z);
   Eigen::VectorXd xd = x, zd = z;

@@ -1,0 +1,142 @@
+// Steps whose mode changes, taken again by implicit Euler (euler_at_switching.h), for theta < 1
+// and Radau IIA: at steps far above a conducting diode's RON·C these methods held an overshoot
+// for the rest of the run (a peak detector at 15.5 V where the answer is 9.3 V).
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "solver/integrators/euler_at_switching.h"
+#include "solver/integrators/transient.h"
+#include "tests/support/netlist_builder.h"
+
+namespace lcs {
+namespace {
+
+using testing::NetlistBuilder;
+
+struct RunResult {
+  MemorySink sink;
+  TransientSummary summary;
+};
+
+RunResult simulate(const Netlist& netlist, const std::vector<Probe>& probes, const std::string& method,
+                   double h, double tstop) {
+  ModelOptions mo;
+  mo.t1 = tstop;
+  CircuitModel model = CircuitModel::build(netlist, mo);
+  TransientOptions o;
+  o.method = method;
+  o.step = h;
+  o.tstop = tstop;
+  o.uic = true;
+  RunResult r;
+  r.summary = run_transient(model, model.output_map(probes), o, r.sink);
+  return r;
+}
+
+Probe v(const std::string& node) { return {Probe::Kind::NodeVoltage, node, "", {}}; }
+Probe i(const std::string& element) { return {Probe::Kind::ElementCurrent, element, "", {}}; }
+
+const std::vector<std::string> kNonMonotone = {"theta", "radau3", "radau5"};
+
+TEST(ModeChanged, ComparesWhichPairsConductAboveRounding) {
+  Eigen::VectorXd a(3), b(3);
+  a << 0, 2, 0;
+  b << 0, 1e-6, 0;
+  EXPECT_FALSE(mode_changed(a, b));  // the same pairs conduct, however much
+  b << 1e-12, 2, 0;
+  EXPECT_FALSE(mode_changed(a, b));  // 5e-13 of the largest: rounding, not conduction
+  b << 1e-6, 2, 0;
+  EXPECT_TRUE(mode_changed(a, b));
+  b << 0, 0, 0;
+  EXPECT_TRUE(mode_changed(a, b));
+  EXPECT_FALSE(mode_changed(b, b));
+  EXPECT_TRUE(mode_changed(a, Eigen::VectorXd::Zero(2)));
+}
+
+// A 1 uF capacitor charged from rest through a diode (VON 0.7, RON 0.05: τ = 50 ns) by 10 V.
+// The exact answer rises monotonically to 9.3 V and stays there (the source is constant, nothing
+// discharges the capacitor). The trapezoidal rule at h = 0.5 us (h/τ = 10) turned on to 7.75 V
+// with 31 A, overshot to 15.5 V in the next step and turned off there for good (the prober's
+// 12.4 / 15.5 / 16.9 V at h = 0.2 / 0.5 / 1 us; radau3 10.5-14.9 V, radau5 up to 14.2 V).
+Netlist peak_detector_from_rest(double ron, double load) {
+  NetlistBuilder b;
+  b.tran(1e-6, 30e-6, true);
+  b.v("v1", "in", "0", NetlistBuilder::dc(10)).d("d1", "in", "out", 0.7, ron).c("c1", "out", "0", 1e-6, 0.0);
+  if (load > 0) b.r("rl", "out", "0", load);
+  return b.build();
+}
+
+TEST(EulerAtSwitching, PeakDetectorRisesMonotonicallyToTheSourceLessVon) {
+  const double ron = 0.05;
+  for (const std::string& method : kNonMonotone) {
+    for (double h : {0.2e-6, 0.5e-6, 1e-6}) {
+      const RunResult r = simulate(peak_detector_from_rest(ron, 0), {v("out"), i("d1")}, method, h, 30e-6);
+      ASSERT_GT(r.sink.times.size(), 30u);
+      for (size_t n = 1; n < r.sink.times.size(); ++n) {
+        EXPECT_LE(r.sink.rows[n](0), 9.3 + 1e-12) << method << " h " << h << " t " << r.sink.times[n];
+        EXPECT_GE(r.sink.rows[n](0), r.sink.rows[n - 1](0) - 1e-12) << method << " h " << h;
+        EXPECT_GE(r.sink.rows[n](1), 0.0) << method << " h " << h;
+      }
+      EXPECT_NEAR(r.sink.rows.back()(0), 9.3, 1e-9) << method << " h " << h;
+      // The trapezoidal rule overshoots at every h here (h/τ >= 4); Radau only at the larger ones.
+      if (method == "theta") EXPECT_GT(r.summary.stepper.switching_steps_by_euler, 0) << " h " << h;
+    }
+  }
+}
+
+// RON = 0: while the diode conducts the capacitor follows the source exactly and only the
+// current is integrated. The trapezoidal rule's current alternates around the right one
+// (i+ = 2C Δv/h - i), and a negative half turned the diode off at 10-18.6 V. With a 1 MOhm
+// load the current at the end is the load's, 9.3 uA.
+TEST(EulerAtSwitching, IdealDiodePeakDetectorHoldsItsLevelAndCurrent) {
+  for (const std::string& method : kNonMonotone) {
+    for (double h : {0.2e-6, 1e-6}) {
+      const RunResult r = simulate(peak_detector_from_rest(0, 1e6), {v("out"), i("d1")}, method, h, 30e-6);
+      for (size_t n = 1; n < r.sink.times.size(); ++n) {
+        EXPECT_NEAR(r.sink.rows[n](0), 9.3, 1e-9) << method << " h " << h << " t " << r.sink.times[n];
+        EXPECT_GE(r.sink.rows[n](1), 0.0) << method << " h " << h;
+      }
+      EXPECT_NEAR(r.sink.rows.back()(1), 9.3e-6, 1e-12) << method << " h " << h;
+    }
+  }
+}
+
+// A two-stage Cockcroft-Walton multiplier from rest on a ±10 V trapezoid (10 us edges, 100 us
+// period), 1 uF everywhere, RON 0.05 (τ = 50-100 ns): its output can never pass
+// 4 (10 - 0.7) = 37.2 V; the event method's is 36.02 V at 1.945 ms (settled, before an edge).
+// At h = 1 us every method is first order at the switchings inside the edges (implicit Euler
+// ends 0.17 V low); the trapezoidal rule without its switching steps taken by Euler pumped the
+// output past the bound.
+Netlist two_stage_multiplier() {
+  NetlistBuilder b;
+  b.tran(1e-6, 1.945e-3, true);
+  b.v("v1", "in", "0", NetlistBuilder::pulse({-10, 10, 0, 10e-6, 10e-6, 40e-6, 100e-6}));
+  b.c("c1", "in", "a", 1e-6, 0.0).d("d1", "0", "a", 0.7, 0.05).d("d2", "a", "b", 0.7, 0.05);
+  b.c("c2", "b", "0", 1e-6, 0.0).c("c3", "a", "c", 1e-6, 0.0).d("d3", "b", "c", 0.7, 0.05);
+  b.d("d4", "c", "d", 0.7, 0.05).c("c4", "d", "b", 1e-6, 0.0);
+  return b.build();
+}
+
+TEST(EulerAtSwitching, MultiplierStaysBelowItsBoundAndNearTheEventMethod) {
+  const RunResult exact = simulate(two_stage_multiplier(), {v("d")}, "event", 1e-6, 1.945e-3);
+  const RunResult euler = simulate(two_stage_multiplier(), {v("d")}, "euler", 1e-6, 1.945e-3);
+  const double exact_end = exact.sink.rows.back()(0), euler_gap = exact_end - euler.sink.rows.back()(0);
+  ASSERT_GT(exact_end, 36.0);
+  ASSERT_LT(exact_end, 37.2);
+  ASSERT_GT(euler_gap, 0.0);
+  ASSERT_LT(euler_gap, 0.3);
+  for (const std::string& method : kNonMonotone) {
+    const RunResult r = simulate(two_stage_multiplier(), {v("d")}, method, 1e-6, 1.945e-3);
+    double peak = 0;
+    for (const Eigen::VectorXd& row : r.sink.rows) peak = std::max(peak, row(0));
+    EXPECT_LE(peak, 37.2) << method;
+    EXPECT_LE(std::abs(r.sink.rows.back()(0) - exact_end), 1.5 * euler_gap) << method;
+  }
+}
+
+}  // namespace
+}  // namespace lcs
