@@ -111,10 +111,10 @@ TEST(EulerAtSwitching, IdealDiodePeakDetectorHoldsItsLevelAndCurrent) {
 // At h = 1 us every method is first order at the switchings inside the edges (implicit Euler
 // ends 0.17 V low); the trapezoidal rule without its switching steps taken by Euler pumped the
 // output past the bound.
-Netlist two_stage_multiplier() {
+Netlist two_stage_multiplier(double edge = 10e-6) {
   NetlistBuilder b;
   b.tran(1e-6, 1.945e-3, true);
-  b.v("v1", "in", "0", NetlistBuilder::pulse({-10, 10, 0, 10e-6, 10e-6, 40e-6, 100e-6}));
+  b.v("v1", "in", "0", NetlistBuilder::pulse({-10, 10, 0, edge, edge, 50e-6 - edge, 100e-6}));
   b.c("c1", "in", "a", 1e-6, 0.0).d("d1", "0", "a", 0.7, 0.05).d("d2", "a", "b", 0.7, 0.05);
   b.c("c2", "b", "0", 1e-6, 0.0).c("c3", "a", "c", 1e-6, 0.0).d("d3", "b", "c", 0.7, 0.05);
   b.d("d4", "c", "d", 0.7, 0.05).c("c4", "d", "b", 1e-6, 0.0);
@@ -135,6 +135,23 @@ TEST(EulerAtSwitching, MultiplierStaysBelowItsBoundAndNearTheEventMethod) {
     for (const Eigen::VectorXd& row : r.sink.rows) peak = std::max(peak, row(0));
     EXPECT_LE(peak, 37.2) << method;
     EXPECT_LE(std::abs(r.sink.rows.back()(0) - exact_end), 1.5 * euler_gap) << method;
+  }
+}
+
+// The same multiplier with 0.5 us edges, at h = 1 us: every method's steps straddle the edges,
+// and implicit Euler ends at 35.76 V (event 36.29 V). Without their switching steps checked the
+// trapezoidal rule reached 260 V and radau5 39.3 V, both past the bound; with only Euler's mode
+// disagreeing taken (rule (a) of euler_at_switching.h), the trapezoidal rule still reached 99.8 V:
+// its steps at the edges diverge from Euler's (ratio 0.77-1) without ending in another mode.
+TEST(EulerAtSwitching, MultiplierOnSharpEdgesStaysBelowItsBound) {
+  const double euler_end = simulate(two_stage_multiplier(0.5e-6), {v("d")}, "euler", 1e-6, 1.945e-3).sink.rows.back()(0);
+  ASSERT_GT(euler_end, 35.0);
+  for (const std::string& method : kNonMonotone) {
+    const RunResult r = simulate(two_stage_multiplier(0.5e-6), {v("d")}, method, 1e-6, 1.945e-3);
+    double peak = 0;
+    for (const Eigen::VectorXd& row : r.sink.rows) peak = std::max(peak, row(0));
+    EXPECT_LE(peak, 37.2) << method;
+    EXPECT_NEAR(r.sink.rows.back()(0), euler_end, 0.1) << method;
   }
 }
 
