@@ -65,8 +65,8 @@ int run_cli(int argc, char** argv) {
                       "currents serves it, else the smooth method with Shockley diodes)");
   run_cmd->add_flag("--stats", run.stats, "print a run summary to standard error");
   run_cmd->add_flag("--no-euler-at-switching", run.no_euler_at_switching,
-                    "theta and radau: keep the method's own step where the mode changes (by default implicit "
-                    "Euler's is taken where it ends in another mode or the two steps diverge)");
+                    "theta: keep its own steps where the mode changes (by default a stiff switching step is "
+                    "implicit Euler's where Euler's ends in another mode or the two steps diverge)");
 
   OpArgs op;
   CLI::App* op_cmd = app.add_subcommand("op", "DC operating point at t = 0");

@@ -239,10 +239,8 @@ int run_command(const RunArgs& args) {
   // Judged against the method that runs: after the default is picked and --diode auto's switch.
   if (args.theta && !method_of(options).uses_theta)
     warn("--theta is used only by --method theta; method " + options.method + " ignores it");
-  if (args.no_euler_at_switching && options.method != "theta" && options.method != "radau3" &&
-      options.method != "radau5")
-    warn("--no-euler-at-switching is used only by --method theta, radau3 and radau5; method " +
-         options.method + " ignores it");
+  if (args.no_euler_at_switching && !method_of(options).uses_theta)
+    warn("--no-euler-at-switching is used only by --method theta; method " + options.method + " ignores it");
   if ((args.rtol || args.atol) && !method_of(options).adaptive())
     warn("--rtol/--atol are used by the adaptive methods (" + adaptive_method_names() + "); " +
          options.method + " has a fixed step (--step)");

@@ -11,7 +11,7 @@ namespace {
 
 // ngspice diode (level 1 and its extensions) parameters that lcspice accepts and does not use.
 const char* const kIgnoredDiodeParams[] = {
-    "vj", "pb", "m", "mj", "tt", "nbv", "ikf", "ik", "ikr",
+    "vj", "pb", "m", "mj", "tt", "ikf", "ik", "ikr",
     "jsw", "isw", "ns", "cjp", "cjsw", "php", "mjsw", "fc", "fcs", "eg", "xti", "kf", "af",
     "tnom", "tref", "level", "area", "pj", "temp", "dtemp", "tlev", "tlevc", "tm1", "tm2",
     "trs", "trs1", "trs2", "tbv1", "tbv2", "tcv", "tpb", "tphp", "tcj", "tcjsw", "gap1", "gap2",
@@ -359,6 +359,9 @@ ModelCard parse_model_card(const Card& card, const ParamScope& scope, const std:
     } else if (key.lower == "ibv") {
       check(v > 0, "be positive");
       d.ibv = v;
+    } else if (key.lower == "nbv") {
+      check(v > 0, "be positive");
+      d.nbv = v;
     } else if (key.lower == "vfwd") {  // LTspice's forward threshold (Ron is lcspice's RON already)
       d.von = v;
     } else if (key.lower == "rrev") {  // LTspice's breakdown resistance (default: Ron)

@@ -67,6 +67,7 @@ struct DiodeModel {
   // ngspice's I = -IBV exp(-(V + BV) / (N Vt)); the ideal law is a second, reverse pair at -BV.
   std::optional<double> bv;            // V, > 0; none: no breakdown
   double ibv = 1e-3;                   // A, ngspice's default
+  std::optional<double> nbv;           // the breakdown's emission coefficient (ngspice's NBV; none: N)
   std::optional<double> rrev;          // LTspice's Rrev: the breakdown's on-resistance (ideal law)
   // Junction capacitance CJO [F] (also CJ0, CJ). Modelled only under `.options diodecap`
   // (SPEC §2 lists it as ignored), at its zero-bias value across the junction as the

@@ -217,12 +217,15 @@ TEST(PspiceDialect, TranOpSkipbpAndTemperatureCoefficients) {
 
 // PSpice's Zener cards (its libraries' 1N47xx) carry IBVL and NBVL, the low-level breakdown knee:
 // read and listed with the other parameters lcspice does not use (was "unknown diode model
-// parameter 'IBVL'"); BV and IBV are the breakdown lcspice models.
+// parameter 'IBVL'"); BV, IBV and NBV are the breakdown lcspice models.
 TEST(PspiceDialect, ZenerLowLevelBreakdownParametersAreReadAndListed) {
   Netlist n = test::parse("t\nV1 a 0 1\nD1 0 a dz\n.model dz D(IS=1.214E-16 RS=0.8 N=1 BV=5.1 IBV=0.049 NBV=1.2 "
                           "IBVL=1E-3 NBVL=2 TBV1=-1E-4 TIKF=0.005)\n");
   ASSERT_EQ(n.warnings.size(), 1u);
-  EXPECT_EQ(n.warnings[0], "t.cir:4:54: warning: diode model 'dz': parameters nbv, ibvl, nbvl, tbv1, tikf ignored by lcspice");
+  EXPECT_EQ(n.warnings[0], "t.cir:4:62: warning: diode model 'dz': parameters ibvl, nbvl, tbv1, tikf ignored by lcspice");
+  EXPECT_EQ(n.diode_models.at("dz").nbv, 1.2);  // NBV is modelled: the breakdown's emission
+  EXPECT_EQ(test::diag("t\nD1 0 a dz\n.model dz D(BV=5 NBV=0)\n"),
+            "t.cir:3:22: error: diode parameter 'nbv' must be positive\n.model dz D(BV=5 NBV=0)\n                     ^");
 }
 
 // PSpice's transistor cards: NK (ngspice's NKF) and the temperature coefficients TRB1 ... (also

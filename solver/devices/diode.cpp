@@ -44,13 +44,13 @@ ResolvedDiodeLaw resolve_breakdown_law(const DiodeModel& model, double ifit, con
     r.law.ron = model.rrev.value_or(model.ron.value_or(0.0));
     return r;
   }
-  return fitted_law(breakdown_curve(*model.bv, model.ibv, model.n, model.rs), ifit, range);
+  return fitted_law(breakdown_curve(*model.bv, model.ibv, model.nbv.value_or(model.n), model.rs), ifit, range);
 }
 
 SmoothDiodeLaw smooth_equivalent(const DiodeModel& card, const ResolvedDiodeLaw& law,
                                  double emission, double saturation_current) {
   if (law.fitted || card.has_is || card.has_n || card.has_rs)
-    return {0.0, card.is, card.n, card.rs, card.bv, card.ibv};
+    return {0.0, card.is, card.n, card.rs, card.bv, card.ibv, card.nbv};
   SmoothDiodeLaw s{law.law.von, saturation_current, emission, law.law.ron, card.bv, card.ibv};
   if (card.bv) s.ibv = saturation_current * (*card.bv + law.law.von) / kThermalVoltage;
   return s;
@@ -141,7 +141,7 @@ void Diode::stamp(const StampContext& context, Stamps& stamps) const {
   // reverse voltage v_r beyond the law's threshold BV, ngspice's breakdown branch (to IBV).
   if (breakdown_)
     stamps.pairs.push_back({context.branch(1), junction_pair_law(name() + ":bv", element_index(), *breakdown_,
-                                                        {card_.ibv, card_.n})});
+                                                        {card_.ibv, card_.nbv.value_or(card_.n)})});
   if (capacitance() > 0) stamps.storage.push_back({context.branch(breakdown_ ? 2 : 1), capacitance(), std::nullopt});
 }
 
@@ -154,7 +154,8 @@ std::string ngspice_junction(const std::string& tag, const std::string& anode, c
   cards.lines.push_back(meter + " " + anode + " " + mid + " DC " + Device::number(smooth.series_von));
   // ngspice's BV is the junction's, behind the threshold source: the branch breaks down at -bv.
   const std::string breakdown = smooth.bv ? " BV=" + Device::number(*smooth.bv + smooth.series_von) +
-                                                " IBV=" + Device::number(smooth.ibv)
+                                                " IBV=" + Device::number(smooth.ibv) +
+                                                (smooth.nbv ? " NBV=" + Device::number(*smooth.nbv) : "")
                                           : "";
   cards.models.push_back(".model " + model + " D(IS=" + Device::number(smooth.is) + " N=" +
                          Device::number(smooth.n) + " RS=" + Device::number(smooth.rs * context.ron_factor) +

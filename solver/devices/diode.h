@@ -52,6 +52,7 @@ struct SmoothDiodeLaw {
   double is = 1e-14, n = 1, rs = 0;
   std::optional<double> bv;
   double ibv = 1e-3;
+  std::optional<double> nbv;  // the breakdown's emission coefficient (none: n)
 };
 SmoothDiodeLaw smooth_equivalent(const DiodeModel& card, const ResolvedDiodeLaw& law,
                                  double emission, double saturation_current);

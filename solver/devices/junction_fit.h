@@ -3,8 +3,9 @@
 //
 // The curve is ngspice's level-1 diode, forward or in breakdown:
 //   forward:    v(i) = N Vt ln(1 + i / IS) + RS i          (I = IS (exp(V / (N Vt)) - 1))
-//   breakdown:  v(i) = BV + N Vt ln(i / IBV) + RS i        (I = IBV exp(-(V + BV) / (N Vt)), V < 0,
-//                                                           v = -V the reverse voltage)
+//   breakdown:  v(i) = BV + NBV Vt ln(i / IBV) + RS i      (I = IBV exp(-(V + BV) / (NBV Vt)), V < 0,
+//                                                           v = -V the reverse voltage; NBV
+//                                                           ngspice's, default N)
 // Both are concave in i, so over [i1, i2] the chord lies below the curve, farthest at the one
 // current where the curve's slope equals the chord's; the least-max-error (minimax) line is the
 // chord raised by half that distance, and its error is that half, reached at i1, i2 and there.

@@ -1,29 +1,70 @@
 #include "solver/integrators/euler_at_switching.h"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 
 #include "solver/integrators/theta_method.h"
+#include "solver/model/sparse_lcs.h"
 
 namespace lcs {
 
-bool mode_changed(const Eigen::Ref<const Eigen::VectorXd>& z_a, const Eigen::Ref<const Eigen::VectorXd>& z_b) {
+namespace {
+
+double conducting_floor(const Eigen::VectorXd& z_a, const Eigen::VectorXd& z_b) {
+  const double a = z_a.size() > 0 ? z_a.cwiseAbs().maxCoeff() : 0.0;
+  const double b = z_b.size() > 0 ? z_b.cwiseAbs().maxCoeff() : 0.0;
+  return kConductingFraction * std::max(a, b);
+}
+
+}  // namespace
+
+bool mode_changed(const Eigen::VectorXd& z_a, const Eigen::VectorXd& z_b) {
   if (z_a.size() != z_b.size()) return true;
-  if (z_a.size() == 0) return false;
-  const double floor = kConductingFraction * std::max(z_a.cwiseAbs().maxCoeff(), z_b.cwiseAbs().maxCoeff());
+  const double floor = conducting_floor(z_a, z_b);
   for (Eigen::Index i = 0; i < z_a.size(); ++i)
     if ((z_a(i) > floor) != (z_b(i) > floor)) return true;
   return false;
 }
 
 bool steps_diverge(const Eigen::VectorXd& x0, const Eigen::VectorXd& x, const Eigen::VectorXd& x_euler) {
-  if (x0.size() == 0) return false;
-  const double apart = (x - x_euler).cwiseAbs().maxCoeff();
-  const double moved = (x - x0).cwiseAbs().maxCoeff() + (x_euler - x0).cwiseAbs().maxCoeff();
-  return apart > kDivergence * moved;
+  for (Eigen::Index i = 0; i < x0.size(); ++i) {
+    const double apart = std::abs(x(i) - x_euler(i));
+    const double moved = std::abs(x(i) - x0(i)) + std::abs(x_euler(i) - x0(i));
+    const double size = std::max({std::abs(x0(i)), std::abs(x(i)), std::abs(x_euler(i))});
+    if (apart > kDivergence * moved && apart > 1e-3 * size) return true;
+  }
+  return false;
 }
 
-EulerAtSwitching::EulerAtSwitching(const LcsProblem& model, bool sparse, bool step_after)
-    : euler_(std::make_unique<ThetaMethod>(model, 1.0, sparse)), step_after_(step_after) {}
+Eigen::VectorXd pair_rates(const LcsProblem& model) {
+  const double inf = std::numeric_limits<double>::infinity();
+  if (const std::shared_ptr<const SparseLcs>& s = model.sparse_lcs()) {
+    const Eigen::SparseMatrix<double, Eigen::RowMajor> CB = s->C * s->B;
+    Eigen::VectorXd r(CB.rows());
+    for (int i = 0; i < CB.rows(); ++i) {
+      double sum = 0;
+      for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(CB, i); it; ++it) sum += std::abs(it.value());
+      const double d = s->D.coeff(i, i);
+      r(i) = d > 0 ? sum / d : inf;
+    }
+    return r;
+  }
+  if (model.dense_deferred()) return Eigen::VectorXd();
+  const Lcs& s = model.lcs();
+  Eigen::VectorXd r(s.pairs());
+  const Eigen::MatrixXd CB = s.C * s.B;
+  for (int i = 0; i < s.pairs(); ++i) {
+    const double sum = CB.cols() > 0 ? CB.row(i).cwiseAbs().sum() : 0.0;
+    r(i) = s.D(i, i) > 0 ? sum / s.D(i, i) : inf;
+  }
+  return r;
+}
+
+EulerAtSwitching::EulerAtSwitching(const LcsProblem& model, double theta, bool sparse)
+    : euler_(std::make_unique<ThetaMethod>(model, 1.0, sparse)),
+      stiff_bound_(1.0 / (1.0 - theta)),
+      rates_(pair_rates(model)) {}
 
 EulerAtSwitching::~EulerAtSwitching() = default;
 
@@ -32,9 +73,16 @@ void EulerAtSwitching::remember(const Eigen::VectorXd& x, const Eigen::VectorXd&
   z_before_ = z;
 }
 
-bool EulerAtSwitching::replace_switching_step(double t, double h, Eigen::VectorXd& x, Eigen::VectorXd& z,
-                                              bool switched_inside) {
-  if (!switched_inside && !mode_changed(z_before_, z)) return false;
+bool EulerAtSwitching::stiff(double h, const Eigen::VectorXd& z) const {
+  if (rates_.size() != z.size()) return true;
+  const double floor = conducting_floor(z_before_, z);
+  for (Eigen::Index i = 0; i < z.size(); ++i)
+    if ((z(i) > floor || z_before_(i) > floor) && h * rates_(i) > stiff_bound_) return true;
+  return false;
+}
+
+bool EulerAtSwitching::replace_switching_step(double t, double h, Eigen::VectorXd& x, Eigen::VectorXd& z) {
+  if (!mode_changed(z_before_, z) || !stiff(h, z)) return false;
   x_euler_ = x_before_;
   z_euler_ = z_before_;
   euler_->guess_from_given_mode();  // where Euler's LCP has several solutions: the continuous one
@@ -43,7 +91,7 @@ bool EulerAtSwitching::replace_switching_step(double t, double h, Eigen::VectorX
   x = x_euler_;
   z = z_euler_;
   ++taken_;
-  step_after_due_ = step_after_;
+  step_after_due_ = true;
   return true;
 }
 

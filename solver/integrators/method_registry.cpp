@@ -118,12 +118,12 @@ std::vector<MethodEntry> make_table() {
 
   MethodEntry radau3 = fixed_step(
       "radau3", "Radau IIA, 2 stages (order 3), fixed step, one LCP of size 2m per step",
-      [](const LcsProblem& m, const MethodOptions& o) { return std::make_unique<RadauIIA>(m, 2, o.euler_at_switching); });
+      [](const LcsProblem& m, const MethodOptions&) { return std::make_unique<RadauIIA>(m, 2); });
   radau3.history_degree = 2;
   table.push_back(radau3);
   MethodEntry radau5 = fixed_step(
       "radau5", "Radau IIA, 3 stages (order 5), fixed step, one LCP of size 3m per step",
-      [](const LcsProblem& m, const MethodOptions& o) { return std::make_unique<RadauIIA>(m, 3, o.euler_at_switching); });
+      [](const LcsProblem& m, const MethodOptions&) { return std::make_unique<RadauIIA>(m, 3); });
   radau5.history_degree = 4;
   table.push_back(radau5);
 

@@ -16,9 +16,9 @@ class GuardedMethod;
 
 struct MethodOptions {
   double theta = 0.5;  // `--theta`, used by "theta"
-  // theta < 1 and Radau IIA take a step whose mode changes by implicit Euler where that matters
-  // (euler_at_switching.h); false (`--no-euler-at-switching`) keeps the methods' own steps, to
-  // study them (tests/stability_test.cpp).
+  // theta < 1 checks a stiff step whose mode changes against implicit Euler's
+  // (euler_at_switching.h); false (`--no-euler-at-switching`) keeps its own steps, to study them
+  // (tests/stability_test.cpp).
   bool euler_at_switching = true;
   // `--rtol`, `--atol` of the adaptive methods; 0 means the method's default (event: rtol 1e-13
   // on event times; smooth: rtol 1e-6, atol 1e-9 as in SUNDIALS' weighted norm).

@@ -59,10 +59,8 @@ struct RadauIIA::StepFactors {
   std::unique_ptr<LcpWarmSolver> euler;
 };
 
-RadauIIA::RadauIIA(const LcsProblem& model, int stages, bool euler_at_switching)
+RadauIIA::RadauIIA(const LcsProblem& model, int stages)
     : TimeStepper(model), tableau_(radau_iia_tableau(stages)) {
-  if (euler_at_switching)
-    switching_ = std::make_unique<EulerAtSwitching>(model, false, false);
   const Lcs& s = model.lcs();
   U_.resize(stages * s.inputs());
   q_.resize(stages * s.pairs());
@@ -114,20 +112,13 @@ void RadauIIA::DoStart(double t0, double h_run, const Eigen::VectorXd& x, Eigen:
 }
 
 void RadauIIA::DoStep(double t, double h, Eigen::VectorXd& x, Eigen::VectorXd& z) {
-  if (!switching_) return radau_step(t, h, x, z);
-  switching_->remember(x, z);
-  radau_step(t, h, x, z);
-  resume_ = switching_->replace_switching_step(t, h, x, z, stages_switched_);
-}
-
-void RadauIIA::radau_step(double t, double h, Eigen::VectorXd& x, Eigen::VectorXd& z) {
   StepFactors& f = factors(h);
   const int m = model_.lcs().pairs(), k = model_.lcs().inputs();
   for (int j = 0; j < stages(); ++j)
     model_.input_values(t + tableau_.c(j) * h, U_.segment(j * k, k));  // U_j = u(t + c_j h)
   q_.noalias() = f.Qx * x;
   q_.noalias() += f.Qu * U_;
-  if ((f.lcp->stats().solves == 0 || resume_) && m > 0) f.lcp->prefer(z.replicate(stages(), 1), true);
+  if (f.lcp->stats().solves == 0 && m > 0) f.lcp->prefer(z.replicate(stages(), 1));
   else f.lcp->continue_last_block(stages());
   const LcpSolution* sol_ptr = &f.lcp->solve(q_);
   if (sol_ptr->status == LcpStatus::NotUnique) sol_ptr = &mode_from_euler(f, t, h, x, z);
@@ -136,9 +127,6 @@ void RadauIIA::radau_step(double t, double h, Eigen::VectorXd& x, Eigen::VectorX
   if (sol.status != LcpStatus::Solved)
     throw NumericalFailure(t + h, std::string("the Radau IIA step's LCP has no solution (Lemke: ") +
                                       lcp_status_name(sol.status) + ")");
-  stages_switched_ = false;
-  for (int j = 0; j + 1 < stages() && m > 0; ++j)
-    stages_switched_ = stages_switched_ || mode_changed(z, sol.z.segment(j * m, m));
   x_next_.noalias() = f.Sx * x;
   x_next_.noalias() += f.Sz * sol.z;
   x_next_.noalias() += f.Su * U_;
@@ -173,7 +161,6 @@ const LcpSolution& RadauIIA::mode_from_euler(StepFactors& f, double t, double h,
 StepperStats RadauIIA::stats() const {
   StepperStats s = stats_;  // s.lcp holds the start LCP (consistent_start_z)
   for (const auto& [h, f] : cache_) s.lcp += f->lcp->stats();
-  if (switching_) switching_->add_cost_to(s);
   return s;
 }
 

@@ -8,14 +8,12 @@
 // Radau IIA meets (RK1)-(RK4) of 8.4.1, under which 8.4.2 shows the stage system solvable for
 // small h and 8.4.3 gives at least the stage order s on smooth stretches; inside one mode the
 // LCS is a linear DAE and x reaches the classical order 2s - 1 (radau_iia_test measures it).
-// A step across a switching instant is first order, as for any method that does not locate it;
-// a step whose mode changes is checked against implicit Euler's (euler_at_switching.h).
+// A step across a switching instant is first order, as for any method that does not locate it.
 #pragma once
 
 #include <map>
 #include <memory>
 
-#include "solver/integrators/euler_at_switching.h"
 #include "solver/integrators/time_stepper.h"
 
 namespace lcs {
@@ -32,8 +30,7 @@ ButcherTableau radau_iia_tableau(int stages);
 
 class RadauIIA : public TimeStepper {
  public:
-  // `euler_at_switching` false: every step is Radau's (euler_at_switching.h).
-  RadauIIA(const LcsProblem& model, int stages, bool euler_at_switching = true);
+  RadauIIA(const LcsProblem& model, int stages);
   ~RadauIIA() override;
   StepperStats stats() const override;
   int stages() const { return static_cast<int>(tableau_.c.size()); }
@@ -44,7 +41,6 @@ class RadauIIA : public TimeStepper {
   void DoStep(double t, double h, Eigen::VectorXd& x, Eigen::VectorXd& z) override;
 
  private:
-  void radau_step(double t, double h, Eigen::VectorXd& x, Eigen::VectorXd& z);
   struct StepFactors;  // everything that depends only on h, prepared once per step size
   StepFactors& factors(double h);
   // The stage LCP has several solutions and the previous mode ended: solve it again from the
@@ -53,9 +49,6 @@ class RadauIIA : public TimeStepper {
                                      const Eigen::VectorXd& z);
 
   ButcherTableau tableau_;
-  std::unique_ptr<EulerAtSwitching> switching_;  // null: every step Radau's
-  bool stages_switched_ = false;  // a stage of the last step ended in another mode than its start
-  bool resume_ = false;  // the last step was Euler's: the stages start from its end mode
   std::map<double, std::unique_ptr<StepFactors>> cache_;
   // Stacked stage inputs, the LCP's q, the end state: preallocated, DoStep does not allocate.
   Eigen::VectorXd U_, q_, x_next_;

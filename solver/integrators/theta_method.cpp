@@ -28,7 +28,7 @@ ThetaMethod::ThetaMethod(const LcsProblem& model, double theta, bool sparse, int
   if (sparse && model.pair_count() >= descriptor_pairs) descriptor_ = model.sparse_descriptor();
   if (descriptor_) stats_.descriptor_unknowns = descriptor_->unknowns();
   if (theta < 1 && euler_at_switching)
-    switching_ = std::make_unique<EulerAtSwitching>(model, sparse, true);
+    switching_ = std::make_unique<EulerAtSwitching>(model, theta, sparse);
 }
 
 ThetaMethod::SparseStep* ThetaMethod::sparse_step(double h) {

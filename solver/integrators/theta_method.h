@@ -5,7 +5,7 @@
 // SparseStep); circuits with many pairs whose LCS is dense but whose circuit is sparse (a
 // multiplier) step on the circuit's descriptor form instead (descriptor_step.h). Both fall back
 // to Lemke on the dense LCP for a step whose mode search fails. For theta < 1 a step whose mode
-// changes is checked against implicit Euler's (euler_at_switching.h).
+// changes and is stiff is checked against implicit Euler's (euler_at_switching.h).
 #pragma once
 
 #include <map>

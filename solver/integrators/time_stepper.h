@@ -28,7 +28,7 @@ struct StepperStats {
   long newton_iterations = 0;
   SparseActiveSetStats sparse;  // time-stepping on the sparse system (large circuits)
   long sparse_fallbacks = 0;    // steps the sparse active-set search left to Lemke
-  long switching_steps_by_euler = 0;  // theta < 1, radau: steps taken by implicit Euler at mode changes
+  long switching_steps_by_euler = 0;  // theta < 1: steps taken by implicit Euler at stiff mode changes
   int descriptor_unknowns = 0;  // > 0: steps solved on the descriptor form, of this many unknowns
   long cache_budget_bytes = 0;  // event: the exponential cache's budget (0: no cache)
   long cache_peak_bytes = 0;    // and the most it held

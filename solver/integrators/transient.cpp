@@ -70,7 +70,7 @@ std::string TransientSummary::BriefReport() const {
     }
   }
   if (stepper.switching_steps_by_euler > 0) {  // euler_at_switching.h
-    std::snprintf(buf, sizeof buf, "\nsteps taken by implicit Euler at mode changes: %ld",
+    std::snprintf(buf, sizeof buf, "\nsteps taken by implicit Euler at stiff mode changes (and the steps after): %ld",
                   stepper.switching_steps_by_euler);
     out += buf;
   }

@@ -25,7 +25,8 @@ Netlist smooth_netlist(const Netlist& netlist, const SmoothingOptions& options) 
     // IS (exp((v_r - BV') / (N Vt)) - 1) = IBV exp((v_r - BV) / (N Vt)) - IS is ngspice's
     // breakdown branch (a junction (IBV, N) at BV would carry IBV less: 4.8 mV more clamp
     // voltage at 5 mA with IBV = 1 mA).
-    if (s.bv) card.bv = *s.bv - s.n * kThermalVoltage * std::log(s.ibv / s.is);
+    // With NBV the breakdown junction's emission is NBV (diode.cpp's stamp), and so is xbv's.
+    if (s.bv) card.bv = *s.bv - s.nbv.value_or(s.n) * kThermalVoltage * std::log(s.ibv / s.is);
     card.ibv = s.is;
   }
   for (auto& [name, card] : out.bjt_models)

@@ -63,6 +63,29 @@ TEST(JunctionFit, ResolvedLawOverACircuitRange) {
   EXPECT_EQ(resolve_breakdown_law(card, 10e-3).law.ron, 3.0);
 }
 
+// NBV (ngspice's breakdown emission coefficient) is the breakdown curve's: a card with N = 1 and
+// NBV = 2 fits the line of BV + 2 Vt ln(i / IBV) + RS i, not of N Vt (was ignored with a
+// warning: a 1N4733 card's Zener voltage 8 mV off ngspice's on the same card).
+TEST(JunctionFit, BreakdownFitUsesNbv) {
+  DiodeModel card;
+  card.is = 1e-14;
+  card.n = 1.0;
+  card.rs = 0.5;
+  card.bv = 5.1;
+  card.ibv = 1e-3;
+  card.nbv = 2.0;
+  const CurrentRange range{2e-3, 20e-3};
+  const ResolvedDiodeLaw z = resolve_breakdown_law(card, 10e-3, range);
+  const LineFit expected = minimax_fit(breakdown_curve(5.1, 1e-3, 2.0, 0.5), 2e-3, 20e-3);
+  EXPECT_TRUE(z.fitted);
+  EXPECT_EQ(z.law.von, expected.law.von);
+  EXPECT_EQ(z.law.ron, expected.law.ron);
+  // The chord's slope over [2, 20] mA: 2 Vt ln 10 / 18 mA + RS.
+  EXPECT_NEAR(z.law.ron, 2 * kThermalVoltage * std::log(10.0) / 18e-3 + 0.5, 1e-9);
+  card.nbv.reset();
+  EXPECT_NEAR(resolve_breakdown_law(card, 10e-3, range).law.ron, kThermalVoltage * std::log(10.0) / 18e-3 + 0.5, 1e-9);
+}
+
 // The range of a diode's conducting samples: its off phases (0 A) left out, [10 % quantile, max].
 TEST(JunctionFit, ConductingRangeLeavesTheOffPhasesOut) {
   std::vector<double> samples(50, 0.0);
