@@ -64,9 +64,9 @@ int run_cli(int argc, char** argv) {
                       "shockley (smooth diodes, --method smooth), auto (ideal where the fit to the circuit's "
                       "currents serves it, else the smooth method with Shockley diodes)");
   run_cmd->add_flag("--stats", run.stats, "print a run summary to standard error");
-  run_cmd->add_flag("--no-euler-at-switching", run.no_euler_at_switching,
-                    "theta: keep its own steps where the mode changes (by default a stiff switching step is "
-                    "implicit Euler's where Euler's ends in another mode or the two steps diverge)");
+  run_cmd->add_flag("--euler-at-switching", run.euler_at_switching,
+                    "theta: check each stiff step whose mode changes against implicit Euler's and take Euler's "
+                    "where it ends in another mode or the two diverge (cures overshoots a diode holds; README)");
 
   OpArgs op;
   CLI::App* op_cmd = app.add_subcommand("op", "DC operating point at t = 0");

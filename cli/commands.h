@@ -13,7 +13,7 @@ struct RunArgs {
   std::string netlist, output, method, probes, diode;  // diode "": follows the method
   std::optional<double> theta, step, tstop, rtol, atol, emission;
   bool stats = false;
-  bool no_euler_at_switching = false;
+  bool euler_at_switching = false;
 };
 int run_command(const RunArgs& args);
 

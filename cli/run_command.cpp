@@ -98,7 +98,7 @@ int run_command(const RunArgs& args) {
     options.method = args.method;
   }
   if (args.theta) options.method_options.theta = *args.theta;
-  options.method_options.euler_at_switching = !args.no_euler_at_switching;
+  options.method_options.euler_at_switching = args.euler_at_switching;
   apply_diode_model(args, options);
   if (args.rtol) options.method_options.rtol = *args.rtol;
   if (args.atol) options.method_options.atol = *args.atol;
@@ -239,8 +239,8 @@ int run_command(const RunArgs& args) {
   // Judged against the method that runs: after the default is picked and --diode auto's switch.
   if (args.theta && !method_of(options).uses_theta)
     warn("--theta is used only by --method theta; method " + options.method + " ignores it");
-  if (args.no_euler_at_switching && !method_of(options).uses_theta)
-    warn("--no-euler-at-switching is used only by --method theta; method " + options.method + " ignores it");
+  if (args.euler_at_switching && !method_of(options).uses_theta)
+    warn("--euler-at-switching is used only by --method theta; method " + options.method + " ignores it");
   if ((args.rtol || args.atol) && !method_of(options).adaptive())
     warn("--rtol/--atol are used by the adaptive methods (" + adaptive_method_names() + "); " +
          options.method + " has a fixed step (--step)");

@@ -1,6 +1,6 @@
-// `lcspice run --method theta` checks its stiff steps whose mode changes against implicit Euler's
-// (solver/integrators/euler_at_switching.h); `--no-euler-at-switching` keeps its own steps, to
-// study them (docs/stability.md).
+// `lcspice run --method theta --euler-at-switching` checks its stiff steps whose mode changes
+// against implicit Euler's (solver/integrators/euler_at_switching.h); by default every step is
+// theta's own.
 #include <string>
 #include <vector>
 
@@ -26,16 +26,16 @@ std::vector<double> v_out(const std::string& flags, std::string* err = nullptr) 
   return column(parse_csv(read_file(csv)), "v(out)");
 }
 
-TEST(EulerAtSwitchingCli, ThetaReachesTheTargetAndTheFlagShowsTheHeldOvershoot) {
+TEST(EulerAtSwitchingCli, TheFlagCuresTheHeldOvershootOfTheDefault) {
   std::string err;
-  const std::vector<double> checked = v_out("--method theta", &err);
+  const std::vector<double> checked = v_out("--method theta --euler-at-switching", &err);
   ASSERT_EQ(checked.size(), 11u);
   EXPECT_NEAR(checked[1], 9.3 * 100 / 101, 1e-9);
   EXPECT_NEAR(checked.back(), 9.3, 1e-9);
   EXPECT_NE(err.find("steps taken by implicit Euler at stiff mode changes (and the steps after): "), std::string::npos)
       << err;
 
-  const std::vector<double> own = v_out("--method theta --no-euler-at-switching", &err);
+  const std::vector<double> own = v_out("--method theta", &err);
   ASSERT_EQ(own.size(), 11u);
   EXPECT_NEAR(own[1], 465.0, 1e-4);
   EXPECT_NEAR(own.back(), 465.0, 1e-4);
@@ -44,9 +44,9 @@ TEST(EulerAtSwitchingCli, ThetaReachesTheTargetAndTheFlagShowsTheHeldOvershoot) 
 
 TEST(EulerAtSwitchingCli, FlagIsIgnoredWithAWarningByOtherMethods) {
   std::string err;
-  const std::vector<double> v = v_out("--method euler --no-euler-at-switching", &err);
+  const std::vector<double> v = v_out("--method euler --euler-at-switching", &err);
   EXPECT_NEAR(v.back(), 9.3, 1e-9);
-  EXPECT_NE(err.find("warning: --no-euler-at-switching is used only by --method theta; method euler ignores it"),
+  EXPECT_NE(err.find("warning: --euler-at-switching is used only by --method theta; method euler ignores it"),
             std::string::npos)
       << err;
 }

@@ -55,10 +55,17 @@ struct RunOptions {
   double theta = 0.5;  // for "theta"
   double tstop = 0;    // 0: the netlist's .tran TSTOP
   double rtol = 0, atol = 0;
-  // false: the θ-method's own steps where the mode changes (the method studied here); true, the
-  // default, checks stiff switching steps against implicit Euler's (euler_at_switching.h).
-  bool euler_at_switching = true;
+  // false, the default: the θ-method's own steps (the method studied here); true
+  // (`--euler-at-switching`) checks stiff switching steps against implicit Euler's
+  // (euler_at_switching.h).
+  bool euler_at_switching = false;
 };
+
+RunOptions checked() {
+  RunOptions ro;
+  ro.euler_at_switching = true;
+  return ro;
+}
 
 RunOptions own_steps() {
   RunOptions ro;
@@ -161,12 +168,12 @@ TEST(StabilityTrapezoidRinging, CapacitorCurrentAlternatesWithoutDecayAfterTheCl
   EXPECT_LT(worst, 1e-12 * I);
   report("trapezoid ringing", "euler max |i(c1)| / I after the clamp", worst / I);
 
-  // theta's default checks its switching steps against implicit Euler's (euler_at_switching.h)
-  // and keeps this one: both end clamped at VON, so neither the mode nor the state differ, and
-  // the ringing of z (v exact throughout) is the same.
-  const Simulation checked = simulate(netlist, "theta", h);
-  EXPECT_EQ(checked.summary.stepper.switching_steps_by_euler, 0);
-  EXPECT_EQ(checked.column("i(c1)"), ic);
+  // With --euler-at-switching theta checks its stiff switching steps against implicit Euler's
+  // (euler_at_switching.h) and keeps this one: both end clamped at VON, so neither the mode nor
+  // the state differ, and the ringing of z (v exact throughout) is the same.
+  const Simulation with_check = simulate(netlist, "theta", h, checked());
+  EXPECT_EQ(with_check.summary.stepper.switching_steps_by_euler, 0);
+  EXPECT_EQ(with_check.column("i(c1)"), ic);
 }
 
 // At h = 100 tau the ringing is the whole diode current, and the diode switches at every step.
@@ -198,7 +205,7 @@ TEST(StabilityTrapezoidRinging, AtHundredTauTheDiodeTogglesEveryStepAndRingsWith
   report("trapezoid ringing h = 100 tau", "|i(c1)| / I at the end", std::abs(ic.back()) / I);
   report("trapezoid ringing h = 100 tau", "e ratio per two steps", std::pow(e_ratio, 1.0 / 200));
 
-  // Implicit Euler, and theta with its switching step taken by Euler (the default), are exact
+  // Implicit Euler, and theta with its switching steps checked (--euler-at-switching), are exact
   // from step 2.
   ro.euler_at_switching = true;
   for (const char* method : {"euler", "theta"}) {
@@ -267,11 +274,11 @@ TEST(StabilityTrapezoidLargeStep, SettlesAtOneMinusThetaTimesHOverTauTimesTheTar
   EXPECT_NEAR(v.back(), E, 1e-12 * E);
   report("euler, h = 100 tau", "settled v(out) / (V - VON)", v.back() / E);
 
-  // The cure, theta's default: the first step, which turns the diode off at the overshoot, is
+  // The cure, --euler-at-switching: the first step, which turns the diode off at the overshoot, is
   // implicit Euler's (v_1 = E (h/tau) / (1 + h/tau)); from there v rises to E and never past it.
   for (double theta : {0.5, 0.75}) {
     SCOPED_TRACE("theta = " + std::to_string(theta) + ", Euler at switching");
-    RunOptions ro;
+    RunOptions ro = checked();
     ro.theta = theta;
     const std::vector<double> vc = simulate(netlist, "theta", h, ro).column("v(out)");
     EXPECT_NEAR(vc[1], E * (h / tau) / (1 + h / tau), 1e-9 * E);

@@ -17,6 +17,19 @@ double conducting_floor(const Eigen::VectorXd& z_a, const Eigen::VectorXd& z_b) 
   return kConductingFraction * std::max(a, b);
 }
 
+// A tree diode's pair (PairInfo::voltage_type) has z the reverse-voltage margin and w the current:
+// z > 0 is blocking, and the rate formula says nothing of its conduction. Left out of the gate
+// (rate 0): a diode in series with an inductor (D_ii = 0) counted as infinitely stiff and had
+// resonant charging's turn-off replaced (18.4772 V where theta's own step gave 18.5822, event
+// 18.5727).
+Eigen::VectorXd without_tree_diodes(const LcsProblem& model, Eigen::VectorXd r) {
+  const std::vector<PairInfo>& pairs = model.pairs();
+  if (static_cast<Eigen::Index>(pairs.size()) != r.size()) return r;
+  for (Eigen::Index i = 0; i < r.size(); ++i)
+    if (pairs[i].voltage_type) r(i) = 0;
+  return r;
+}
+
 }  // namespace
 
 bool mode_changed(const Eigen::VectorXd& z_a, const Eigen::VectorXd& z_b) {
@@ -48,7 +61,7 @@ Eigen::VectorXd pair_rates(const LcsProblem& model) {
       const double d = s->D.coeff(i, i);
       r(i) = d > 0 ? sum / d : inf;
     }
-    return r;
+    return without_tree_diodes(model, r);
   }
   if (model.dense_deferred()) return Eigen::VectorXd();
   const Lcs& s = model.lcs();
@@ -58,7 +71,7 @@ Eigen::VectorXd pair_rates(const LcsProblem& model) {
     const double sum = CB.cols() > 0 ? CB.row(i).cwiseAbs().sum() : 0.0;
     r(i) = s.D(i, i) > 0 ? sum / s.D(i, i) : inf;
   }
-  return r;
+  return without_tree_diodes(model, r);
 }
 
 EulerAtSwitching::EulerAtSwitching(const LcsProblem& model, double theta, bool sparse)

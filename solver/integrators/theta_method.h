@@ -24,9 +24,10 @@ class ThetaMethod : public TimeStepper {
   // `sparse`: large circuits with a sparse LCS step on the sparse system (else always dense).
   // A circuit with a descriptor form (sparse_descriptor.h) steps on it from `descriptor_pairs`
   // pairs on (tests lower it to compare the paths on smaller circuits).
-  // `euler_at_switching` false: every step is the θ-method's (tests of the step itself).
+  // `euler_at_switching`: stiff switching steps checked against implicit Euler's
+  // (euler_at_switching.h); false, every step is the θ-method's.
   ThetaMethod(const LcsProblem& model, double theta, bool sparse = true,
-              int descriptor_pairs = kDescriptorPairs, bool euler_at_switching = true);
+              int descriptor_pairs = kDescriptorPairs, bool euler_at_switching = false);
   ~ThetaMethod() override;
   StepperStats stats() const override;
   // The next step's first guess of the mode is the z it is given (another method took the

@@ -27,6 +27,7 @@ Netlist smooth_netlist(const Netlist& netlist, const SmoothingOptions& options) 
     // voltage at 5 mA with IBV = 1 mA).
     // With NBV the breakdown junction's emission is NBV (diode.cpp's stamp), and so is xbv's.
     if (s.bv) card.bv = *s.bv - s.nbv.value_or(s.n) * kThermalVoltage * std::log(s.ibv / s.is);
+    card.nbv = s.nbv;  // none for a VON/RON card: its breakdown is smoothed with the emission above
     card.ibv = s.is;
   }
   for (auto& [name, card] : out.bjt_models)

@@ -30,6 +30,7 @@ RunResult simulate(const Netlist& netlist, const std::vector<Probe>& probes, con
   CircuitModel model = CircuitModel::build(netlist, mo);
   TransientOptions o;
   o.method = method;
+  o.method_options.euler_at_switching = true;  // what these tests are about (off by default)
   o.step = h;
   o.tstop = tstop;
   o.uic = true;
