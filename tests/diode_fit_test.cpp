@@ -327,6 +327,21 @@ TEST(Breakdown, NbvIsTheBreakdownCurvesEmissionCoefficient) {
   EXPECT_EQ(s.code, 0) << s.out << s.err;
 }
 
+// NBV on a card with VON/RON plays no part (its breakdown is BV with RON, like its forward law):
+// the smooth method clamped at 7.2 V with NBV = 3 carried into its breakdown junction, where
+// without NBV it clamps at 5.03 V (a reviewer's deck).
+TEST(Breakdown, NbvOnAnIdealCardLeavesTheSmoothMethodAlone) {
+  const fs::path dir = scratch_dir("zener_nbv_ideal");
+  const std::string deck_text = "Zener with VON/RON and NBV\nV1 in 0 SIN(0 10 1k)\nR1 in out 100\nD1 0 out dz\n"
+                                ".model dz D(VON=0.7 RON=0.05 BV=5 NBV=3)\n.tran 1u 2m\n.print tran v(out)\n.end\n";
+  std::string plain = deck_text;
+  plain.replace(plain.find(" NBV=3"), 6, "");
+  const double with_nbv = max_of(column(run_csv(write_deck(dir, "nbv.cir", deck_text), "smooth"), "v(out)"));
+  const double without = max_of(column(run_csv(write_deck(dir, "plain.cir", plain), "smooth"), "v(out)"));
+  EXPECT_EQ(with_nbv, without);
+  EXPECT_LT(with_nbv, 5.1);
+}
+
 // LTspice's ideal diode (ngspice's examples/xspice/various/simple-diode.cir): Vfwd = 1 V, Vrev =
 // 2 V, Ron = 1 ohm (Rrev defaults to it) into 1 ohm: i = (v - 1) / 2 forward, (v + 2) / 2 in
 // breakdown. Roff and the limits are reported, not modelled.
