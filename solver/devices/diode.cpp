@@ -51,7 +51,7 @@ SmoothDiodeLaw smooth_equivalent(const DiodeModel& card, const ResolvedDiodeLaw&
                                  double emission, double saturation_current) {
   if (law.fitted || card.has_is || card.has_n || card.has_rs)
     return {0.0, card.is, card.n, card.rs, card.bv, card.ibv, card.nbv};
-  SmoothDiodeLaw s{law.law.von, saturation_current, emission, law.law.ron, card.bv, card.ibv};
+  SmoothDiodeLaw s{law.law.von, saturation_current, emission, law.law.ron, card.bv, card.ibv, std::nullopt};
   if (card.bv) s.ibv = saturation_current * (*card.bv + law.law.von) / kThermalVoltage;
   return s;
 }
