@@ -2,10 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 
 #include "solver/integrators/theta_method.h"
-#include "solver/model/sparse_lcs.h"
+#include "solver/model/conduction_rates.h"
 
 namespace lcs {
 
@@ -51,27 +50,10 @@ bool steps_diverge(const Eigen::VectorXd& x0, const Eigen::VectorXd& x, const Ei
 }
 
 Eigen::VectorXd pair_rates(const LcsProblem& model) {
-  const double inf = std::numeric_limits<double>::infinity();
-  if (const std::shared_ptr<const SparseLcs>& s = model.sparse_lcs()) {
-    const Eigen::SparseMatrix<double, Eigen::RowMajor> CB = s->C * s->B;
-    Eigen::VectorXd r(CB.rows());
-    for (int i = 0; i < CB.rows(); ++i) {
-      double sum = 0;
-      for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(CB, i); it; ++it) sum += std::abs(it.value());
-      const double d = s->D.coeff(i, i);
-      r(i) = d > 0 ? sum / d : inf;
-    }
-    return without_tree_diodes(model, r);
-  }
+  if (const std::shared_ptr<const SparseLcs>& s = model.sparse_lcs())
+    return without_tree_diodes(model, conduction_rates(*s));
   if (model.dense_deferred()) return Eigen::VectorXd();
-  const Lcs& s = model.lcs();
-  Eigen::VectorXd r(s.pairs());
-  const Eigen::MatrixXd CB = s.C * s.B;
-  for (int i = 0; i < s.pairs(); ++i) {
-    const double sum = CB.cols() > 0 ? CB.row(i).cwiseAbs().sum() : 0.0;
-    r(i) = s.D(i, i) > 0 ? sum / s.D(i, i) : inf;
-  }
-  return without_tree_diodes(model, r);
+  return without_tree_diodes(model, conduction_rates(model.lcs()));
 }
 
 EulerAtSwitching::EulerAtSwitching(const LcsProblem& model, double theta, bool sparse)

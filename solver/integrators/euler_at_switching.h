@@ -49,7 +49,7 @@ bool mode_changed(const Eigen::VectorXd& z_a, const Eigen::VectorXd& z_b);
 // (b) above: the two steps from x0 to x and to x_euler diverge in some state.
 constexpr double kDivergence = 0.75;
 bool steps_diverge(const Eigen::VectorXd& x0, const Eigen::VectorXd& x, const Eigen::VectorXd& x_euler);
-// r_i above for every pair (infinity where D_ii = 0); empty when the circuit's LCS is neither
+// r_i above for every pair (conduction_rates.h; tree diodes 0); empty when the circuit's LCS is neither
 // sparse nor formed dense (then every switching step is checked).
 Eigen::VectorXd pair_rates(const LcsProblem& model);
 

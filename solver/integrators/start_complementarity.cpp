@@ -9,6 +9,7 @@
 #include "solver/integrators/event_driven.h"
 #include "solver/lcp/lcp.h"
 #include "solver/lcp/sparse_active_set.h"
+#include "solver/model/conduction_rates.h"
 #include "solver/model/dense_budget.h"
 #include "solver/model/sparse_lcs.h"
 
@@ -24,11 +25,7 @@ namespace {
 // the rate sum_j |(CB)_ij| / D_ii at which conduction through it moves the state.
 double start_step(const Lcs& s, double h_run) {
   double rate = s.A.size() > 0 ? s.A.cwiseAbs().rowwise().sum().maxCoeff() : 0.0;
-  if (s.pairs() > 0 && s.states() > 0) {
-    const Eigen::MatrixXd CB = s.C * s.B;
-    for (int i = 0; i < s.pairs(); ++i)
-      if (s.D(i, i) > 0) rate = std::max(rate, CB.row(i).cwiseAbs().sum() / s.D(i, i));
-  }
+  rate = std::max(rate, fastest_finite_rate(conduction_rates(s)));
   return 1e-8 * (rate > 0 ? std::min(h_run, 1.0 / rate) : h_run);
 }
 
@@ -40,14 +37,7 @@ double sparse_start_step(const SparseLcs& s, double h_run) {
   for (int k = 0; k < s.A.outerSize(); ++k)
     for (Eigen::SparseMatrix<double>::InnerIterator it(s.A, k); it; ++it) rows(it.row()) += std::abs(it.value());
   if (rows.size() > 0) rate = rows.maxCoeff();
-  const Eigen::SparseMatrix<double, Eigen::RowMajor> CB = s.C * s.B;
-  for (int i = 0; i < CB.rows(); ++i) {
-    const double d = s.D.coeff(i, i);
-    if (!(d > 0)) continue;
-    double sum = 0;
-    for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(CB, i); it; ++it) sum += std::abs(it.value());
-    rate = std::max(rate, sum / d);
-  }
+  rate = std::max(rate, fastest_finite_rate(conduction_rates(s)));
   return 1e-8 * (rate > 0 ? std::min(h_run, 1.0 / rate) : h_run);
 }
 

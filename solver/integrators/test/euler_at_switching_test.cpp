@@ -23,14 +23,15 @@ struct RunResult {
   TransientSummary summary;
 };
 
+// `check` false: theta's own steps, to compare with (the option is off by default).
 RunResult simulate(const Netlist& netlist, const std::vector<Probe>& probes, const std::string& method,
-                   double h, double tstop) {
+                   double h, double tstop, bool check = true) {
   ModelOptions mo;
   mo.t1 = tstop;
   CircuitModel model = CircuitModel::build(netlist, mo);
   TransientOptions o;
   o.method = method;
-  o.method_options.euler_at_switching = true;  // what these tests are about (off by default)
+  o.method_options.euler_at_switching = check;
   o.step = h;
   o.tstop = tstop;
   o.uic = true;
@@ -43,21 +44,6 @@ Probe v(const std::string& node) { return {Probe::Kind::NodeVoltage, node, "", {
 Probe i(const std::string& element) { return {Probe::Kind::ElementCurrent, element, "", {}}; }
 
 const std::vector<std::string> kNonMonotone = {"theta"};
-
-RunResult simulate_own_steps(const Netlist& netlist, const std::vector<Probe>& probes, double h, double tstop) {
-  ModelOptions mo;
-  mo.t1 = tstop;
-  CircuitModel model = CircuitModel::build(netlist, mo);
-  TransientOptions o;
-  o.method = "theta";
-  o.method_options.euler_at_switching = false;
-  o.step = h;
-  o.tstop = tstop;
-  o.uic = true;
-  RunResult r;
-  r.summary = run_transient(model, model.output_map(probes), o, r.sink);
-  return r;
-}
 
 TEST(ModeChanged, ComparesWhichPairsConductAboveRounding) {
   Eigen::VectorXd a(3), b(3);
@@ -190,7 +176,7 @@ TEST(EulerAtSwitching, NonStiffSwitchingsKeepTheMethodsOwnSteps) {
   b.v("v1", "in", "0", NetlistBuilder::sin(0, 10, 1e3)).r("r0", "in", "s", 10).c("c1", "s", "a", 1e-6, 0.0);
   b.d("d1", "a", "0", 0.7, 0.05).r("r1", "a", "0", 1e5);
   const RunResult checked = simulate(b.build(), {v("s"), i("d1")}, "theta", 5e-6, 5e-3);
-  const RunResult own = simulate_own_steps(b.build(), {v("s"), i("d1")}, 5e-6, 5e-3);
+  const RunResult own = simulate(b.build(), {v("s"), i("d1")}, "theta", 5e-6, 5e-3, false);
   EXPECT_EQ(checked.summary.stepper.switching_steps_by_euler, 0);
   ASSERT_EQ(checked.sink.rows.size(), own.sink.rows.size());
   int conducting = 0;
@@ -213,7 +199,7 @@ TEST(EulerAtSwitching, TreeDiodeInSeriesWithAnInductorIsNotCountedStiff) {
   b.v("v1", "in", "0", NetlistBuilder::dc(10)).l("l1", "in", "a", 1e-3, 0.0).d("d1", "a", "out", 0.7, 0.05);
   b.c("c1", "out", "0", 1e-6, 0.0);
   const RunResult checked = simulate(b.build(), {v("out")}, "theta", 5e-6, 1e-3);
-  const RunResult own = simulate_own_steps(b.build(), {v("out")}, 5e-6, 1e-3);
+  const RunResult own = simulate(b.build(), {v("out")}, "theta", 5e-6, 1e-3, false);
   EXPECT_EQ(checked.summary.stepper.switching_steps_by_euler, 0);
   EXPECT_EQ(checked.sink.rows.back()(0), own.sink.rows.back()(0));
   EXPECT_NEAR(own.sink.rows.back()(0), 18.5727, 0.02);  // it charged and turned off
