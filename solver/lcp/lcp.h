@@ -65,6 +65,15 @@ LcpSolution solve_lemke(const Eigen::MatrixXd& M, const Eigen::VectorXd& q,
 // LCP(q, M) exactly; the number every test and debug check compares against a tolerance.
 double lcp_residual(const Eigen::MatrixXd& M, const Eigen::VectorXd& q, const Eigen::VectorXd& z);
 
+// Whether z solves LCP(q, M) to rounding, with w = M z + q: every z_i >= -t, w_i >= -t_i and
+// one of them within its tolerance of 0, where t = tol max(1, |q|_inf, |z|_inf) and
+// t_i = max(t, 64 eps (|q_i| + sum_j |M_ij z_j|)), eps the machine epsilon: the rounding that
+// computing w_i leaves, whatever z is. A loop through 1 TOhm beside 0.05 Ohm carries 2e12 x 0.014 A
+// in its row, so w_i is known to ~1e-6 V there. Where no row's products are that large this is
+// lcp_residual(M, q, z) <= t.
+bool lcp_solved_to_rounding(const Eigen::MatrixXd& M, const Eigen::VectorXd& q, const Eigen::VectorXd& z,
+                            double tol);
+
 // Every solution of LCP(q, M), by enumerating active sets (n <= 24). Distinct solutions only
 // (within a relative 1e-9), sorted lexicographically by z. Used by `op --all`.
 // Only vertex solutions (from non-singular M_JJ) are found: where the solution set contains a
@@ -89,7 +98,7 @@ struct LcpWarmStats {
   long warm_hits = 0;          // answered by the previous active set (one solve + sign check)
   long lemke_calls = 0;
   long lemke_pivots = 0;
-  long polished = 0;           // Lemke's numerical failures repaired by principal pivoting
+  long polished = 0;           // Lemke's failures repaired by principal pivoting
   long lemke_restarts = 0;     // Lemke paths restarted on a shifted q (see solve_lemke)
   long pivoted = 0;            // answered by parametric pivoting from the last basis (LcpWarmSolver)
   long pivoted_pivots = 0;
@@ -152,7 +161,7 @@ class LcpWarmSolver {
  private:
   const LcpSolution& solve_once(const Eigen::VectorXd& q);
   bool solve_on_active_set(const Eigen::VectorXd& q);
-  void polish_by_principal_pivoting(const Eigen::VectorXd& q);
+  void polish_by_principal_pivoting(const Eigen::VectorXd& q, const Eigen::VectorXd& start);
   bool several_possible_ = false, several_seen_ = false, preferred_ = false;
   Multiplicity multiplicity_ = Multiplicity::Unknown;
   int solutions_ = 0;

@@ -33,6 +33,11 @@ constexpr double kMinRcond = 1e-13;      // S_JJ treated as singular below (then
 // From this many pairs a missed warm hit pivots from the last basis before Lemke. Below, Lemke's
 // own pivots are few, and up to 16 pairs the multiplicity watch enumerates (solve()).
 constexpr int kMinPivotedPairs = 32;
+// Up to this many pairs a Lemke ray, iteration limit or cycle is checked by principal pivoting
+// (polish_by_principal_pivoting): each of its rounds factorises a dense M_JJ, so past a few
+// hundred pairs a genuinely infeasible step (a current source into a reverse diode) would cost
+// minutes before its error.
+constexpr int kMaxPolishedAfterRay = 256;
 }  // namespace
 
 struct LcpWarmSolver::Impl {
@@ -184,22 +189,26 @@ const LcpSolution& LcpWarmSolver::solve(const Eigen::VectorXd& q) {
 
 // Lemke's tableau drifts on an ill-conditioned M (a 30-stage multiplier's step: entries from
 // 0.1 to 1e3 over long capacitor chains) and can end on a complementary basis whose solution
-// misses the tolerance. From that basis, block principal pivoting with fresh LU solves of M_JJ
+// misses the tolerance, or on a ray that rounding made: a bridge whose floating source and load
+// are referenced by 1 TOhm has M = 2e12 u u^T + (entries of 0.05 .. 0.15), positive definite,
+// and the equilibrated tableau's pivots on the small part are at the 1e-14 of the large one, so
+// Lemke's path ended on a ray at the first conduction (every fixed-step method stopped there).
+// From `start`'s mode, block principal pivoting with fresh LU solves of M_JJ
 // (sparse_active_set.h, here with no free variables) reaches the solution when one exists; its
-// answer is accepted only on the residual check, as Lemke's would be.
-void LcpWarmSolver::polish_by_principal_pivoting(const Eigen::VectorXd& q) {
+// answer is accepted only when it solves the LCP as given to rounding (lcp_solved_to_rounding).
+void LcpWarmSolver::polish_by_principal_pivoting(const Eigen::VectorXd& q, const Eigen::VectorXd& start) {
   const int n = static_cast<int>(M_.rows());
   const SparseActiveSetLcp::Sparse none(0, 0), L(0, n), P(n, 0);
   const SparseActiveSetLcp::Sparse Q = M_.sparseView();
   SparseActiveSetLcp pivoting(none, L, P, Q);
-  pivoting.prefer(last_.z);
+  pivoting.prefer(start);
   Eigen::VectorXd y, z, w;
   if (!pivoting.solve(Eigen::VectorXd(0), q, y, z, w)) return;
-  if (!(lcp_residual(M_, q, z) <= options_.feas_tol * std::max(1.0, std::max(q.cwiseAbs().maxCoeff(), z.cwiseAbs().maxCoeff()))))
-    return;
+  if (!lcp_solved_to_rounding(M_, q, z, options_.feas_tol)) return;
   last_.z = z;
-  last_.w = w;
+  last_.w = M_ * z + q;
   last_.status = LcpStatus::Solved;
+  last_.ray.clear();
   ++stats_.polished;
 }
 
@@ -285,10 +294,19 @@ const LcpSolution& LcpWarmSolver::solve_once(const Eigen::VectorXd& q) {
   stats_.lemke_pivots += last_.pivots;
   stats_.lemke_restarts += last_.restarts;
   const bool lemke_solved = last_.status == LcpStatus::Solved;
-  if (last_.status == LcpStatus::NumericalFailure) polish_by_principal_pivoting(q);
+  const bool lemke_basis = lemke_solved || last_.status == LcpStatus::NumericalFailure;
+  if (last_.status == LcpStatus::NumericalFailure) {
+    polish_by_principal_pivoting(q, last_.z);  // from the complementary basis Lemke reached
+  } else if (!lemke_solved && n <= kMaxPolishedAfterRay) {
+    Eigen::VectorXd previous(n);  // from the mode the warm start tried (Lemke's z is no basis)
+    for (int i = 0; i < n; ++i) previous(i) = active_[i] ? 1.0 : 0.0;
+    polish_by_principal_pivoting(q, previous);
+  }
   if (last_.status == LcpStatus::Solved) {
-    // The final complementary basis, not the support of z (see the warm-hit branch).
-    impl_->engine.basic_z(active_);
+    // The final complementary basis, not the support of z (see the warm-hit branch); after a
+    // ray the engine holds no complementary basis, and the support is the next guess.
+    if (lemke_basis) impl_->engine.basic_z(active_);
+    else active_.assign(n, 0);
     for (int i = 0; i < n; ++i)
       if (last_.z(i) > 0.0) active_[i] = 1;
     if (lemke_solved) {  // (a polished answer is not the engine's basis)

@@ -61,4 +61,41 @@ TEST(LcpStatusName, AllNamed) {
 }
 
 }  // namespace
+// lcp_solved_to_rounding: each w_i to the rounding of its own row's products, z to the data's.
+// A loop through 1 TOhm beside 0.05 Ohm: both pairs conduct, z = (13.7 + 5e-13, 13.7) exactly,
+// and w_0 = 2e12 (z_0 - z_1) - 1 cannot be computed better than 2e12 ulp(13.7) = 3.6e-3 (its
+// row's products are 2.7e13; here it comes out -3.9e-3, and w_1 2.5e-3).
+TEST(LcpSolvedToRounding, ToleratesEachRowsOwnRounding) {
+  Eigen::MatrixXd M(2, 2);
+  M << 2e12, -2e12, -2e12, 2e12 + 0.05;
+  Eigen::VectorXd q(2), z(2);
+  q << -1, 1 - 0.05 * 13.7;
+  z << 13.7 + 5e-13, 13.7;
+  ASSERT_GT(std::abs((M * z + q)(0)), 1e-4);  // the rounding the natural residual cannot pass
+  EXPECT_FALSE(lcp_residual(M, q, z) <= 1e-10 * 13.7);
+  EXPECT_TRUE(lcp_solved_to_rounding(M, q, z, 1e-10));
+  z << 13.7 + 1.5e-12, 13.7;  // w_0 = +2 beside z_0 > 0: not complementary, in any rounding
+  EXPECT_FALSE(lcp_solved_to_rounding(M, q, z, 1e-10));
+  z << 13.7, 13.7;  // w_0 = -1
+  EXPECT_FALSE(lcp_solved_to_rounding(M, q, z, 1e-10));
+}
+
+TEST(LcpSolvedToRounding, RejectsWhatTheNaturalResidualRejectsInOrdinaryRows) {
+  Eigen::MatrixXd M(2, 2);
+  M << 2, 1, 1, 2;
+  Eigen::VectorXd q(2), z(2);
+  q << -1, 1;
+  z << 0.5, 0.0;  // w = (0, 1.5): solved
+  EXPECT_TRUE(lcp_solved_to_rounding(M, q, z, 1e-10));
+  z << 0.5 + 1e-8, 0.0;  // w_0 = 2e-8 with z_0 > 0
+  EXPECT_FALSE(lcp_solved_to_rounding(M, q, z, 1e-10));
+  z << 0.5, -1e-8;  // z_1 < 0
+  EXPECT_FALSE(lcp_solved_to_rounding(M, q, z, 1e-10));
+  q << -1, -1;
+  z << 0.5, 0.0;  // w_1 = -0.5
+  EXPECT_FALSE(lcp_solved_to_rounding(M, q, z, 1e-10));
+  z << NAN, 0.0;
+  EXPECT_FALSE(lcp_solved_to_rounding(M, q, z, 1e-10));
+}
+
 }  // namespace lcs

@@ -165,6 +165,38 @@ TEST(WarmSolver, FailuresArePropagatedAndRecovered) {
   EXPECT_THROW(warm.solve(vec({1, 2, 3})), std::invalid_argument);
 }
 
+// A bridge rectifier whose floating source and load are referenced by 1 TOhm each (implicit
+// Euler, h = 0.1 us, C = 1 uF, RON = 0.05): M = 2e12 u u^T + S, u = (1, 1, -1, -1), positive
+// definite, at the step where D1 and D4 start to conduct. Lemke's equilibrated tableau pivots on
+// the 1e-14 that S is of the rank-one part and ends on a ray (every fixed-step method stopped
+// with exit 3 there); principal pivoting from the previous mode solves it. Rows 0 and 3 summed:
+// 0.15 z0 + 0.05 z3 = -(q0 + q3) with z0 = z3 to 1e-12, so z0 = z3 = 0.00279154 / 0.2; S's
+// entries are stored beside 2e12 to 2.4e-4 (0.3 % of them).
+TEST(WarmSolver, RayFromRoundingIsSolvedByPrincipalPivoting) {
+  Eigen::VectorXd u = vec({1, 1, -1, -1});
+  Eigen::MatrixXd S = Eigen::MatrixXd::Zero(4, 4);
+  S << 0.15, 0.1, 0, 0, 0.1, 0.15, 0, 0, 0, 0, 0.05, 0, 0, 0, 0, 0.05;
+  const Eigen::MatrixXd M = 2e12 * u * u.transpose() + S;
+  const Eigen::VectorXd q = vec({-0.70279153955535811, 0.7000000000019615, 2.1027915395573196, 0.7});
+  ASSERT_EQ(solve_lemke(M, q).status, LcpStatus::RayTermination) << "the case this test is for";
+  LcpWarmSolver warm(M);
+  const LcpSolution& s = warm.solve(q);
+  ASSERT_EQ(s.status, LcpStatus::Solved);
+  EXPECT_EQ(warm.stats().polished, 1);
+  EXPECT_TRUE(lcp_solved_to_rounding(M, q, s.z, 1e-10));
+  const double expected = 0.00279153955535815 / 0.2;
+  EXPECT_NEAR(s.z(0), expected, 5e-3 * expected);
+  EXPECT_NEAR(s.z(3), expected, 5e-3 * expected);
+  EXPECT_EQ(s.z(1), 0.0);
+  EXPECT_EQ(s.z(2), 0.0);
+  EXPECT_GT(s.w(1), 1.0);  // D2 and D3 blocked by about the source's 1.4 V
+  EXPECT_GT(s.w(2), 1.0);
+  // The next step keeps the mode: answered by the warm start, not another ray.
+  const LcpSolution& next = warm.solve(q + vec({-0.01, 0.01, 0.01, 0.01}));
+  EXPECT_EQ(next.status, LcpStatus::Solved);
+  EXPECT_TRUE(lcp_solved_to_rounding(M, q + vec({-0.01, 0.01, 0.01, 0.01}), next.z, 1e-10));
+}
+
 // Active sets of any size (issue 12: a 64-bit mask limited them, and above 64 pairs every step
 // ran Lemke): a slowly moving q over 70 and 150 pairs is answered by the previous active set.
 TEST(WarmSolver, LargeProblemsWarmStartToo) {
