@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <list>
 #include <string>
 #include <unordered_map>
@@ -12,6 +13,9 @@ namespace lcs {
 
 namespace {
 constexpr double kFeasTol = 1e-10;  // relative, as the dense solvers' feas_tol
+// What computing w_i = [P Q]_i sol + b_i leaves of rounding, relative to the sizes that meet in
+// it (as lcp_solved_to_rounding's): a trimmed pair's w is judged against this, not kFeasTol.
+constexpr double kRoundingTol = 64 * std::numeric_limits<double>::epsilon();
 constexpr int kPatience = 3;        // block flips allowed without the violating set shrinking
 // A stalled block search first trims the mode: off go the pairs whose z is below kTrimLevel of
 // the largest, at most kTrims times a solve (then Murty's single flips, finite as before).
@@ -20,6 +24,9 @@ constexpr int kPatience = 3;        // block flips allowed without the violating
 // flips walked that end back one diode a solve (479 solves at one step of 500 stages).
 constexpr double kTrimLevel = 1e-6;
 constexpr int kTrims = 3;
+// Trimmed pairs whose w turns negative go back on a span of their pre-trim currents at a time:
+// those within this factor of the largest (see solve()).
+constexpr double kUntrimSpan = 1e-3;
 }  // namespace
 
 // KLU (SuiteSparse; Davis and Palamadai Natarajan 2010), the sparse LU of circuit simulators.
@@ -55,6 +62,12 @@ struct SparseActiveSetLcp::Base {
   std::vector<char> mode;
   std::unique_ptr<Factorisation> f;
   std::unordered_map<int, Eigen::VectorXd> column;  // pair i -> M_0^-1 e_(n+i)
+  // M_0^-1 r_0, r_0 the base mode's right-hand side for the data of solve() call `solution_of`
+  // (-1: none yet). The modes a search tries differ from the base in a few pair rows, and so do
+  // their right-hand sides: M_0^-1 r = s_0 + sum_i (r - r_0)_(n+i) M_0^-1 e_(n+i), the columns the
+  // update has anyway, so a search solves with the base's factors once, not once per round.
+  Eigen::VectorXd s0;
+  long solution_of = -1;
 };
 
 struct SparseActiveSetLcp::Cache {
@@ -214,9 +227,10 @@ void SparseActiveSetLcp::apply_updated(const std::vector<int>& changed,
 }
 
 // M_J x = r by a low-rank update of the base's factors; a mode too far from the base (or no usable
-// base) is factorised and becomes the base. False when M_J is singular.
+// base) is factorised and becomes the base. r is mode's right-hand side for the current solve()'s
+// data (b its pairs' constants). False when M_J is singular.
 bool SparseActiveSetLcp::solve_updated(const std::vector<char>& mode, const Eigen::VectorXd& r,
-                                       Eigen::VectorXd& x) {
+                                       const Eigen::VectorXd& b, Eigen::VectorXd& x) {
   std::vector<int> changed;
   updated_ = false;
   if (base_ && base_->f->usable)
@@ -230,21 +244,34 @@ bool SparseActiveSetLcp::solve_updated(const std::vector<char>& mode, const Eige
   }
   if (!base_->f->usable) return false;
   if (base_->column.size() > static_cast<std::size_t>(4 * max_rank_ + 16)) base_->column.clear();
-  // M_0^-1 r and the columns not yet solved, in one multi-right-hand-side solve: KLU traverses
-  // L and U once for up to four of them (memory-bound here, so each costs less than alone).
+  // The base's right-hand side r_0 differs from r in the changed pairs' rows only.
+  const std::vector<char>& base_mode = base_->mode;
+  auto base_rhs_row = [&](int i) { return base_mode[i] ? -b(i) : 0.0; };
+  // s_0 and the columns not yet solved, in one multi-right-hand-side solve: KLU traverses L and
+  // U once for up to four of them (memory-bound here, so each costs less than alone).
   std::vector<int> missing;
   for (int j : changed)
     if (!base_->column.count(j)) missing.push_back(j);
-  if (missing.empty()) {
-    x = r;
-    if (!lu_solve(*base_->f, x)) return false;
-  } else {
-    Eigen::MatrixXd block = Eigen::MatrixXd::Zero(n_ + m_, 1 + static_cast<Eigen::Index>(missing.size()));
-    block.col(0) = r;
-    for (std::size_t c = 0; c < missing.size(); ++c) block(n_ + missing[c], 1 + c) = 1.0;
+  const bool need_s0 = base_->solution_of != solve_count_;
+  if (need_s0 || !missing.empty()) {
+    const int first = need_s0 ? 1 : 0;
+    Eigen::MatrixXd block = Eigen::MatrixXd::Zero(n_ + m_, first + static_cast<Eigen::Index>(missing.size()));
+    if (need_s0) {
+      block.col(0) = r;
+      for (int i : changed) block(n_ + i, 0) = base_rhs_row(i);
+    }
+    for (std::size_t c = 0; c < missing.size(); ++c) block(n_ + missing[c], first + c) = 1.0;
     if (!lu_solve_block(*base_->f, block)) return false;
-    x = block.col(0);
-    for (std::size_t c = 0; c < missing.size(); ++c) base_->column.emplace(missing[c], block.col(1 + c));
+    if (need_s0) {
+      base_->s0 = block.col(0);
+      base_->solution_of = solve_count_;
+    }
+    for (std::size_t c = 0; c < missing.size(); ++c) base_->column.emplace(missing[c], block.col(first + c));
+  }
+  x = base_->s0;
+  for (int i : changed) {
+    const double delta = r(n_ + i) - base_rhs_row(i);
+    if (delta != 0.0) x += delta * base_->column.at(i);
   }
   if (changed.empty()) return true;
   ++stats_.updates;
@@ -252,9 +279,9 @@ bool SparseActiveSetLcp::solve_updated(const std::vector<char>& mode, const Eige
   Eigen::MatrixXd small = Eigen::MatrixXd::Identity(k, k);
   for (int a = 0; a < k; ++a) {
     const int i = changed[a];
-    for (int b = 0; b < k; ++b) {
-      const Eigen::VectorXd& g = base_->column.at(changed[b]);
-      small(a, b) += pair_row_dot(i, !base_->mode[i], g) - pair_row_dot(i, base_->mode[i], g);
+    for (int c = 0; c < k; ++c) {
+      const Eigen::VectorXd& g = base_->column.at(changed[c]);
+      small(a, c) += pair_row_dot(i, !base_->mode[i], g) - pair_row_dot(i, base_->mode[i], g);
     }
   }
   small_lu_.compute(small);
@@ -335,7 +362,7 @@ bool SparseActiveSetLcp::solve_mode(const std::vector<char>& mode, const Eigen::
   rhs_.head(n_) = a;
   for (int i = 0; i < m_; ++i) rhs_(n_ + i) = mode[i] ? -b(i) : 0.0;
   if (max_rank_ > 0) {
-    if (!solve_updated(mode, rhs_, sol_)) return false;
+    if (!solve_updated(mode, rhs_, b, sol_)) return false;
   } else {
     Factorisation* f = factorisation(mode);
     sol_ = rhs_;
@@ -359,9 +386,11 @@ void SparseActiveSetLcp::read_solution(const std::vector<char>& mode, const Eige
 bool SparseActiveSetLcp::solve(const Eigen::VectorXd& a, const Eigen::VectorXd& b,
                                Eigen::VectorXd& y, Eigen::VectorXd& z, Eigen::VectorXd& w) {
   ++stats_.solves;
+  ++solve_count_;
   std::vector<char> mode = mode_;
   std::vector<int> violating;
   std::vector<char> trimmed;  // pairs the last trim took off
+  std::vector<double> trimmed_z;  // and the z each had then
   int best = m_ + 1, patience = kPatience, trims = 0;
   const int max_rounds = 4 * m_ + 50;
   for (int round = 0; round < max_rounds; ++round) {
@@ -379,7 +408,7 @@ bool SparseActiveSetLcp::solve(const Eigen::VectorXd& a, const Eigen::VectorXd& 
         // A trimmed pair is on again at any negative w: its z may be positive below kFeasTol
         // (measured: complementarity 1e-11 of the sizes on 25-100 stage multipliers otherwise).
         const bool strict = trims > 0 && trimmed[i];
-        if (!(w(i) >= (strict ? 0.0 : -kFeasTol * size))) violating.push_back(i);
+        if (!(w(i) >= -(strict ? kRoundingTol : kFeasTol) * size)) violating.push_back(i);
       }
     }
     if (violating.empty()) {
@@ -412,15 +441,29 @@ bool SparseActiveSetLcp::solve(const Eigen::VectorXd& a, const Eigen::VectorXd& 
       --patience;
     }
     if (patience > 0) {
-      for (int i : violating) mode[i] = !mode[i];
-      stats_.flips += count;
+      // Trimmed pairs that want to be on again go on by decades of the current they carried
+      // before the trim, largest first: a chain's currents decay geometrically along it, and
+      // only its first few are needed (turning them on lifts the voltage of the rest).
+      double untrim_above = 0.0;
       if (trims > 0)
-        for (int i : violating) trimmed[i] = 0;
+        for (int i : violating)
+          if (trimmed[i]) untrim_above = std::max(untrim_above, kUntrimSpan * trimmed_z[i]);
+      int flipped = 0;
+      for (int i : violating) {
+        if (trims > 0 && trimmed[i]) {
+          if (trimmed_z[i] < untrim_above) continue;
+          trimmed[i] = 0;
+        }
+        mode[i] = !mode[i];
+        ++flipped;
+      }
+      stats_.flips += flipped;
     } else if (trims < kTrims) {
       // The violating set stalls: flip it, and take off every pair whose z is a vanishing
       // fraction of the largest (see kTrimLevel).
       ++trims;
       trimmed.assign(m_, 0);
+      trimmed_z.assign(m_, 0.0);
       for (int i : violating) mode[i] = !mode[i];
       stats_.flips += count;
       for (int i = 0; i < m_; ++i)
@@ -428,6 +471,7 @@ bool SparseActiveSetLcp::solve(const Eigen::VectorXd& a, const Eigen::VectorXd& 
             !std::binary_search(violating.begin(), violating.end(), i)) {
           mode[i] = 0;
           trimmed[i] = 1;
+          trimmed_z[i] = z(i);
           ++stats_.flips;
         }
       patience = kPatience;

@@ -135,7 +135,8 @@ class SparseActiveSetLcp {
                      Eigen::VectorXd& z, Eigen::VectorXd& w);
 
   struct Base;  // set_low_rank: the factorised base mode and its solved columns
-  bool solve_updated(const std::vector<char>& mode, const Eigen::VectorXd& r, Eigen::VectorXd& x);
+  bool solve_updated(const std::vector<char>& mode, const Eigen::VectorXd& r, const Eigen::VectorXd& b,
+                     Eigen::VectorXd& x);
   void apply_updated(const std::vector<int>& changed, const Eigen::PartialPivLU<Eigen::MatrixXd>& small,
                      Eigen::VectorXd& x);
   double pair_row_dot(int i, bool on, const Eigen::VectorXd& v) const;  // row n + i of a mode, times v
@@ -144,6 +145,7 @@ class SparseActiveSetLcp {
   int n_ = 0, m_ = 0;
   int max_rank_ = 0;
   bool updated_ = false;           // the last mode solved was an update: its pairs and small LU
+  long solve_count_ = 0;           // solve() calls so far: which data a base's s_0 was solved for
   std::vector<int> changed_;
   Eigen::PartialPivLU<Eigen::MatrixXd> small_lu_;
   Eigen::SparseMatrix<double, Eigen::RowMajor> top_;  // [K L], for residuals

@@ -354,3 +354,56 @@ TEST(SparseStep, RandomNetworksMatchTheDenseLcp) {
 
 }  // namespace
 }  // namespace lcs
+
+namespace lcs {
+namespace {
+
+// The 500-stage multiplier of `bench --scale cw` (1000 diodes, VON 0.7, RON 1, 10 uF, 100 V
+// 50 Hz, from empty), implicit Euler at h = 0.2 ms on its descriptor form. Where the charging
+// front moves, a block flip turns on a whole chain of diodes whose currents then decay
+// geometrically along it (each ~20x the next: 1, 0.24, 0.014, 3.4e-4 ... of the largest, then
+// tiny and negative at its far end); the answer keeps the first seven on. The search used to
+// trim the chain and, finding every trimmed pair's w slightly negative (-2.4e-8 V: the chain
+// off lowers them all), flip them all back on, then walk the far end back one pair a round:
+// 290 rounds at one step. Trimmed pairs now go back on by decades of their current, largest
+// first (sparse_active_set.cpp). Measured: flips 14900 -> 11774, factorisations 126 -> 96, the
+// whole run 0.18 -> 0.11 s; the output the same to 4e-13 of its 206 V.
+std::string bench_multiplier(int stages) {
+  std::string s = "multiplier\nV1 in 0 SIN(0 100 50)\n";
+  std::string a = "in", b = "0";
+  for (int k = 1; k <= stages; ++k) {
+    const std::string id = std::to_string(k), ak = "a" + id, bk = "b" + id;
+    s += "C" + std::to_string(2 * k - 1) + " " + a + " " + ak + " 10u\n";
+    s += "D" + std::to_string(2 * k - 1) + " " + b + " " + ak + " dcw\n";
+    s += "D" + std::to_string(2 * k) + " " + ak + " " + bk + " dcw\n";
+    s += "C" + std::to_string(2 * k) + " " + b + " " + bk + " 10u\n";
+    a = ak;
+    b = bk;
+  }
+  s += "RL " + b + " 0 1g\n.model dcw D(VON=0.7 RON=1)\n.tran 0.0001 0.1 UIC\n.end\n";
+  return s;
+}
+
+TEST(SparseStep, ChargingFrontChainsAreSearchedByDecadesOfCurrent) {
+  const Netlist netlist = parse_netlist_string(bench_multiplier(500), "cw_500.cir");
+  ModelOptions mo;
+  mo.t1 = 0.1;
+  const CircuitModel model = CircuitModel::build(netlist, mo);
+  TransientOptions o;
+  o.method = "euler";
+  o.step = 2e-4;
+  o.tstop = 0.1;
+  o.uic = true;
+  MemorySink sink;
+  const TransientSummary summary =
+      run_transient(model, model.output_map({{Probe::Kind::NodeVoltage, "b500", "", {}}}), o, sink);
+  ASSERT_EQ(sink.rows.size(), 501u);
+  const SparseActiveSetStats& s = summary.stepper.sparse;
+  EXPECT_EQ(s.solves, 501);
+  EXPECT_LT(s.flips, 13000);         // 14900 before (11774 now)
+  EXPECT_LT(s.factorisations, 110);  // 126 before (96 now)
+  EXPECT_NEAR(sink.rows.back()(0), 206.426519705273, 1e-9 * 206);  // the binary before, to rounding
+}
+
+}  // namespace
+}  // namespace lcs
