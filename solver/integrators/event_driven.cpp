@@ -187,6 +187,7 @@ struct EventDriven::Impl {
   // Run state.
   Mode* cur = nullptr;
   double entered_at = 0;  // when cur was (re)started: its fast decays settle from here
+  double selecting_at = 0;  // the time of the mode selection under way (for mode()'s errors)
   DyadicTime pos;
   Eigen::VectorXd X;       // [x; σ]
   Eigen::VectorXd W;       // rounding weights of [x; σ] for the current source form
@@ -282,6 +283,19 @@ Mode& EventDriven::Impl::mode(const std::vector<bool>& active, const std::string
   md->signature = signature;
   md->dyn = ModeDynamics::build(model.lcs(), active);
   const ModeDynamics& d = md->dyn;
+  if (d.unresolved > 0) {
+    // Stopping beats the RON = 0 answer this mode would give (mode_dynamics.cpp); the default
+    // run falls back to implicit Euler, whose step LCP keeps the resistance.
+    std::string pairs;
+    for (int i : d.active) pairs += (pairs.empty() ? "" : ", ") + model.pairs()[i].name;
+    char buf[320];
+    std::snprintf(buf, sizeof buf,
+                  "the mode with %s conducting holds a resistance of %.3g ohm beside %.3g ohm, below the "
+                  "1e-13 of it the event method tells from zero (a huge resistor in a loop with the diodes'); "
+                  "use --method euler, theta or radau5, or a smaller resistor",
+                  pairs.c_str(), d.unresolved, d.unresolved_beside);
+    throw NumericalFailure(selecting_at, buf);
+  }
   const Eigen::MatrixXd P = sources->P(signature), S = sources->S(signature);
   const int p = static_cast<int>(S.rows());
   md->q = n + p;
@@ -536,6 +550,7 @@ bool EventDriven::Impl::consistent(Mode& md, const Eigen::VectorXd& Xs,
 Mode& EventDriven::Impl::select(double t, const Eigen::VectorXd& x, const Eigen::VectorXd& sigma,
                                 const std::string& signature, const Mode* previous, bool event,
                                 const Eigen::VectorXd* op_z) {
+  selecting_at = t;
   Eigen::VectorXd Xs(n + sigma.size());
   Xs << x, sigma;
   // After an event the modes are checked at the crossing, estimated inside the final bracket

@@ -19,6 +19,9 @@ struct ModeDynamics {
   std::vector<int> active, inactive;  // pair indices
   bool well_posed = false;            // z_α is determined (the stacked system is nonsingular)
   double rcond = 1;                   // its reciprocal condition (FullPivLU estimate; 1 with no active pair)
+  // Nonzero: D_αα's largest singular value counted zero (below 1e-13 of the largest,
+  // `unresolved_beside`) while far above rounding: a resistance the mode cannot tell from zero.
+  double unresolved = 0, unresolved_beside = 0;
   Eigen::MatrixXd Kx, Ku, Kd;         // |α| rows
   Eigen::MatrixXd Ax, Eu, Ed;         // n rows
   Eigen::MatrixXd Wx, Wu, Wd;         // |β| rows

@@ -12,6 +12,7 @@
 #include <gtest/gtest.h>
 
 #include "solver/integrators/transient.h"
+#include "solver/model/numerical_failure.h"
 #include "tests/support/netlist_builder.h"
 
 namespace lcs {
@@ -89,6 +90,71 @@ TEST(HugeReferenceResistance, FixedStepMethodsRunTheBridgeAsWithSmallerReference
     EXPECT_LT(current_gap, 5e-3 * peak);
     EXPECT_LT(voltage_gap, 1e-3);
     EXPECT_NEAR(charged, 10 - 2 * 0.7, 0.01);  // the peak less two diodes' VON
+  }
+}
+
+// A floating source charging a capacitor through D1 and D4, its low side referenced by a
+// resistor across D4. In the mode with both diodes on, D's singular values are 2 R and RON: at
+// R = 1 TOhm, 0.05 beside 2e12 (113 eps of it), which the event method counted as zero, so
+// the loop ran as RON = 0 and charged the 2200 uF capacitor in an impulse: i(d1) = 8.24 A at
+// turn-on where implicit Euler ramps up from 0.28 A (a prober's deck). Now that mode stops the
+// event method with its reason; at 1 GOhm (5e-11) the method runs and agrees with Euler.
+Netlist floating_source_charger(double reference) {
+  NetlistBuilder b;
+  b.tran(10e-6, 2e-3, false);
+  b.v("v1", "a", "b", NetlistBuilder::sin(0, 12, 50)).d("d1", "a", "p", 0.7, 0.05).d("d4", "0", "b", 0.7, 0.05);
+  b.c("c1", "p", "0", 2200e-6, 0.0).r("rref", "b", "0", reference);
+  return b.build();
+}
+
+TEST(HugeReferenceResistance, EventMethodStopsWhereItCannotResolveTheLoop) {
+  const Netlist netlist = floating_source_charger(1e12);
+  ModelOptions mo;
+  mo.t1 = 2e-3;
+  CircuitModel model = CircuitModel::build(netlist, mo);
+  TransientOptions o;
+  o.method = "event";
+  o.step = 10e-6;
+  o.tstop = 2e-3;
+  o.uic = true;
+  MemorySink sink;
+  try {
+    run_transient(model, model.output_map({{Probe::Kind::ElementCurrent, "d1", "", {}}}), o, sink);
+    ADD_FAILURE() << "the event method ran the unresolved loop";
+  } catch (const NumericalFailure& e) {
+    EXPECT_NEAR(e.time(), 3.722e-4, 1e-7);  // the turn-on
+    EXPECT_NE(std::string(e.what()).find("d1, d4 conducting holds a resistance of 0.05"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("beside 2e+12 ohm"), std::string::npos) << e.what();
+  }
+  for (const Eigen::VectorXd& row : sink.rows) EXPECT_LT(std::abs(row(0)), 1.0);  // no impulse written
+}
+
+TEST(HugeReferenceResistance, EventMethodRunsTheResolvedLoop) {
+  const Netlist netlist = floating_source_charger(1e9);
+  ModelOptions mo;
+  mo.t1 = 2e-3;
+  CircuitModel model = CircuitModel::build(netlist, mo);
+  auto run = [&](const std::string& method) {
+    TransientOptions o;
+    o.method = method;
+    o.step = method == "event" ? 10e-6 : 0.1e-6;
+    o.tstop = 2e-3;
+    o.uic = true;
+    MemorySink sink;
+    run_transient(model, model.output_map({{Probe::Kind::ElementCurrent, "d1", "", {}}}), o, sink);
+    return sink;
+  };
+  const MemorySink event = run("event"), euler = run("euler");
+  // At 0.5, 1 and 2 ms (rows of both): the ramp after turn-on, within Euler's first-order error
+  // at 0.1 us (the current is ~1 A and moves over RON C = 220 us: measured below 1e-3 A).
+  for (double t : {0.5e-3, 1e-3, 2e-3}) {
+    double a = NAN, b = NAN;
+    for (std::size_t k = 0; k < event.times.size(); ++k)
+      if (std::abs(event.times[k] - t) < 1e-12) a = event.rows[k](0);
+    for (std::size_t k = 0; k < euler.times.size(); ++k)
+      if (std::abs(euler.times[k] - t) < 1e-12) b = euler.rows[k](0);
+    EXPECT_NEAR(a, b, 1e-3) << t;
+    EXPECT_GT(a, 0.1) << t;
   }
 }
 
