@@ -17,7 +17,9 @@ namespace lcs {
 // `lcspice run --method euler` of the 500-stage multiplier 2930 -> 519 faults and 0.186 ->
 // 0.158 s CPU (least of 12 runs each, interleaved), the 1000-section ladder 0.120 -> 0.095 s,
 // 1000 rectifiers 0.140 -> 0.092 s, peak resident memory 1-2 MB more; the small circuits'
-// 16-23 ms unchanged. No effect where the C library is not glibc.
+// 16-23 ms unchanged. Not taken under an address-space or data limit (RLIMIT_AS, RLIMIT_DATA
+// count the reserve: runs that fit in 30-70 MB died of bad_alloc). No effect where the C library
+// is not glibc.
 void tune_heap_for_simulation();
 
 }  // namespace lcs

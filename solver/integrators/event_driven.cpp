@@ -187,7 +187,7 @@ struct EventDriven::Impl {
   // Run state.
   Mode* cur = nullptr;
   double entered_at = 0;  // when cur was (re)started: its fast decays settle from here
-  double selecting_at = 0;  // the time of the mode selection under way (for mode()'s errors)
+  std::string unresolved_note;  // a mode the selection under way could not resolve (note_unresolved)
   DyadicTime pos;
   Eigen::VectorXd X;       // [x; σ]
   Eigen::VectorXd W;       // rounding weights of [x; σ] for the current source form
@@ -205,6 +205,7 @@ struct EventDriven::Impl {
       : model(mdl), options(o), exponentials(o.exponential_cache_bytes) {}
 
   Mode& mode(const std::vector<bool>& active, const std::string& signature);
+  void note_unresolved(const ModeDynamics& d);
   void trim_modes();
   const Eigen::MatrixXd& exponential(Mode& md, int j);
   // out = exp(M h0 / 2^j) X: from the cached exponential, or for a large mode by the
@@ -269,6 +270,18 @@ void EventDriven::Impl::zero_uncoupled_rows(const std::vector<bool>& active, dou
     if (norms(i) <= bound * largest[unit(i)]) G.row(i).setZero();
 }
 
+void EventDriven::Impl::note_unresolved(const ModeDynamics& d) {
+  std::string pairs;
+  for (int i : d.active) pairs += (pairs.empty() ? "" : ", ") + model.pairs()[i].name;
+  char buf[320];
+  std::snprintf(buf, sizeof buf,
+                "the mode with %s conducting holds a resistance of %.3g ohm beside %.3g ohm, below the "
+                "1e-13 of it the event method tells from zero (a huge resistor in a loop with the diodes'); "
+                "use --method euler, theta or radau5, or a smaller resistor",
+                pairs.c_str(), d.unresolved, d.unresolved_beside);
+  unresolved_note = buf;
+}
+
 Mode& EventDriven::Impl::mode(const std::vector<bool>& active, const std::string& signature) {
   std::string key;
   for (bool a : active) key.push_back(a ? '1' : '0');
@@ -276,26 +289,21 @@ Mode& EventDriven::Impl::mode(const std::vector<bool>& active, const std::string
   auto it = modes.find(key);
   if (it != modes.end()) {
     it->second->last_used = ++use_clock;
+    if (it->second->dyn.unresolved > 0) note_unresolved(it->second->dyn);
     return *it->second;
   }
   auto md = std::make_unique<Mode>();
   md->active = active;
   md->signature = signature;
   md->dyn = ModeDynamics::build(model.lcs(), active);
-  const ModeDynamics& d = md->dyn;
-  if (d.unresolved > 0) {
-    // Stopping beats the RON = 0 answer this mode would give (mode_dynamics.cpp); the default
-    // run falls back to implicit Euler, whose step LCP keeps the resistance.
-    std::string pairs;
-    for (int i : d.active) pairs += (pairs.empty() ? "" : ", ") + model.pairs()[i].name;
-    char buf[320];
-    std::snprintf(buf, sizeof buf,
-                  "the mode with %s conducting holds a resistance of %.3g ohm beside %.3g ohm, below the "
-                  "1e-13 of it the event method tells from zero (a huge resistor in a loop with the diodes'); "
-                  "use --method euler, theta or radau5, or a smaller resistor",
-                  pairs.c_str(), d.unresolved, d.unresolved_beside);
-    throw NumericalFailure(selecting_at, buf);
+  // A mode whose loop resistance the method cannot tell from zero (mode_dynamics.cpp) would run
+  // as RON = 0: it is never taken, and if the selection finds no other mode, its reason is the
+  // error (the default run then falls back to implicit Euler, whose step LCP keeps it).
+  if (md->dyn.unresolved > 0) {
+    md->dyn.well_posed = false;
+    note_unresolved(md->dyn);
   }
+  const ModeDynamics& d = md->dyn;
   const Eigen::MatrixXd P = sources->P(signature), S = sources->S(signature);
   const int p = static_cast<int>(S.rows());
   md->q = n + p;
@@ -550,7 +558,7 @@ bool EventDriven::Impl::consistent(Mode& md, const Eigen::VectorXd& Xs,
 Mode& EventDriven::Impl::select(double t, const Eigen::VectorXd& x, const Eigen::VectorXd& sigma,
                                 const std::string& signature, const Mode* previous, bool event,
                                 const Eigen::VectorXd* op_z) {
-  selecting_at = t;
+  unresolved_note.clear();
   Eigen::VectorXd Xs(n + sigma.size());
   Xs << x, sigma;
   // After an event the modes are checked at the crossing, estimated inside the final bracket
@@ -637,9 +645,11 @@ Mode& EventDriven::Impl::select(double t, const Eigen::VectorXd& x, const Eigen:
     // tied to the two diodes' (both off, at zero), the switching LCP's rows of it O(eta), and
     // Lemke's path ended on a ray at t = 0.
     const bool from_previous = previous && previous->signature == signature;
-    if (!answered && !from_previous && !op_z && previous)
+    if (!answered && !from_previous && !op_z && previous) {
+      if (!unresolved_note.empty()) throw NumericalFailure(t, unresolved_note);
       throw NumericalFailure(t, std::string("no next mode: the switching LCP has no solution (Lemke: ") +
                                     lcp_status_name(sol.status) + ")");
+    }
     if (!answered) lemke_failure = lcp_status_name(sol.status);
     if (answered) {
       for (int i = 0; i < m; ++i) active[i] = sol.z(i) > 0;
@@ -748,6 +758,7 @@ Mode& EventDriven::Impl::select(double t, const Eigen::VectorXd& x, const Eigen:
   if (consistent(first, *Xt, nullptr, error, nullptr, kTol)) return first;
   if (Mode* md = search(near_zero, kTol)) return *md;
   if (Mode* md = search(all, kTol)) return *md;
+  if (!unresolved_note.empty()) throw NumericalFailure(t, unresolved_note);
   if (!lemke_failure.empty())
     throw NumericalFailure(t, "no next mode: the switching LCP has no solution (Lemke: " + lemke_failure +
                                   "), and no mode near " + guess + " continues the state");

@@ -444,6 +444,8 @@ bool SparseActiveSetLcp::solve(const Eigen::VectorXd& a, const Eigen::VectorXd& 
       // Trimmed pairs that want to be on again go on by decades of the current they carried
       // before the trim, largest first: a chain's currents decay geometrically along it, and
       // only its first few are needed (turning them on lifts the voltage of the rest).
+      // (A pair trimmed at a z below zero, within kFeasTol, counts as zero: with no positive
+      // z among them all go back on, as before the decades.)
       double untrim_above = 0.0;
       if (trims > 0)
         for (int i : violating)
@@ -451,7 +453,7 @@ bool SparseActiveSetLcp::solve(const Eigen::VectorXd& a, const Eigen::VectorXd& 
       int flipped = 0;
       for (int i : violating) {
         if (trims > 0 && trimmed[i]) {
-          if (trimmed_z[i] < untrim_above) continue;
+          if (untrim_above > 0 && trimmed_z[i] < untrim_above) continue;
           trimmed[i] = 0;
         }
         mode[i] = !mode[i];
