@@ -1,8 +1,10 @@
-// Internals of the LCP module shared by lemke.cpp, warm_solver.cpp and enumeration.cpp.
+// Internals of the LCP module shared by lemke.cpp, warm_solver.cpp, enumeration.cpp, residual.cpp
+// and sparse_active_set.cpp.
 // Not part of the public interface (lcp.h); may change without notice.
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <unordered_set>
 #include <vector>
@@ -12,6 +14,12 @@
 #include "solver/lcp/lcp.h"
 
 namespace lcs::lcp_detail {
+
+// The rounding that computing w_i = sum_j M_ij z_j + q_i leaves, relative to the sizes that meet
+// in it (|q_i| + sum_j |M_ij z_j|): the products' own (n eps at most, ~sqrt(n) eps typically)
+// and z's from a backward-stable solve. Used by lcp_solved_to_rounding and by the sparse
+// active-set search's judgement of trimmed pairs.
+constexpr double kRowRounding = 64 * std::numeric_limits<double>::epsilon();
 
 // Positive diagonal equilibration S = diag(row) * M * diag(col), all factors powers of two
 // (so scaling is exact in floating point). LCP(q, M) and LCP(diag(row) q, S) are equivalent:

@@ -32,10 +32,6 @@ double lcp_residual(const Eigen::MatrixXd& M, const Eigen::VectorXd& q, const Ei
   return natural_residual(z, w);
 }
 
-// The rounding of w_i = sum_j M_ij z_j + q_i, in units of eps (|q_i| + sum_j |M_ij z_j|): the
-// products' own (n eps at most, ~sqrt(n) eps typically) and z's from a backward-stable solve.
-constexpr double kRowRoundingUlps = 64;
-
 bool lcp_solved_to_rounding(const Eigen::MatrixXd& M, const Eigen::VectorXd& q, const Eigen::VectorXd& z,
                             double tol) {
   if (M.rows() != M.cols() || M.rows() != q.size() || z.size() != q.size())
@@ -47,7 +43,7 @@ bool lcp_solved_to_rounding(const Eigen::MatrixXd& M, const Eigen::VectorXd& q, 
   const Eigen::VectorXd w = M * z + q;
   const Eigen::VectorXd size = M.cwiseAbs() * z.cwiseAbs() + q.cwiseAbs();
   for (Eigen::Index i = 0; i < n; ++i) {
-    const double ti = std::max(t, kRowRoundingUlps * std::numeric_limits<double>::epsilon() * size(i));
+    const double ti = std::max(t, lcp_detail::kRowRounding * size(i));
     if (!(z(i) >= -t && w(i) >= -ti && (z(i) <= t || w(i) <= ti))) return false;
   }
   return true;

@@ -2,20 +2,18 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <list>
 #include <string>
 #include <unordered_map>
 
 #include <klu.h>
 
+#include "solver/lcp/lcp_internal.h"
+
 namespace lcs {
 
 namespace {
 constexpr double kFeasTol = 1e-10;  // relative, as the dense solvers' feas_tol
-// What computing w_i = [P Q]_i sol + b_i leaves of rounding, relative to the sizes that meet in
-// it (as lcp_solved_to_rounding's): a trimmed pair's w is judged against this, not kFeasTol.
-constexpr double kRoundingTol = 64 * std::numeric_limits<double>::epsilon();
 constexpr int kPatience = 3;        // block flips allowed without the violating set shrinking
 // A stalled block search first trims the mode: off go the pairs whose z is below kTrimLevel of
 // the largest, at most kTrims times a solve (then Murty's single flips, finite as before).
@@ -405,10 +403,11 @@ bool SparseActiveSetLcp::solve(const Eigen::VectorXd& a, const Eigen::VectorXd& 
         double size = std::abs(b(i));
         for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(PQ_, i); it; ++it)
           size += std::abs(it.value() * sol_(it.col()));
-        // A trimmed pair is on again at any negative w: its z may be positive below kFeasTol
-        // (measured: complementarity 1e-11 of the sizes on 25-100 stage multipliers otherwise).
+        // A trimmed pair is on again at any w negative past rounding (lcp_detail::kRowRounding
+        // of its sizes), not only past kFeasTol: its z may be positive below kFeasTol (measured:
+        // complementarity 1e-11 of the sizes on 25-100 stage multipliers otherwise).
         const bool strict = trims > 0 && trimmed[i];
-        if (!(w(i) >= -(strict ? kRoundingTol : kFeasTol) * size)) violating.push_back(i);
+        if (!(w(i) >= -(strict ? lcp_detail::kRowRounding : kFeasTol) * size)) violating.push_back(i);
       }
     }
     if (violating.empty()) {
