@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <set>
+#include <stdexcept>
 
 namespace lcs {
 namespace {
@@ -13,6 +14,8 @@ std::string number(double x) {
   std::snprintf(buf, sizeof buf, "%g", x);
   return buf;
 }
+
+std::string quoted(const std::string& s) { return "'" + s + "'"; }
 
 // Thrown inside one measure's evaluation: why it cannot be computed.
 struct Failure {
@@ -201,6 +204,8 @@ double evaluate(const Measure& m, const MeasureWaveforms& w) {
       return find_at(m.probe, crossing_time(m.when, w), w);
     case Measure::Kind::When:
       return crossing_time(m.when, w);
+    case Measure::Kind::Param:
+      throw Failure{"a PARAM is computed from the other measures' results (evaluate_measures)"};
     case Measure::Kind::TrigTarg: {
       double trig = 0, targ = 0;
       try {
@@ -235,10 +240,37 @@ MeasureResult evaluate_measure(const Measure& measure, const MeasureWaveforms& w
   return r;
 }
 
+// ngspice 39's order: every other measure first, then the PARAMs in card order, each seeing the
+// results above it and the other measures below it.
 std::vector<MeasureResult> evaluate_measures(const std::vector<Measure>& measures, const MeasureWaveforms& waveforms) {
-  std::vector<MeasureResult> out;
-  out.reserve(measures.size());
-  for (const Measure& m : measures) out.push_back(evaluate_measure(m, waveforms));
+  std::vector<MeasureResult> out(measures.size());
+  for (std::size_t k = 0; k < measures.size(); ++k)
+    if (measures[k].kind != Measure::Kind::Param) out[k] = evaluate_measure(measures[k], waveforms);
+  for (std::size_t k = 0; k < measures.size(); ++k) {
+    const Measure& m = measures[k];
+    if (m.kind != Measure::Kind::Param) continue;
+    MeasureResult& r = out[k];
+    r.name = m.name;
+    const MeasureExpression::MeasureLookup lookup = [&](const std::string& name) -> std::optional<double> {
+      for (std::size_t j = 0; j < measures.size(); ++j) {
+        if (measures[j].name != name) continue;
+        if (j == k) throw std::runtime_error("it names its own measure " + quoted(name));
+        if (measures[j].kind == Measure::Kind::Param && j > k)
+          throw std::runtime_error("measure " + quoted(name) +
+                                   " is a PARAM further down (PARAMs are computed in card order, as in ngspice)");
+        if (!out[j].value) throw std::runtime_error("measure " + quoted(name) + " failed");
+        return out[j].value;
+      }
+      return std::nullopt;
+    };
+    try {
+      const double v = m.expression.evaluate(lookup);
+      if (std::isfinite(v)) r.value = v;
+      else r.failure = "the result is not a finite number";
+    } catch (const std::runtime_error& e) {
+      r.failure = "PARAM " + quoted(m.expression.text) + ": " + e.what();
+    }
+  }
   return out;
 }
 
@@ -255,6 +287,8 @@ std::vector<Probe> measure_probes(const std::vector<Measure>& measures) {
   };
   for (const Measure& m : measures) {
     switch (m.kind) {
+      case Measure::Kind::Param:
+        break;
       case Measure::Kind::When:
         add_crossing(m.when);
         break;

@@ -34,7 +34,10 @@ struct MeasureResult {
   std::string failure;          // why, when `value` is none
 };
 
+// One measure of the waveforms (a PARAM fails: it needs the others' results).
 MeasureResult evaluate_measure(const Measure& measure, const MeasureWaveforms& waveforms);
+// All of them, in card order; a PARAM reads the results of the others and of the PARAMs above it
+// (ngspice 39's order), and fails naming a measure it reads that failed.
 std::vector<MeasureResult> evaluate_measures(const std::vector<Measure>& measures, const MeasureWaveforms& waveforms);
 
 // The probes the measures read, each once (by name), in the order they are first used.

@@ -596,6 +596,9 @@ class Elaborator {
       switch (m.kind) {
         case Measure::Kind::When:
           break;
+        case Measure::Kind::Param:
+          check_param_names(m);
+          break;
         case Measure::Kind::TrigTarg:
           for (MeasureCrossing* c : {&m.when, &m.targ})
             if (!c->at) check(c->probe);
@@ -607,6 +610,18 @@ class Elaborator {
         check(m.when.probe);
         if (m.when.other) check(*m.when.other);
       }
+    }
+  }
+
+  // A PARAM's names that are neither parameters nor measures: a warning now, as ngspice runs the
+  // deck and fails the measure (as the run will).
+  void check_param_names(const Measure& m) {
+    for (const std::string& name : m.expression.names) {
+      const bool measured = std::any_of(net_.measures.begin(), net_.measures.end(),
+                                        [&](const Measure& other) { return other.name == name; });
+      if (!measured)
+        net_.warnings.push_back(warning_line(m.expression.loc, quote(name) + " is neither a measure lcspice computes nor a "
+                                                               "parameter: measure " + quote(m.name) + " will fail"));
     }
   }
 

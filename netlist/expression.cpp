@@ -99,9 +99,9 @@ class Evaluator {
   }
 
  private:
-  [[noreturn]] void fail(std::size_t offset, std::size_t length, std::string message) {
+  [[noreturn]] void fail(std::size_t offset, std::size_t length, std::string message, bool from_values = false) {
     throw ExpressionError{static_cast<int>(offset), static_cast<int>(std::max<std::size_t>(1, length)),
-                          std::move(message)};
+                          std::move(message), from_values};
   }
   [[noreturn]] void unexpected() {
     if (i_ >= s_.size()) fail(s_.size(), 1, "unexpected end of expression");
@@ -119,7 +119,7 @@ class Evaluator {
     return i_ < s_.size() && (s_[i_] == '^' || (s_[i_] == '*' && i_ + 1 < s_.size() && s_[i_ + 1] == '*'));
   }
   double check(double v, std::size_t offset, std::size_t length, const std::string& what) {
-    if (!std::isfinite(v)) fail(offset, length, "result of " + quote(what) + " is not a finite number");
+    if (!std::isfinite(v)) fail(offset, length, "result of " + quote(what) + " is not a finite number", true);
     return v;
   }
 
@@ -226,7 +226,7 @@ class Evaluator {
       char c = s_[i_++];
       double r = unary();
       if (c == '/') {
-        if (r == 0.0 && untaken_ == 0) fail(op, 1, "division by zero");
+        if (r == 0.0 && untaken_ == 0) fail(op, 1, "division by zero", true);
         v = r == 0.0 ? 0.0 : check(v / r, op, 1, "/");  // 0: in a branch not taken (see expr())
       } else {
         v = check(v * r, op, 1, "*");
@@ -340,7 +340,7 @@ class Evaluator {
            quote(written) + " takes " + (f->max_args ? "" : "at least ") + n);
     }
     double v = f->apply(args);
-    if (!std::isfinite(v)) fail(start, written.size(), "invalid argument to " + quote(written));
+    if (!std::isfinite(v)) fail(start, written.size(), "invalid argument to " + quote(written), true);
     return v;
   }
 
@@ -366,8 +366,9 @@ class Evaluator {
     } catch (const ExpressionError& e) {
       // Said once, at the outermost call: an error inside nested bodies, or the call budget.
       if (e.message.rfind("in function ", 0) == 0 || e.message.rfind("more than ", 0) == 0)
-        fail(start, written.size(), e.message);
-      fail(start, written.size(), "in function " + quote(written) + " (.func at " + user.defined_at + "): " + e.message);
+        fail(start, written.size(), e.message, e.from_values);
+      fail(start, written.size(), "in function " + quote(written) + " (.func at " + user.defined_at + "): " + e.message,
+           e.from_values);
     }
   }
 

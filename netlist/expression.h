@@ -21,6 +21,8 @@ struct ExpressionError {
   int offset = 0;
   int length = 1;
   std::string message;
+  // The text is well formed; its values fail it (a division by zero, log of a negative, ...).
+  bool from_values = false;
 };
 
 // Thrown by a Lookup that refuses a name it knows (a parameter defined in terms of itself, ...);

@@ -1,14 +1,19 @@
 #include "netlist/measure_card.h"
 
+#include <algorithm>
 #include <cmath>
+#include <memory>
+#include <stdexcept>
 #include <string>
+
+#include "netlist/expression.h"
 
 namespace lcs::parse {
 namespace {
 
 // Analyses a `.meas` card may name besides `tran`: the measure is skipped with a warning.
 const char* const kOtherAnalyses[] = {"ac", "dc", "op", "noise", "tf", "disto", "pz", "sens", "sp"};
-const char* const kKindList = "AVG, RMS, MIN, MAX, PP, INTEG, MIN_AT, MAX_AT, FIND, WHEN or TRIG";
+const char* const kKindList = "AVG, RMS, MIN, MAX, PP, INTEG, MIN_AT, MAX_AT, FIND, WHEN, TRIG or PARAM";
 const char* const kProbeForms = "v(node), v(node1,node2) or i(element)";
 
 struct Statistic {
@@ -111,10 +116,11 @@ class Reader {
     const Token& t = card_[i_];
     if (!t.is_word()) fail_at(i_, "expected the measure's kind (" + std::string(kKindList) + "), got " + quote(t.text));
     const std::string k = t.lower;
-    if (k == "param" && i_ + 1 < n_ && card_[i_ + 1].is(Token::Kind::Equals))
-      throw Skip{card_.at(i_), "'.meas' PARAM= (a value computed from other measures) is not supported by lcspice"};
-    if (k == "param")  // LTspice's `.meas TRAN eff PARAM vout_avg**2/5/24`
-      throw Skip{card_.at(i_), "'.meas' PARAM (a value computed from other measures) is not supported by lcspice"};
+    if (k == "param") {
+      m.kind = Measure::Kind::Param;
+      read_expression(m.expression);
+      return;
+    }
     if (k == "deriv" || k == "derivative") throw Skip{card_.at(i_), "'.meas' DERIV is not supported by lcspice"};
     if (k == "err" || k == "err1" || k == "err2" || k == "err3")
       throw Skip{card_.at(i_), "'.meas' " + upper(k) + " is not supported by lcspice"};
@@ -170,6 +176,65 @@ class Reader {
     }
     if (k == "targ") fail_at(keyword, "TARG without TRIG (TRIG ... TARG ...)");
     fail_at(keyword, "unknown measure kind " + quote(t.text) + " (expected " + kKindList + ")");
+  }
+
+  // PARAM='expression' at i_ (also {expression}, or the bare expression to the card's end), or
+  // LTspice's `PARAM expression` without '='. Its syntax is checked here, the names it reads that
+  // are no parameters of the deck are recorded (they should be measures), and `evaluate` keeps
+  // the deck's parameters and functions it may read.
+  void read_expression(MeasureExpression& x) {
+    const std::size_t keyword = i_++;
+    if (i_ < n_ && card_[i_].is(Token::Kind::Equals)) ++i_;
+    if (i_ >= n_) fail_at(i_, "missing the expression after " + quote(card_.text(card_[keyword].begin, card_[i_ - 1].end)));
+    const Token& t = card_[i_];
+    int begin = t.begin, end = card_[n_ - 1].end;
+    if (t.is_expression()) {
+      if (i_ + 1 < n_) fail_at(i_ + 1, "unexpected extra token " + quote(card_[i_ + 1].text) + " after PARAM's expression");
+      ++begin, --end;
+    }
+    i_ = n_;
+    x.text = card_.text(begin, end);
+    x.loc = card_.span(begin, end);
+    auto values = std::make_shared<const std::map<std::string, double>>(scope_.visible_values());
+    auto functions = std::make_shared<const std::map<std::string, UserFunction>>(scope_.visible_functions());
+    const FunctionLookup function = [functions](const std::string& name) -> const UserFunction* {
+      auto it = functions->find(name);
+      return it == functions->end() ? nullptr : &it->second;
+    };
+    // The syntax, with 1 for each name that is no parameter. An error the values cause (a
+    // division by zero) is the deck's only when the expression reads no such name.
+    try {
+      evaluate_expression(x.text,
+                          [&](const std::string& name) -> std::optional<double> {
+                            if (auto it = values->find(name); it != values->end()) return it->second;
+                            if (std::find(x.names.begin(), x.names.end(), name) == x.names.end())
+                              x.names.push_back(name);
+                            return 1.0;
+                          },
+                          function);
+    } catch (const ExpressionError& e) {
+      if (!e.from_values || x.names.empty())
+        throw NetlistError(card_.span(begin + e.offset, begin + e.offset + e.length), e.message);
+    }
+    // A measure's result hides a parameter of its name, as ngspice stores results as parameters.
+    x.evaluate = [text = x.text, values, function](const MeasureExpression::MeasureLookup& measures) {
+      const Lookup lookup = [&](const std::string& name) -> std::optional<double> {
+        std::optional<double> v;
+        try {
+          v = measures(name);
+        } catch (const std::runtime_error& e) {
+          throw LookupFailure{e.what()};
+        }
+        if (v) return v;
+        if (auto it = values->find(name); it != values->end()) return it->second;
+        throw LookupFailure{quote(name) + " is neither a measure lcspice computes nor a parameter"};
+      };
+      try {
+        return evaluate_expression(text, lookup, function);
+      } catch (const ExpressionError& e) {
+        throw std::runtime_error(e.message);
+      }
+    };
   }
 
   // v(node), v(node1,node2), i(element), ... at i_, after the token `after`.

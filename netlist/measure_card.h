@@ -6,6 +6,11 @@
 //   .meas [tran] NAME FIND probe WHEN probe=value|probe2 [crossing]
 //   .meas [tran] NAME WHEN probe=value|probe2 [crossing]
 //   .meas [tran] NAME TRIG probe VAL=v [crossing] | TRIG AT=t   TARG probe VAL=v [crossing] | TARG AT=t
+//   .meas [tran] NAME PARAM='expression' | PARAM={expression} | PARAM=expression | PARAM expression
+//
+// A PARAM's expression reads other measures' results and the deck's parameters and .func
+// functions (a result hides a parameter of its name); the run computes it after the other
+// measures, PARAMs in card order, as ngspice 39 does.
 //
 // crossing: RISE=n|LAST, FALL=n|LAST, CROSS=n|LAST or a bare LAST (CROSS=LAST, as ngspice reads
 // it; one of them; TRIG and TARG need one),
@@ -24,7 +29,7 @@
 namespace lcs::parse {
 
 // The measure a card asks for; nullopt for one lcspice skips with a located warning in
-// `warnings` (`.meas ac/dc/op ...`, DERIV, ERR, PARAM=, expressions of probes). Its probes are
+// `warnings` (`.meas ac/dc/op ...`, DERIV, ERR, expressions of probes). Its probes are
 // parsed, not yet checked against the circuit (the elaborator does that). Throws NetlistError
 // for bad syntax.
 std::optional<Measure> parse_measure(const Card& card, const ParamScope& scope, std::vector<std::string>& warnings);

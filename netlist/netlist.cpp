@@ -38,6 +38,7 @@ const char* measure_kind_name(Measure::Kind kind) {
     case Measure::Kind::FindWhen: return "FIND WHEN";
     case Measure::Kind::When: return "WHEN";
     case Measure::Kind::TrigTarg: return "TRIG/TARG";
+    case Measure::Kind::Param: return "PARAM";
   }
   return "measure";
 }

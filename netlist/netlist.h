@@ -2,6 +2,7 @@
 // Subcircuits are expanded, parameters substituted, names lower-cased (SPICE is case-insensitive).
 #pragma once
 
+#include <functional>
 #include <map>
 #include <optional>
 #include <string>
@@ -171,6 +172,23 @@ struct MeasureCrossing {
   std::optional<double> to;            // TO=
 };
 
+// PARAM='expression': a value computed from other measures' results and the deck's parameters
+// and functions (ngspice 39: after every other measure, the PARAMs in card order, each seeing
+// the ones above it).
+struct MeasureExpression {
+  std::string text;                    // as written, without its quotes or braces
+  SourceLocation loc;                  // the text on the card
+  // Names it reads that are neither parameters nor functions of the deck: the measures it uses,
+  // as far as the reader could tell (checked against the measures when the deck is elaborated).
+  std::vector<std::string> names;
+  // Measure results by lower-case name: the value, nullopt for no measure of that name; throws
+  // std::runtime_error saying why a measure of that name has no value.
+  using MeasureLookup = std::function<std::optional<double>(const std::string& name)>;
+  // The value; throws std::runtime_error saying what failed (a name unknown or without a value,
+  // a division by zero, ...).
+  std::function<double(const MeasureLookup&)> evaluate;
+};
+
 struct Measure {
   enum class Kind {
     Avg, Rms, Min, Max, Pp, Integ, MinAt, MaxAt,  // of `probe` over [from, to]
@@ -178,6 +196,7 @@ struct Measure {
     FindWhen,   // FIND probe WHEN ...: probe's value at the crossing `when`
     When,       // WHEN ...: the crossing's time
     TrigTarg,   // TRIG ... TARG ...: targ's time minus trig's
+    Param,      // PARAM='expression' of other measures
   };
   std::string name;                    // lower-case, as printed ("trise = 2.197e-04")
   Kind kind = Kind::Avg;
@@ -187,6 +206,7 @@ struct Measure {
   double at = 0;                       // FIND AT=
   MeasureCrossing when;                // FIND .. WHEN, WHEN; TRIG for TrigTarg
   MeasureCrossing targ;                // TrigTarg
+  MeasureExpression expression;        // Param
   SourceLocation loc;                  // the measure's name on the card
 };
 const char* measure_kind_name(Measure::Kind kind);  // "AVG", "FIND", "TRIG/TARG", ...

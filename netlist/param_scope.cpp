@@ -75,6 +75,19 @@ void ParamScope::evaluate_all() const {
   }
 }
 
+std::map<std::string, double> ParamScope::visible_values() const {
+  std::map<std::string, double> out;
+  for (const ParamScope* s = this; s; s = s->parent_)
+    for (const auto& [name, def] : s->defs_) out.emplace(name, s->evaluate(name, def));
+  return out;
+}
+
+std::map<std::string, UserFunction> ParamScope::visible_functions() const {
+  std::map<std::string, UserFunction> out;
+  for (const ParamScope* s = this; s; s = s->parent_) out.insert(s->functions_.begin(), s->functions_.end());
+  return out;
+}
+
 void ParamScope::define_function(const std::string& name, UserFunction function) {
   functions_[name] = std::move(function);
 }

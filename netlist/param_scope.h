@@ -31,6 +31,12 @@ class ParamScope {
   // Evaluates every local definition in definition order (so errors show up in card order).
   void evaluate_all() const;
 
+  // Every parameter and user function seen here (an inner definition hides an outer one), for an
+  // expression evaluated after the deck is read (`.meas ... PARAM=`). Call after evaluate_all()
+  // on this scope and its parents.
+  std::map<std::string, double> visible_values() const;
+  std::map<std::string, UserFunction> visible_functions() const;
+
   // `.func`: a user function of this scope (a later definition of the same name replaces it),
   // and the one a name calls here or in an enclosing scope (nullptr: none).
   void define_function(const std::string& name, UserFunction function);

@@ -1,7 +1,7 @@
 // `.meas tran` through `lcspice run`: an RC charging from 0 to 1 V (tau = RC = 1 ms) and a 1 kHz
 // sine, whose measures have closed forms; a measure that cannot be computed (a warning, exit 0);
 // an unknown probe (exit 2, located); the CSV unchanged by the measures' hidden columns; no
-// measures after a numerical failure (exit 3).
+// measures after a numerical failure (exit 3); PARAM measures in ngspice's order of evaluation.
 #include <cmath>
 #include <map>
 #include <regex>
@@ -97,6 +97,44 @@ TEST(MeasureCli, MeasureThatCannotBeComputedWarnsAndExitsZero) {
       << r.err;
   EXPECT_EQ(measures(r.err).count("t50"), 1u) << r.err;  // the others are still reported
   EXPECT_LT(r.err.find(".meas never failed"), r.err.find("t50 = "));  // in card order
+}
+
+TEST(MeasureCli, ParamsAreComputedAfterTheOtherMeasuresInCardOrder) {
+  // ngspice 39.3's order (checked with libngspice): every other measure first, then the PARAMs
+  // in card order, each seeing the ones above it; one naming a failed measure, a PARAM further
+  // down or an unknown name fails, and the rest are reported, in card order.
+  const fs::path deck = write_deck("measure_", "param",
+                                   std::string(kRc) + ".param k=2\n.func half(x) {x/2}\n"
+                                                      ".meas tran ratio param='vmax*k/vtau'\n"
+                                                      ".meas tran vmax max v(out) to=2m\n"
+                                                      ".meas tran vtau find v(out) at=1m\n"
+                                                      ".meas tran twice param={2*ratio + half(vtau)}\n"
+                                                      ".meas tran early param='later+1'\n"
+                                                      ".meas tran later param='1'\n"
+                                                      ".meas tran never when v(out)=2\n"
+                                                      ".meas tran broken param='never*2'\n"
+                                                      ".meas tran ltspice PARAM vmax**2\n.end\n");
+  const Result r = run_deck(deck);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto lines = measure_lines(r.err);
+  std::vector<std::string> order;
+  for (const auto& line : lines) order.push_back(line.first);
+  EXPECT_EQ(order, (std::vector<std::string>{"ratio", "vmax", "vtau", "twice", "later", "ltspice"}));
+  std::map<std::string, double> m = measures(r.err);
+  const double vmax = 1 - std::exp(-2.0), vtau = 1 - std::exp(-1.0);
+  EXPECT_NEAR(m["ratio"], vmax * 2 / vtau, 1e-8);
+  EXPECT_NEAR(m["twice"], 2 * m["ratio"] + vtau / 2, 1e-8);
+  EXPECT_EQ(m["later"], 1);
+  EXPECT_NEAR(m["ltspice"], vmax * vmax, 1e-8);
+  EXPECT_NE(r.err.find("lcspice: warning: .meas early failed: PARAM 'later+1': measure 'later' is a PARAM further "
+                       "down (PARAMs are computed in card order, as in ngspice)\n"),
+            std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find("lcspice: warning: .meas broken failed: PARAM 'never*2': measure 'never' failed\n"),
+            std::string::npos)
+      << r.err;
+  EXPECT_LT(r.err.find("ratio = "), r.err.find("vmax = "));
+  EXPECT_LT(r.err.find(".meas early failed"), r.err.find("later = "));
 }
 
 TEST(MeasureCli, CsvIsTheSameWithAndWithoutMeasures) {

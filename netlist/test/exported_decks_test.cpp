@@ -62,14 +62,17 @@ TEST(ExportedDecks, XycePrintOptionsAndWildcards) {
 }
 
 // LTspice's own help writes `.meas TRAN eff PARAM vout_avg**2/5/24` (no '='): it stopped the deck
-// ("unknown measure kind 'PARAM'"); now skipped with a warning, as PARAM= is.
-TEST(ExportedDecks, LtspiceMeasureParamWithoutEqualsIsSkipped) {
+// ("unknown measure kind 'PARAM'"), was then skipped; now read as ngspice's PARAM=.
+TEST(ExportedDecks, LtspiceMeasureParamWithoutEqualsIsRead) {
   const Netlist n = test::parse("t\nV1 a 0 1\nR1 a 0 1\n.tran 1u 2u\n.meas TRAN vmax MAX v(a)\n.meas TRAN eff PARAM vmax**2/5\n");
-  ASSERT_EQ(n.measures.size(), 1u);
-  EXPECT_EQ(n.measures[0].name, "vmax");
-  ASSERT_EQ(n.warnings.size(), 1u);
-  EXPECT_EQ(n.warnings[0], "t.cir:6:16: warning: '.meas' PARAM (a value computed from other measures) is not "
-                           "supported by lcspice: measure 'eff' is skipped");
+  ASSERT_EQ(n.measures.size(), 2u);
+  EXPECT_EQ(n.measures[1].name, "eff");
+  EXPECT_EQ(n.measures[1].kind, Measure::Kind::Param);
+  EXPECT_EQ(n.measures[1].expression.text, "vmax**2/5");
+  EXPECT_DOUBLE_EQ(n.measures[1].expression.evaluate([](const std::string& name) -> std::optional<double> {
+    return name == "vmax" ? std::optional<double>(3.0) : std::nullopt;
+  }), 9.0 / 5);
+  EXPECT_TRUE(n.warnings.empty());
 }
 
 // `1.5kΩ`: a value with its unit as the ohm symbol (U+03A9) or the ohm sign (U+2126).

@@ -1,5 +1,8 @@
 // `.measure` / `.meas` cards (netlist/measure_card.h): every kind, the measures skipped with a
 // warning, and the located errors of bad syntax and unknown probes.
+#include <map>
+#include <stdexcept>
+
 #include <gtest/gtest.h>
 
 #include "netlist/test/parse_helpers.h"
@@ -153,9 +156,6 @@ TEST(MeasureCard, SkippedWithAWarning) {
       {".meas tran x deriv v(b) at=1m",
        "t.cir:6:14: warning: '.meas' DERIV is not supported by lcspice: measure 'x' is skipped"},
       {".meas tran x err v(a) v(b)", "t.cir:6:14: warning: '.meas' ERR is not supported by lcspice: measure 'x' is skipped"},
-      {".meas tran x param='y*2'",
-       "t.cir:6:14: warning: '.meas' PARAM= (a value computed from other measures) is not supported by lcspice: "
-       "measure 'x' is skipped"},
       {".meas tran x max v(b)*2",
        "t.cir:6:18: warning: expressions of probes are not measured by lcspice (only v(node), v(node1,node2) or "
        "i(element)): measure 'x' is skipped"},
@@ -180,6 +180,108 @@ TEST(MeasureCard, SkippedWithAWarning) {
   }
 }
 
+// The value of a PARAM measure given other measures' results.
+double param_value(const Measure& m, const std::map<std::string, double>& results) {
+  return m.expression.evaluate([&](const std::string& name) -> std::optional<double> {
+    auto it = results.find(name);
+    if (it == results.end()) return std::nullopt;
+    return it->second;
+  });
+}
+
+TEST(MeasureCard, ParamInEveryWritingNgspiceAccepts) {
+  struct Case {
+    const char* card;
+    const char* text;
+  };
+  // ngspice 39.3 takes 'expr', {expr} and the bare expression; LTspice writes PARAM without '='.
+  const Case cases[] = {
+      {".meas tran r param='vmax*k+dbl(vmin)'", "vmax*k+dbl(vmin)"},
+      {".meas tran r param={vmax*k+dbl(vmin)}", "vmax*k+dbl(vmin)"},
+      {".meas tran r param=vmax*k+dbl(vmin)", "vmax*k+dbl(vmin)"},
+      {".meas tran r param = vmax * k + dbl(vmin)", "vmax * k + dbl(vmin)"},
+      {".MEAS TRAN R PARAM VMAX*K+DBL(VMIN)", "VMAX*K+DBL(VMIN)"},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.card);
+    Netlist n = parse("t\n.param k=3\n.func dbl(x) {2*x}\nV1 a 0 1\nR1 a b 1k\nC1 b 0 1u\n.tran 1u 5m\n"
+                      ".meas tran vmax max v(b)\n.meas tran vmin min v(b)\n" + std::string(c.card) + "\n");
+    ASSERT_EQ(n.measures.size(), 3u);
+    const Measure& m = n.measures[2];
+    EXPECT_EQ(m.kind, Measure::Kind::Param);
+    EXPECT_EQ(m.expression.text, c.text);
+    EXPECT_EQ(m.expression.names, (std::vector<std::string>{"vmax", "vmin"}));
+    EXPECT_EQ(m.expression.loc.line, 10);
+    EXPECT_DOUBLE_EQ(param_value(m, {{"vmax", 0.5}, {"vmin", 0.25}}), 0.5 * 3 + 2 * 0.25);
+    EXPECT_TRUE(n.warnings.empty()) << n.warnings.front();
+  }
+}
+
+TEST(MeasureCard, ParamResultHidesAParameterOfItsName) {
+  Netlist n = parse(deck(".param vmax=7\n.meas tran vmax max v(b)\n.meas tran r param='vmax+1'"));
+  ASSERT_EQ(n.measures.size(), 2u);
+  EXPECT_TRUE(n.measures[1].expression.names.empty());  // read as the parameter when the card was read
+  EXPECT_DOUBLE_EQ(param_value(n.measures[1], {{"vmax", 0.5}}), 1.5);
+  EXPECT_DOUBLE_EQ(param_value(n.measures[1], {}), 8);
+}
+
+TEST(MeasureCard, ParamFailuresAtRunTimeSayWhy) {
+  Netlist n = parse(deck(".meas tran vmax max v(b)\n.meas tran r param='1/(vmax-1)'"));
+  ASSERT_EQ(n.measures.size(), 2u);
+  const Measure& m = n.measures[1];
+  EXPECT_DOUBLE_EQ(param_value(m, {{"vmax", 3}}), 0.5);
+  try {
+    param_value(m, {{"vmax", 1}});
+    ADD_FAILURE() << "no error";
+  } catch (const std::runtime_error& e) {
+    EXPECT_STREQ(e.what(), "division by zero");
+  }
+  try {
+    param_value(m, {});
+    ADD_FAILURE() << "no error";
+  } catch (const std::runtime_error& e) {
+    EXPECT_STREQ(e.what(), "'vmax' is neither a measure lcspice computes nor a parameter");
+  }
+  try {
+    m.expression.evaluate([](const std::string&) -> std::optional<double> { throw std::runtime_error("measure 'vmax' failed"); });
+    ADD_FAILURE() << "no error";
+  } catch (const std::runtime_error& e) {
+    EXPECT_STREQ(e.what(), "measure 'vmax' failed");
+  }
+}
+
+TEST(MeasureCard, ParamNamingNoMeasureIsAWarning) {
+  // ngspice runs such a deck and fails the measure; so does lcspice, warned as the deck is read.
+  Netlist n = parse(deck(".meas tran vmax max v(b)\n.meas tran r param='vmx*2'"));
+  ASSERT_EQ(n.measures.size(), 2u);
+  ASSERT_EQ(n.warnings.size(), 1u);
+  EXPECT_EQ(n.warnings[0],
+            "t.cir:7:21: warning: 'vmx' is neither a measure lcspice computes nor a parameter: measure 'r' will fail");
+}
+
+TEST(MeasureCard, ParamSyntaxErrorsAreLocated) {
+  struct Case {
+    const char* card;
+    std::string expected;
+  };
+  const Case cases[] = {
+      {".meas tran x param='y*'",
+       "t.cir:6:23: error: unexpected end of expression\n.meas tran x param='y*'\n                      ^"},
+      {".meas tran x param={y+(2}",
+       "t.cir:6:23: error: missing ')'\n.meas tran x param={y+(2}\n                      ^"},
+      {".meas tran x param='1/0'",
+       "t.cir:6:22: error: division by zero\n.meas tran x param='1/0'\n                     ^"},
+      {".meas tran x param='foo(y)'",
+       "t.cir:6:21: error: unknown function 'foo'\n.meas tran x param='foo(y)'\n                    ^~~"},
+      {".meas tran x param=", "t.cir:6:20: error: missing the expression after 'param='\n.meas tran x param=\n                   ^"},
+      {".meas tran x param", "t.cir:6:19: error: missing the expression after 'param'\n.meas tran x param\n                  ^"},
+      {".meas tran x param='y' from=1m",
+       "t.cir:6:24: error: unexpected extra token 'from' after PARAM's expression\n.meas tran x param='y' from=1m\n"
+       "                       ^~~~"},
+  };
+  for (const Case& c : cases) EXPECT_EQ(diag(deck(c.card)), c.expected) << c.card;
+}
+
 TEST(MeasureCard, TdOnAStatisticIsIgnoredWithAWarning) {
   Netlist n = parse(deck(".meas tran x avg v(b) td=1m"));
   EXPECT_EQ(only_measure(n).from, 0);
@@ -197,11 +299,11 @@ TEST(MeasureCard, SyntaxErrors) {
       {".meas tran (", "t.cir:6:12: error: expected the measure's name, got '('\n.meas tran (\n           ^"},
       {".meas tran x",
        "t.cir:6:13: error: missing the measure's kind after 'x' (AVG, RMS, MIN, MAX, PP, INTEG, MIN_AT, MAX_AT, FIND, "
-       "WHEN or TRIG)\n.meas tran x\n            ^"},
+       "WHEN, TRIG or PARAM)\n.meas tran x\n            ^"},
       {".meas tran avg v(b)", "t.cir:6:12: error: missing the measure's name before 'avg'\n.meas tran avg v(b)\n           ^~~"},
       {".meas tran x foo v(b)",
        "t.cir:6:14: error: unknown measure kind 'foo' (expected AVG, RMS, MIN, MAX, PP, INTEG, MIN_AT, MAX_AT, FIND, "
-       "WHEN or TRIG)\n.meas tran x foo v(b)\n             ^~~"},
+       "WHEN, TRIG or PARAM)\n.meas tran x foo v(b)\n             ^~~"},
       {".meas tran x targ v(b) val=1 rise=1",
        "t.cir:6:14: error: TARG without TRIG (TRIG ... TARG ...)\n.meas tran x targ v(b) val=1 rise=1\n             ^~~~"},
       {".meas tran x avg",
