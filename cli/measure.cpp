@@ -205,7 +205,7 @@ double evaluate(const Measure& m, const MeasureWaveforms& w) {
     case Measure::Kind::When:
       return crossing_time(m.when, w);
     case Measure::Kind::Param:
-      throw Failure{"a PARAM is computed from the other measures' results (evaluate_measures)"};
+      throw Failure{"a PARAM is computed from the other measures' results"};
     case Measure::Kind::TrigTarg: {
       double trig = 0, targ = 0;
       try {
@@ -268,7 +268,7 @@ std::vector<MeasureResult> evaluate_measures(const std::vector<Measure>& measure
       if (std::isfinite(v)) r.value = v;
       else r.failure = "the result is not a finite number";
     } catch (const std::runtime_error& e) {
-      r.failure = "PARAM " + quoted(m.expression.text) + ": " + e.what();
+      r.failure = e.what();
     }
   }
   return out;

@@ -592,12 +592,14 @@ class Elaborator {
     if (net_.measures.empty()) return;
     const std::set<std::string> all = nodes();
     auto check = [&](Probe& p) { p = checked_probe(p, all); };
+    std::set<std::string> measured;
+    for (const Measure& m : net_.measures) measured.insert(m.name);
     for (Measure& m : net_.measures) {
       switch (m.kind) {
         case Measure::Kind::When:
           break;
         case Measure::Kind::Param:
-          check_param_names(m);
+          check_param_names(m, measured);
           break;
         case Measure::Kind::TrigTarg:
           for (MeasureCrossing* c : {&m.when, &m.targ})
@@ -613,16 +615,20 @@ class Elaborator {
     }
   }
 
-  // A PARAM's names that are neither parameters nor measures: a warning now, as ngspice runs the
-  // deck and fails the measure (as the run will).
-  void check_param_names(const Measure& m) {
-    for (const std::string& name : m.expression.names) {
-      const bool measured = std::any_of(net_.measures.begin(), net_.measures.end(),
-                                        [&](const Measure& other) { return other.name == name; });
-      if (!measured)
-        net_.warnings.push_back(warning_line(m.expression.loc, quote(name) + " is neither a measure lcspice computes nor a "
-                                                               "parameter: measure " + quote(m.name) + " will fail"));
-    }
+  // A PARAM's names that are neither parameters nor measures: one warning, at the first, as
+  // ngspice runs the deck and fails the measure (as the run will).
+  void check_param_names(const Measure& m, const std::set<std::string>& measured) {
+    std::vector<const MeasureExpression::Name*> unknown;
+    for (const MeasureExpression::Name& n : m.expression.names)
+      if (!measured.count(n.name)) unknown.push_back(&n);
+    if (unknown.empty()) return;
+    std::string list = quote(unknown[0]->name);
+    const std::size_t shown = std::min<std::size_t>(unknown.size(), 3);
+    for (std::size_t k = 1; k < shown; ++k) list += (k + 1 == unknown.size() ? " and " : ", ") + quote(unknown[k]->name);
+    if (unknown.size() > shown) list += " and " + std::to_string(unknown.size() - shown) + " more";
+    net_.warnings.push_back(warning_line(m.expression.location_of(*unknown[0]), list + (unknown.size() == 1 ? " is" : " are") +
+                                                              " neither a measure lcspice computes nor a parameter: "
+                                                              "measure " + quote(m.name) + " will fail"));
   }
 
   static std::string to_upper(std::string s) {

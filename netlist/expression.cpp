@@ -86,8 +86,10 @@ class Evaluator {
  public:
   // `depth`: the nesting of the expression that calls this one (a user function's body counts
   // its caller's parentheses and calls: the stack is bounded by kMaxDepth in all).
-  Evaluator(std::string_view text, const Lookup& lookup, const FunctionLookup& functions, int depth = 0)
-      : s_(text), lookup_(lookup), functions_(functions), depth_(depth) {}
+  // `form_only`: value errors are not raised (check_expression).
+  Evaluator(std::string_view text, const Lookup& lookup, const FunctionLookup& functions, int depth = 0,
+            bool form_only = false)
+      : s_(text), lookup_(lookup), functions_(functions), depth_(depth), form_only_(form_only) {}
 
   double run() {
     skip();
@@ -99,9 +101,9 @@ class Evaluator {
   }
 
  private:
-  [[noreturn]] void fail(std::size_t offset, std::size_t length, std::string message, bool from_values = false) {
+  [[noreturn]] void fail(std::size_t offset, std::size_t length, std::string message) {
     throw ExpressionError{static_cast<int>(offset), static_cast<int>(std::max<std::size_t>(1, length)),
-                          std::move(message), from_values};
+                          std::move(message)};
   }
   [[noreturn]] void unexpected() {
     if (i_ >= s_.size()) fail(s_.size(), 1, "unexpected end of expression");
@@ -119,7 +121,10 @@ class Evaluator {
     return i_ < s_.size() && (s_[i_] == '^' || (s_[i_] == '*' && i_ + 1 < s_.size() && s_[i_ + 1] == '*'));
   }
   double check(double v, std::size_t offset, std::size_t length, const std::string& what) {
-    if (!std::isfinite(v)) fail(offset, length, "result of " + quote(what) + " is not a finite number", true);
+    if (!std::isfinite(v)) {
+      if (form_only_) return 0;
+      fail(offset, length, "result of " + quote(what) + " is not a finite number");
+    }
     return v;
   }
 
@@ -226,7 +231,7 @@ class Evaluator {
       char c = s_[i_++];
       double r = unary();
       if (c == '/') {
-        if (r == 0.0 && untaken_ == 0) fail(op, 1, "division by zero", true);
+        if (r == 0.0 && untaken_ == 0 && !form_only_) fail(op, 1, "division by zero");
         v = r == 0.0 ? 0.0 : check(v / r, op, 1, "/");  // 0: in a branch not taken (see expr())
       } else {
         v = check(v * r, op, 1, "*");
@@ -340,7 +345,10 @@ class Evaluator {
            quote(written) + " takes " + (f->max_args ? "" : "at least ") + n);
     }
     double v = f->apply(args);
-    if (!std::isfinite(v)) fail(start, written.size(), "invalid argument to " + quote(written), true);
+    if (!std::isfinite(v)) {
+      if (form_only_) return 0;
+      fail(start, written.size(), "invalid argument to " + quote(written));
+    }
     return v;
   }
 
@@ -362,13 +370,12 @@ class Evaluator {
     };
     CallLevel level;
     try {
-      return Evaluator(user.body, bound, functions_, depth_ + 1).run();
+      return Evaluator(user.body, bound, functions_, depth_ + 1, form_only_).run();
     } catch (const ExpressionError& e) {
       // Said once, at the outermost call: an error inside nested bodies, or the call budget.
       if (e.message.rfind("in function ", 0) == 0 || e.message.rfind("more than ", 0) == 0)
-        fail(start, written.size(), e.message, e.from_values);
-      fail(start, written.size(), "in function " + quote(written) + " (.func at " + user.defined_at + "): " + e.message,
-           e.from_values);
+        fail(start, written.size(), e.message);
+      fail(start, written.size(), "in function " + quote(written) + " (.func at " + user.defined_at + "): " + e.message);
     }
   }
 
@@ -376,6 +383,7 @@ class Evaluator {
   const Lookup& lookup_;
   const FunctionLookup& functions_;
   int depth_ = 0;
+  bool form_only_ = false;
   int untaken_ = 0;  // inside a conditional's branch not taken
   std::size_t i_ = 0;
 };
@@ -387,6 +395,11 @@ bool is_builtin_function(const std::string& lower) { return find_builtin(lower) 
 double evaluate_expression(std::string_view text, const Lookup& lookup, const FunctionLookup& functions) {
   if (call_depth == 0) calls = 0;  // an expression of the deck, not one inside a function body
   return Evaluator(text, lookup, functions).run();
+}
+
+void check_expression(std::string_view text, const Lookup& lookup, const FunctionLookup& functions) {
+  if (call_depth == 0) calls = 0;
+  Evaluator(text, lookup, functions, 0, true).run();
 }
 
 }  // namespace lcs::parse

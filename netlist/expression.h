@@ -21,8 +21,6 @@ struct ExpressionError {
   int offset = 0;
   int length = 1;
   std::string message;
-  // The text is well formed; its values fail it (a division by zero, log of a negative, ...).
-  bool from_values = false;
 };
 
 // Thrown by a Lookup that refuses a name it knows (a parameter defined in terms of itself, ...);
@@ -48,5 +46,10 @@ bool is_builtin_function(const std::string& lower);
 
 // Throws ExpressionError; the result is always finite.
 double evaluate_expression(std::string_view text, const Lookup& lookup, const FunctionLookup& functions = nullptr);
+
+// Reads all of `text` as evaluate_expression does and throws its ExpressionError for the form
+// only (syntax, an unknown function or name, an argument count, nesting), never for the values
+// (a division by zero, sqrt of a negative): for an expression whose names get their values later.
+void check_expression(std::string_view text, const Lookup& lookup, const FunctionLookup& functions = nullptr);
 
 }  // namespace lcs::parse

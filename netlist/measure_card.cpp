@@ -1,8 +1,9 @@
 #include "netlist/measure_card.h"
 
-#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <memory>
+#include <set>
 #include <stdexcept>
 #include <string>
 
@@ -118,7 +119,7 @@ class Reader {
     const std::string k = t.lower;
     if (k == "param") {
       m.kind = Measure::Kind::Param;
-      read_expression(m.expression);
+      read_expression(m.name, m.expression);
       return;
     }
     if (k == "deriv" || k == "derivative") throw Skip{card_.at(i_), "'.meas' DERIV is not supported by lcspice"};
@@ -179,10 +180,11 @@ class Reader {
   }
 
   // PARAM='expression' at i_ (also {expression}, or the bare expression to the card's end), or
-  // LTspice's `PARAM expression` without '='. Its syntax is checked here, the names it reads that
-  // are no parameters of the deck are recorded (they should be measures), and `evaluate` keeps
-  // the deck's parameters and functions it may read.
-  void read_expression(MeasureExpression& x) {
+  // LTspice's `PARAM expression` without '='. Its form is checked here (an error is a warning
+  // and the measure fails, as in ngspice), the names it reads that are no parameters of the
+  // deck are recorded (they should be measures), and `evaluate` keeps the deck's parameters and
+  // functions it may read.
+  void read_expression(const std::string& measure, MeasureExpression& x) {
     const std::size_t keyword = i_++;
     if (i_ < n_ && card_[i_].is(Token::Kind::Equals)) ++i_;
     if (i_ >= n_) fail_at(i_, "missing the expression after " + quote(card_.text(card_[keyword].begin, card_[i_ - 1].end)));
@@ -201,40 +203,53 @@ class Reader {
       auto it = functions->find(name);
       return it == functions->end() ? nullptr : &it->second;
     };
-    // The syntax, with 1 for each name that is no parameter. An error the values cause (a
-    // division by zero) is the deck's only when the expression reads no such name.
+    std::set<std::string> seen;
+    const std::string lower = to_lower(x.text);
+    std::size_t cursor = 0;  // names are met in reading order: each new one is first written past the last
     try {
-      evaluate_expression(x.text,
-                          [&](const std::string& name) -> std::optional<double> {
-                            if (auto it = values->find(name); it != values->end()) return it->second;
-                            if (std::find(x.names.begin(), x.names.end(), name) == x.names.end())
-                              x.names.push_back(name);
-                            return 1.0;
-                          },
-                          function);
+      check_expression(x.text,
+                       [&](const std::string& name) -> std::optional<double> {
+                         if (auto it = values->find(name); it != values->end()) return it->second;
+                         if (seen.insert(name).second) x.names.push_back({name, first_use(lower, name, cursor)});
+                         return 1.0;
+                       },
+                       function);
     } catch (const ExpressionError& e) {
-      if (!e.from_values || x.names.empty())
-        throw NetlistError(card_.span(begin + e.offset, begin + e.offset + e.length), e.message);
+      warnings_.push_back(warning_line(card_.span(begin + e.offset, begin + e.offset + e.length),
+                                       e.message + ": measure " + quote(measure) + " will fail (as in ngspice)"));
     }
-    // A measure's result hides a parameter of its name, as ngspice stores results as parameters.
     x.evaluate = [text = x.text, values, function](const MeasureExpression::MeasureLookup& measures) {
       const Lookup lookup = [&](const std::string& name) -> std::optional<double> {
-        std::optional<double> v;
+        std::string why;
         try {
-          v = measures(name);
+          if (std::optional<double> v = measures(name)) return v;
         } catch (const std::runtime_error& e) {
-          throw LookupFailure{e.what()};
+          why = e.what();
         }
-        if (v) return v;
         if (auto it = values->find(name); it != values->end()) return it->second;
-        throw LookupFailure{quote(name) + " is neither a measure lcspice computes nor a parameter"};
+        throw LookupFailure{why.empty() ? quote(name) + " is neither a measure lcspice computes nor a parameter" : why};
       };
       try {
+        check_expression(text, lookup, function);  // a syntax error before a division by zero ahead of it
         return evaluate_expression(text, lookup, function);
       } catch (const ExpressionError& e) {
-        throw std::runtime_error(e.message);
+        throw std::runtime_error("PARAM " + quote(text) + ": " + e.message);
       }
     };
+  }
+
+  // Where `name` is first written as a whole word in `lower` (the text in lower case), looking
+  // from `cursor` on (moved past it); npos when it is not there (a .func body reads it).
+  static std::size_t first_use(const std::string& lower, const std::string& name, std::size_t& cursor) {
+    auto word_char = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
+    for (std::size_t at = lower.find(name, cursor); at != std::string::npos; at = lower.find(name, at + 1)) {
+      const std::size_t after = at + name.size();
+      if ((at == 0 || !word_char(lower[at - 1])) && (after == lower.size() || !word_char(lower[after]))) {
+        cursor = after;
+        return at;
+      }
+    }
+    return std::string::npos;
   }
 
   // v(node), v(node1,node2), i(element), ... at i_, after the token `after`.

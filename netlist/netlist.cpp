@@ -24,6 +24,17 @@ const char* element_kind_name(ElementKind kind) {
   return "element";
 }
 
+SourceLocation MeasureExpression::location_of(const Name& n) const {
+  SourceLocation at = loc;
+  const std::size_t column = loc.column > 0 ? static_cast<std::size_t>(loc.column - 1) : std::string::npos;
+  if (n.offset == std::string::npos || column == std::string::npos ||
+      loc.line_text.compare(column, text.size(), text) != 0)
+    return at;
+  at.column = static_cast<int>(column + n.offset + 1);
+  at.length = static_cast<int>(n.name.size());
+  return at;
+}
+
 const char* measure_kind_name(Measure::Kind kind) {
   switch (kind) {
     case Measure::Kind::Avg: return "AVG";

@@ -178,14 +178,22 @@ struct MeasureCrossing {
 struct MeasureExpression {
   std::string text;                    // as written, without its quotes or braces
   SourceLocation loc;                  // the text on the card
-  // Names it reads that are neither parameters nor functions of the deck: the measures it uses,
-  // as far as the reader could tell (checked against the measures when the deck is elaborated).
-  std::vector<std::string> names;
+  // Names it reads that are neither parameters nor functions of the deck (lower-case, first
+  // use first): the measures it uses (checked against them when the deck is elaborated).
+  struct Name {
+    std::string name;
+    std::size_t offset = std::string::npos;  // its first use in `text`; npos: only a .func body reads it
+  };
+  std::vector<Name> names;
+  // Where a name is written on the card (the whole text when the text spans lines or a .func
+  // body reads it).
+  SourceLocation location_of(const Name& name) const;
   // Measure results by lower-case name: the value, nullopt for no measure of that name; throws
   // std::runtime_error saying why a measure of that name has no value.
   using MeasureLookup = std::function<std::optional<double>(const std::string& name)>;
-  // The value; throws std::runtime_error saying what failed (a name unknown or without a value,
-  // a division by zero, ...).
+  // The value; a measure's result hides a .param of its name, and a measure without a value
+  // leaves it seen (as ngspice stores results as parameters). Throws std::runtime_error saying
+  // what failed ("PARAM 'a/b': division by zero", a name unknown or without a value, ...).
   std::function<double(const MeasureLookup&)> evaluate;
 };
 

@@ -311,5 +311,68 @@ TEST(MeasureNgspice, ParamsAgreeWithNgspice) {
       << r.err;
 }
 
+// A measure's name shared with a .param: ngspice uses the .param until the measure has a value
+// (above it, itself, a later PARAM, a failed measure), the result after; and the PARAMs that
+// ngspice fails (a division by zero, bad syntax, a probe in the expression) fail in lcspice too,
+// with the deck run (ngspice 39.3 printed each value below).
+const char* kShadowDeck =
+    "shadow\n"
+    "V1 in 0 DC 1\n"
+    "R1 in out 1k\n"
+    "C1 out 0 1u IC=0\n"
+    ".tran 1u 5m UIC\n"
+    ".param gain=2 never=5 self=3\n"
+    ".meas tran early param='gain*vmax'\n"
+    ".meas tran vmax max v(out) to=2m\n"
+    ".meas tran gain param='3'\n"
+    ".meas tran after param='gain*vmax'\n"
+    ".meas tran self param='self*vmax'\n"
+    ".meas tran never when v(out)=2\n"
+    ".meas tran r param='never*2'\n"
+    ".meas tran bad param='1/(vmax-vmax)'\n"
+    ".meas tran syntax param='vmax*'\n"
+    ".meas tran probe param='v(out)*2'\n"
+    ".meas tran ok param='vmax+1'\n"
+    ".end\n";
+
+TEST(MeasureNgspice, ParamsSharingAParameterNameAndFailingAsNgspice) {
+  ::setenv("NGSPICE_MEAS_PRECISION", "10", 1);
+  NgspiceRun run;
+  run.deck = lines_of(kShadowDeck);
+  run.timeout_seconds = 60;
+  const std::vector<std::string> messages = run_ngspice_transient(run).messages;
+  std::map<std::string, double> ng = ngspice_measures(messages);
+  const fs::path file = write_deck("measure_ngspice_", "shadow", kShadowDeck);
+  const Result r = run_lcspice("run '" + file.string() + "' -o '" + (file.parent_path() / "out.csv").string() + "'",
+                               file.parent_path());
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::map<std::string, double> ours = lcspice_measures(r.err);
+  const double vmax = 1 - std::exp(-2.0);
+  const std::pair<const char*, double> computed[] = {{"early", 2 * vmax}, {"gain", 3},        {"after", 3 * vmax},
+                                                     {"self", 3 * vmax},  {"r", 10},          {"ok", vmax + 1}};
+  for (const auto& [name, closed_form] : computed) {
+    SCOPED_TRACE(name);
+    ASSERT_EQ(ng.count(name), 1u);
+    ASSERT_EQ(ours.count(name), 1u) << r.err;
+    EXPECT_LT(std::abs(ours.at(name) - ng.at(name)), 1e-5 * std::abs(ng.at(name)));  // vmax: 2e-6 apart
+    EXPECT_NEAR(ours.at(name), closed_form, 1e-8);
+  }
+  for (const char* name : {"bad", "syntax", "probe"}) {
+    SCOPED_TRACE(name);
+    EXPECT_TRUE(std::any_of(messages.begin(), messages.end(), [&](const std::string& m) {
+      return std::regex_match(m, std::regex(std::string("^") + name + "\\s+=\\s+failed\\s*$"));
+    }));
+    EXPECT_EQ(ours.count(name), 0u);
+  }
+  EXPECT_NE(r.err.find("lcspice: warning: .meas bad failed: PARAM '1/(vmax-vmax)': division by zero\n"), std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find(":15:31: warning: unexpected end of expression: measure 'syntax' will fail (as in ngspice)\n"),
+            std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find(":16:25: warning: unknown function 'v': measure 'probe' will fail (as in ngspice)\n"),
+            std::string::npos)
+      << r.err;
+}
+
 }  // namespace
 }  // namespace lcs
