@@ -125,7 +125,13 @@ void guard_source_sampling(const Netlist& netlist, bool step_given, const std::s
                                 options.method + " would need steps of " + seconds(finest->max_step) +
                                 ", more than " + std::to_string(static_cast<long>(kMaxGuardedSteps)) +
                                 " steps; " + remedy;
-    if (netlist.tran) throw CliError(kExitNetlist, NetlistError(netlist.tran->loc, message).formatted());
+    if (netlist.tran) {
+      std::string located = NetlistError(netlist.tran->loc, message).formatted();
+      const Element* e = netlist.find_element(finest->element);
+      if (e && e->loc.known())
+        located += "\n" + format_diagnostic(e->loc, "note", source + " is written here");
+      throw CliError(kExitNetlist, located);
+    }
     throw CliError(kExitUsage, "error: " + message);
   }
   options.substeps = k;

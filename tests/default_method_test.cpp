@@ -100,7 +100,7 @@ TEST(DefaultMethod, AnExplicitCoarseStepIsKeptWithAWarning) {
 }
 
 // Resolving a 1 ns edge written on the card over a 1 s run would take 1e9 steps: refused, at the
-// .tran card, with the remedies.
+// .tran card, with the remedies and a note at the source.
 TEST(DefaultMethod, AFixedStepThatCannotResolveASourceIsRefused) {
   const fs::path dir = scratch_dir("euler_refused");
   const fs::path deck = write_deck(dir, "edge.cir",
@@ -112,6 +112,11 @@ TEST(DefaultMethod, AFixedStepThatCannotResolveASourceIsRefused) {
                                ":6:1: error: TSTEP 1e-06 s cannot resolve source v1's rise time 1e-09 s: euler would "
                                "need steps of 1e-09 s, more than 10000000 steps; use --method event (exact between "
                                "events) or give --step");
+  // and a note at the source's card, which the remedy may be to change.
+  EXPECT_NE(r.err.find(deck.string() + ":2:1: note: source v1's rise time 1e-09 s is written here\n"
+                                       "V1 a 0 PULSE(0 1 0 1n 1n 0.5 1)\n^~\n"),
+            std::string::npos)
+      << r.err;
   EXPECT_FALSE(fs::exists(dir / "out.csv"));
 }
 
