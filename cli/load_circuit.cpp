@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iostream>
+#include <set>
 
 #include "cli/exit_codes.h"
 #include "solver/model/numerical_failure.h"
@@ -99,8 +100,13 @@ std::vector<Probe> probes_for(const Netlist& netlist, const CircuitModel& model,
     if (probes.empty()) throw CliError(kExitUsage, "error: --probe '" + cli_list + "' names no probe");
     return probes;
   }
-  if (!netlist.probes.empty()) return netlist.probes;
-  return model.default_probes();
+  if (!netlist.every_probe && !netlist.probes.empty()) return netlist.probes;
+  std::vector<Probe> probes = model.default_probes();
+  std::set<std::string> names;
+  for (const Probe& p : probes) names.insert(p.name());
+  for (const Probe& p : netlist.probes)
+    if (names.insert(p.name()).second) probes.push_back(p);
+  return probes;
 }
 
 OutputMap output_map_or_exit(const CircuitModel& model, const std::vector<Probe>& probes) {

@@ -22,7 +22,8 @@ CircuitModel build_model(const Netlist& netlist, double t0, double t1,
                          const std::map<std::string, DiodeCurrentRanges>& diode_ranges = {});
 // Probes from a `--probe` list ("v(a),v(p,n),i(d1)": commas inside parentheses belong to a probe).
 std::vector<Probe> parse_probe_list(const std::string& list);
-// The netlist's probes, else the model's defaults.
+// The netlist's probes, else the model's defaults (after a .print's V(*): the defaults, then the
+// netlist's probes not among them).
 std::vector<Probe> probes_for(const Netlist& netlist, const CircuitModel& model,
                               const std::string& cli_list);
 // The netlist's first S or W element; nullptr: none.

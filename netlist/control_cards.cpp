@@ -132,7 +132,7 @@ std::vector<NodeIc> parse_ic(const Card& card, const ParamScope& scope) {
   return out;
 }
 
-std::vector<Probe> parse_probe_card(const Card& card, std::vector<std::string>& warnings) {
+std::vector<Probe> parse_probe_card(const Card& card, std::vector<std::string>& warnings, bool& every) {
   std::vector<Probe> out;
   const std::size_t n = card.size();
   const bool save = classify_dot_card(card.keyword()) == DotCard::Save;
@@ -224,10 +224,10 @@ std::vector<Probe> parse_probe_card(const Card& card, std::vector<std::string>& 
     out.push_back(parse_probe(card.text(b, e), card.span(b, e)));
     i = end;
   }
-  // Every voltage and current are lcspice's default probes, which an empty list asks for; they
-  // include whatever else a .print card names (Xyce's `.PRINT TRAN V(*) I(R1)`). (.save and
-  // .probe keep their named entries, as `.save all v(a)` does.)
-  if (wildcard && !save) out.clear();
+  // Every voltage and current are lcspice's default probes; they include whatever else a .print
+  // card names (Xyce's `.PRINT TRAN V(*) I(R1)`, or on another card). (.save and .probe keep
+  // their named entries, as `.save all v(a)` does.)
+  if (wildcard && !save) every = true;
   if (!pspice_other.empty()) {
     std::string list;
     for (const std::string& e : pspice_other) list += (list.empty() ? "" : ", ") + e;

@@ -45,8 +45,10 @@ std::vector<NodeIc> parse_ic(const Card& card, const ParamScope& scope);
 // .print/.plot (`tran` or no analysis name: probes; another analysis: ignored with a warning)
 // and .save/.probe (`all`, `alli`, `allv` mean the default probes). Entries lcspice does not write
 // (expressions such as v(1)*i(r1), power p(x), device parameters @d1[id], FORMAT=) are skipped
-// with a warning each.
-std::vector<Probe> parse_probe_card(const Card& card, std::vector<std::string>& warnings);
+// with a warning each. A .print's V(*) or I(*) (Xyce; PSpice's V(alias(*))) asks for every
+// voltage and current, lcspice's default probes: `every` is set (the run writes them all, the
+// named probes of every card among them).
+std::vector<Probe> parse_probe_card(const Card& card, std::vector<std::string>& warnings, bool& every);
 void parse_options(const Card& card, const ParamScope& scope, Netlist& netlist);
 
 }  // namespace lcs::parse

@@ -237,7 +237,7 @@ class Elaborator {
         return;
       case DotCard::Print:
       case DotCard::Save:
-        for (Probe& p : parse_probe_card(card, net_.warnings)) net_.probes.push_back(std::move(p));
+        for (Probe& p : parse_probe_card(card, net_.warnings, print_every_probe_)) net_.probes.push_back(std::move(p));
         return;
       case DotCard::Options:
         parse_options(card, *in.scope, net_);
@@ -585,6 +585,7 @@ class Elaborator {
       if (seen.insert(checked.name()).second) unique.push_back(std::move(checked));
     }
     net_.probes = std::move(unique);
+    net_.every_probe = print_every_probe_;
   }
 
   // The probes of `.meas` cards, checked as `.print`'s are.
@@ -655,6 +656,7 @@ class Elaborator {
   std::map<std::string, std::string> model_types_;
   std::vector<CouplingRef> coupling_refs_;
   bool diode_capacitance_ = false;  // `.options diodecap`
+  bool print_every_probe_ = false;  // a .print's V(*) or I(*)
   std::optional<std::pair<std::string, SourceLocation>> first_temperature_coefficient_;
   struct UnsimulatedModel {
     std::string name, type;

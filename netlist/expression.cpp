@@ -37,6 +37,11 @@ const Function kFunctions[] = {
     {"asin", 1, 1, [](const std::vector<double>& a) { return std::asin(a[0]); }},
     {"acos", 1, 1, [](const std::vector<double>& a) { return std::acos(a[0]); }},
     {"atan", 1, 1, [](const std::vector<double>& a) { return std::atan(a[0]); }},
+    {"arctan", 1, 1, [](const std::vector<double>& a) { return std::atan(a[0]); }},
+    {"asinh", 1, 1, [](const std::vector<double>& a) { return std::asinh(a[0]); }},
+    {"acosh", 1, 1, [](const std::vector<double>& a) { return std::acosh(a[0]); }},
+    {"atanh", 1, 1, [](const std::vector<double>& a) { return std::atanh(a[0]); }},
+    {"sqr", 1, 1, [](const std::vector<double>& a) { return a[0] * a[0]; }},
     {"sinh", 1, 1, [](const std::vector<double>& a) { return std::sinh(a[0]); }},
     {"cosh", 1, 1, [](const std::vector<double>& a) { return std::cosh(a[0]); }},
     {"tanh", 1, 1, [](const std::vector<double>& a) { return std::tanh(a[0]); }},
@@ -189,7 +194,7 @@ class Evaluator {
   double comparison() {
     double v = sum();
     while (true) {
-      const char* const ops[] = {"==", "!=", "<=", ">=", "<", ">"};
+      const char* const ops[] = {"==", "!=", "<>", "<=", ">=", "<", ">"};
       const char* op = nullptr;
       for (const char* o : ops)
         if (at_operator(o)) {
@@ -200,7 +205,7 @@ class Evaluator {
       i_ += std::string_view(op).size();
       const double r = sum();
       const std::string_view o(op);
-      const bool b = o == "==" ? v == r : o == "!=" ? v != r : o == "<=" ? v <= r : o == ">=" ? v >= r
+      const bool b = o == "==" ? v == r : o == "!=" || o == "<>" ? v != r : o == "<=" ? v <= r : o == ">=" ? v >= r
                    : o == "<"  ? v < r  : v > r;
       v = b ? 1.0 : 0.0;
     }
@@ -226,11 +231,13 @@ class Evaluator {
 
   double term() {
     double v = unary();
-    while ((at('*') && !at_power()) || at('/')) {
+    while ((at('*') && !at_power()) || at('/') || at('%')) {
       std::size_t op = i_;
       char c = s_[i_++];
       double r = unary();
-      if (c == '/') {
+      if (c == '%') {  // ngspice: the remainder with the dividend's sign (-7 % 3 = -1, 7.5 % 2 = 1.5)
+        v = check(std::fmod(v, r), op, 1, "%");
+      } else if (c == '/') {
         if (r == 0.0 && untaken_ == 0 && !form_only_) fail(op, 1, "division by zero");
         v = r == 0.0 ? 0.0 : check(v / r, op, 1, "/");  // 0: in a branch not taken (see expr())
       } else {
@@ -255,17 +262,30 @@ class Evaluator {
     return power();
   }
 
+  // ngspice's numparam (libngspice 39.3): `^` and `**` group left to right (2^3^2 = 64,
+  // 2^-1^2 = 0.25) and take the base's magnitude ((-2)^3 = 8, (-8)^(1/3) = 2); below unary minus
+  // (-2^2 = -4), and an exponent may carry its own sign (2^-1).
   double power() {
-    double base = primary();
-    if (at_power()) {
+    double v = primary();
+    while (at_power()) {
       std::size_t op = i_;
       std::size_t len = s_[i_] == '^' ? 1 : 2;
       i_ += len;
       Depth d(*this, op);
-      double exponent = unary();  // right-associative; 2^-1 allowed
-      return check(std::pow(base, exponent), op, len, std::string(s_.substr(op, len)));
+      const double exponent = signed_primary();
+      v = check(std::pow(std::fabs(v), exponent), op, len, std::string(s_.substr(op, len)));
     }
-    return base;
+    return v;
+  }
+
+  double signed_primary() {
+    if (at('+') || at('-')) {
+      Depth d(*this, i_);
+      const char c = s_[i_++];
+      const double v = signed_primary();
+      return c == '-' ? -v : v;
+    }
+    return primary();
   }
 
   double primary() {

@@ -1,7 +1,9 @@
-// Arithmetic expressions of `.param` and `{...}`: + - * / ^ ** (right-associative), unary +-,
-// parentheses, numbers with SPICE suffixes, parameter names, `pi`, and the functions sqrt exp
-// log (natural) ln log10 abs sin cos tan asin acos atan sinh cosh tanh min max pow floor ceil,
-// and ngspice's comparisons == != < <= > >=, logic && || (also & |) and !, and if(c, a, b)
+// Arithmetic expressions of `.param` and `{...}`: + - * / % (remainder) ^ ** (as ngspice 39.3's
+// numparam: left to right, of the base's magnitude: 2^3^2 = 64, (-2)^3 = 8), unary +-,
+// parentheses, numbers with SPICE suffixes, parameter names, `pi`, and the functions sqrt sqr exp
+// log (natural) ln log10 abs sin cos tan asin acos atan (arctan) sinh cosh tanh asinh acosh atanh
+// min max pow pwr floor ceil int nint sgn,
+// and ngspice's comparisons == != <> < <= > >=, logic && || (also & |) and !, and if(c, a, b)
 // (true is 1, false 0; a condition is true when nonzero). `.func name(a, b) {body}` defines a
 // user function: a call binds the arguments to the parameter names and evaluates the body, whose
 // other names are looked up where the call is (as ngspice expands a .func in place).

@@ -186,14 +186,27 @@ class Reader {
   // functions it may read.
   void read_expression(const std::string& measure, MeasureExpression& x) {
     const std::size_t keyword = i_++;
-    if (i_ < n_ && card_[i_].is(Token::Kind::Equals)) ++i_;
-    if (i_ >= n_) fail_at(i_, "missing the expression after " + quote(card_.text(card_[keyword].begin, card_[i_ - 1].end)));
+    const bool equals = i_ < n_ && card_[i_].is(Token::Kind::Equals);
+    if (equals) ++i_;
+    if (i_ >= n_)
+      throw Skip{i_ < n_ ? card_.at(i_) : card_.after_last(),
+                 "missing the expression after " + quote(card_.text(card_[keyword].begin, card_[i_ - 1].end))};
     const Token& t = card_[i_];
-    int begin = t.begin, end = card_[n_ - 1].end;
+    // ngspice 39.3 reads PARAM= up to the first blank: `PARAM=vmax * 5` is vmax (and the rest is
+    // ignored, as after 'expr' or {expr}); LTspice's PARAM without '=' takes the rest of the line.
+    std::size_t last = i_;
     if (t.is_expression()) {
-      if (i_ + 1 < n_) fail_at(i_ + 1, "unexpected extra token " + quote(card_[i_ + 1].text) + " after PARAM's expression");
-      ++begin, --end;
+    } else if (equals) {
+      while (last + 1 < n_ && card_[last + 1].begin == card_[last].end) ++last;
+    } else {
+      last = n_ - 1;
     }
+    int begin = t.begin, end = card_[last].end;
+    if (t.is_expression()) ++begin, --end;
+    if (last + 1 < n_)
+      warnings_.push_back(warning_line(card_.span(card_[last + 1].begin, card_[n_ - 1].end),
+                                       "ignored after PARAM's expression, as ngspice ignores it (write PARAM='...' "
+                                       "for one with blanks)"));
     i_ = n_;
     x.text = card_.text(begin, end);
     x.loc = card_.span(begin, end);

@@ -231,6 +231,9 @@ struct Netlist {
   std::vector<NodeIc> node_ics;
   std::vector<NodeIc> node_sets;       // `.nodeset`: choose among several operating points
   std::vector<Probe> probes;           // `.print tran` and `.save`, in order, duplicates removed
+  // A .print asked for V(*) or I(*) (Xyce, PSpice's alias(*)): the default probes, then those of
+  // `probes` that are not among them (cli probes_for).
+  bool every_probe = false;
   std::vector<Measure> measures;       // `.meas tran`, in card order (probes checked like .print's)
   std::map<std::string, std::string> options;  // `.options` name (lower-case) -> value text ("" for flags)
   // Set by smooth_netlist (solver/model): every diode is a Shockley junction with the card's

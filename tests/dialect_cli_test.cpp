@@ -85,6 +85,27 @@ TEST(DialectCli, DcOnlyDeckIsRefusedForHavingNoTransientAnalysis) {
   EXPECT_FALSE(fs::exists(dir / "o.csv"));
 }
 
+// Xyce's `.PRINT TRAN V(*)` with named probes on another .print (or on the same card): every
+// voltage and current, then the named probes the defaults lack. Before, the second card narrowed
+// the output to its probes (and on one card the named ones beyond the defaults were dropped).
+TEST(DialectCli, WildcardPrintKeepsTheNamedProbesOfEveryCard) {
+  const fs::path dir = scratch_dir("dialect_wildcard_print");
+  for (const char* cards : {".PRINT TRAN FORMAT=CSV V(*)\n.print tran i(r1) v(a,b) v(b)\n",
+                            ".print tran i(r1) v(a,b) v(b) V(*)\n"}) {
+    SCOPED_TRACE(cards);
+    const fs::path deck = write_deck(dir, "x.cir",
+                                     std::string("x\nV1 a 0 SIN(0 1 1k)\nR1 a b 1k\nD1 b 0 dm\n"
+                                                 ".model dm D(VON=0.7 RON=1)\n.tran 10u 1m\n") + cards + ".end\n");
+    Result r = run_lcspice("run '" + deck.string() + "' -o '" + (dir / "o.csv").string() + "'", dir);
+    ASSERT_EQ(r.code, 0) << r.err;
+    const Csv csv = parse_csv(read_file(dir / "o.csv"));
+    EXPECT_EQ(csv.header, (std::vector<std::string>{"time", "v(a)", "v(b)", "i(v1)", "i(d1)", "i(r1)", "v(a,b)"}));
+    ASSERT_FALSE(csv.rows.empty());
+    // i(r1) = v(a,b) / 1k on every row.
+    for (const std::vector<double>& row : csv.rows) EXPECT_NEAR(row[5], row[6] / 1e3, 1e-12);
+  }
+}
+
 // LTspice's `K1 LP LS1 LS2 k` is the three pairwise couplings: a centre-tapped full-wave
 // rectifier written with one K card gives the rows of the deck written with three, to the last bit.
 TEST(DialectCli, OneCouplingCardOfThreeWindingsIsThreeCards) {

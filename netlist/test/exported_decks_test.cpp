@@ -55,10 +55,16 @@ TEST(ExportedDecks, XycePrintOptionsAndWildcards) {
   EXPECT_EQ(n.warnings[0], "t.cir:5:13: warning: '.print': FORMAT= is ignored (lcspice writes CSV)");
   EXPECT_EQ(n.warnings[1], "t.cir:5:24: warning: '.print': FILE= is ignored (lcspice writes to -o)");
   EXPECT_EQ(n.warnings[2], "t.cir:5:37: warning: '.print': WIDTH= is ignored");
-  // With named entries beside it, V(*) still asks for every voltage and current (they include
-  // the named ones).
-  const Netlist mixed = test::parse("t\nV1 a 0 1\nR1 a 0 1\n.tran 1u 2u\n.PRINT TRAN I(R1) V(*)\n");
-  EXPECT_TRUE(mixed.probes.empty()) << names(mixed.probes);
+  EXPECT_TRUE(n.every_probe);
+  // With named entries beside it, or on another .print, V(*) still asks for every voltage and
+  // current, and the named ones are kept (the run writes those the defaults lack, i(r1) here).
+  for (const char* cards : {".PRINT TRAN I(R1) V(*)\n", ".PRINT TRAN V(*)\n.print tran i(r1)\n",
+                            ".print tran i(r1)\n.PRINT TRAN V(*)\n"}) {
+    const Netlist mixed = test::parse(std::string("t\nV1 a 0 1\nR1 a 0 1\n.tran 1u 2u\n") + cards);
+    EXPECT_TRUE(mixed.every_probe) << cards;
+    EXPECT_EQ(names(mixed.probes), "i(r1) ") << cards;
+  }
+  EXPECT_FALSE(test::parse("t\nV1 a 0 1\nR1 a 0 1\n.tran 1u 2u\n.print tran i(r1)\n").every_probe);
 }
 
 // LTspice's own help writes `.meas TRAN eff PARAM vout_avg**2/5/24` (no '='): it stopped the deck

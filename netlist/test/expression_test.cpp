@@ -42,7 +42,24 @@ TEST(ParseExpression, ArithmeticAndPrecedence) {
   EXPECT_EQ(eval("10/4"), 2.5);
   EXPECT_EQ(eval("10-4-3"), 3);   // left-associative
   EXPECT_EQ(eval("16/4/2"), 2);
-  EXPECT_EQ(eval("2^3^2"), 512);  // right-associative
+  // ngspice 39.3's numparam (libngspice): powers group left to right, of the base's magnitude.
+  EXPECT_EQ(eval("2^3^2"), 64);
+  EXPECT_EQ(eval("2**3**2"), 64);
+  EXPECT_EQ(eval("2^-1^2"), 0.25);
+  EXPECT_EQ(eval("(-2)^3"), 8);
+  EXPECT_DOUBLE_EQ(eval("(-8)^(1/3)"), 2);
+  EXPECT_EQ(eval("7%3"), 1);  // and ngspice's remainder, <>, sqr, arctan, the inverse hyperbolics
+  EXPECT_EQ(eval("-7%3"), -1);
+  EXPECT_EQ(eval("7.5%2"), 1.5);
+  EXPECT_EQ(eval("2+7%3"), 3);
+  EXPECT_EQ(eval("2*7%4"), 2);
+  EXPECT_EQ(eval("2<>3"), 1);
+  EXPECT_EQ(eval("3<>3"), 0);
+  EXPECT_EQ(eval("sqr(-2)"), 4);
+  EXPECT_DOUBLE_EQ(eval("arctan(1)"), 0.7853981633974483);
+  EXPECT_NEAR(eval("asinh(1)"), 8.8137358702e-01, 1e-11);
+  EXPECT_NEAR(eval("acosh(2)"), 1.3169578969e+00, 1e-10);
+  EXPECT_NEAR(eval("atanh(0.5)"), 5.4930614433e-01, 1e-11);
   EXPECT_EQ(eval("2**3"), 8);
   EXPECT_EQ(eval("2*3**2"), 18);
   EXPECT_EQ(eval("-2^2"), -4);    // power binds tighter than unary minus
