@@ -274,19 +274,40 @@ const char* kParamDeck =
     ".meas tran tau param=tr/log(9)\n"
     ".end\n";
 
-TEST(MeasureNgspice, ParamsAgreeWithNgspice) {
+// A deck through ngspice (its messages and printed measures) and through `lcspice run`.
+struct BothRuns {
+  std::vector<std::string> messages;
+  std::map<std::string, double> ng, ours;
+  Result r;
+  // ngspice printed `name = failed`.
+  bool ngspice_failed(const std::string& name) const {
+    return std::any_of(messages.begin(), messages.end(), [&](const std::string& m) {
+      return std::regex_match(m, std::regex("^" + name + "\\s+=\\s+failed\\s*$"));
+    });
+  }
+};
+
+BothRuns run_both(const std::string& name, const char* deck) {
   ::setenv("NGSPICE_MEAS_PRECISION", "10", 1);
   NgspiceRun run;
-  run.deck = lines_of(kParamDeck);
+  run.deck = lines_of(deck);
   run.timeout_seconds = 60;
-  const std::vector<std::string> messages = run_ngspice_transient(run).messages;
-  const std::map<std::string, double> ng = ngspice_measures(messages);
+  BothRuns b;
+  b.messages = run_ngspice_transient(run).messages;
+  b.ng = ngspice_measures(b.messages);
+  const fs::path file = write_deck("measure_ngspice_", name, deck);
+  b.r = run_lcspice("run '" + file.string() + "' -o '" + (file.parent_path() / "out.csv").string() + "'",
+                    file.parent_path());
+  b.ours = lcspice_measures(b.r.err);
+  return b;
+}
 
-  const fs::path file = write_deck("measure_ngspice_", "params", kParamDeck);
-  const Result r = run_lcspice("run '" + file.string() + "' -o '" + (file.parent_path() / "out.csv").string() + "'",
-                               file.parent_path());
+TEST(MeasureNgspice, ParamsAgreeWithNgspice) {
+  const BothRuns b = run_both("params", kParamDeck);
+  const std::map<std::string, double>& ng = b.ng;
+  const std::map<std::string, double>& ours = b.ours;
+  const Result& r = b.r;
   ASSERT_EQ(r.code, 0) << r.err;
-  const std::map<std::string, double> ours = lcspice_measures(r.err);
   for (const char* name : {"ratio", "twice", "tau"}) {
     SCOPED_TRACE(name);
     ASSERT_EQ(ng.count(name), 1u);
@@ -301,10 +322,7 @@ TEST(MeasureNgspice, ParamsAgreeWithNgspice) {
   EXPECT_NEAR(ours.at("ratio"), vmax * 2 / vtau, 1e-8);
   EXPECT_NEAR(ours.at("twice"), 2 * vmax * 2 / vtau + vtau / 2, 2e-8);
   EXPECT_NEAR(ours.at("tau"), 1e-3, 1e-9);  // tr = tau ln 9: 10 % to 90 % of 1 - exp(-t / tau)
-  // ngspice: "early               =   failed", after "Undefined parameter [tau]".
-  EXPECT_TRUE(std::any_of(messages.begin(), messages.end(), [](const std::string& m) {
-    return std::regex_match(m, std::regex("^early\\s+=\\s+failed\\s*$"));
-  }));
+  EXPECT_TRUE(b.ngspice_failed("early"));  // after "Undefined parameter [tau]"
   EXPECT_EQ(ours.count("early"), 0u);
   EXPECT_NE(r.err.find("lcspice: warning: .meas early failed: PARAM 'tau*2': measure 'tau' is a PARAM further down"),
             std::string::npos)
@@ -336,17 +354,11 @@ const char* kShadowDeck =
     ".end\n";
 
 TEST(MeasureNgspice, ParamsSharingAParameterNameAndFailingAsNgspice) {
-  ::setenv("NGSPICE_MEAS_PRECISION", "10", 1);
-  NgspiceRun run;
-  run.deck = lines_of(kShadowDeck);
-  run.timeout_seconds = 60;
-  const std::vector<std::string> messages = run_ngspice_transient(run).messages;
-  std::map<std::string, double> ng = ngspice_measures(messages);
-  const fs::path file = write_deck("measure_ngspice_", "shadow", kShadowDeck);
-  const Result r = run_lcspice("run '" + file.string() + "' -o '" + (file.parent_path() / "out.csv").string() + "'",
-                               file.parent_path());
+  const BothRuns b = run_both("shadow", kShadowDeck);
+  const std::map<std::string, double>& ng = b.ng;
+  const std::map<std::string, double>& ours = b.ours;
+  const Result& r = b.r;
   ASSERT_EQ(r.code, 0) << r.err;
-  const std::map<std::string, double> ours = lcspice_measures(r.err);
   const double vmax = 1 - std::exp(-2.0);
   const std::pair<const char*, double> computed[] = {{"early", 2 * vmax}, {"gain", 3},        {"after", 3 * vmax},
                                                      {"self", 3 * vmax},  {"r", 10},          {"ok", vmax + 1}};
@@ -359,9 +371,7 @@ TEST(MeasureNgspice, ParamsSharingAParameterNameAndFailingAsNgspice) {
   }
   for (const char* name : {"bad", "syntax", "probe"}) {
     SCOPED_TRACE(name);
-    EXPECT_TRUE(std::any_of(messages.begin(), messages.end(), [&](const std::string& m) {
-      return std::regex_match(m, std::regex(std::string("^") + name + "\\s+=\\s+failed\\s*$"));
-    }));
+    EXPECT_TRUE(b.ngspice_failed(name));
     EXPECT_EQ(ours.count(name), 0u);
   }
   EXPECT_NE(r.err.find("lcspice: warning: .meas bad failed: PARAM '1/(vmax-vmax)': division by zero\n"), std::string::npos)
