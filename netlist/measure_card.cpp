@@ -189,18 +189,15 @@ class Reader {
     const bool equals = i_ < n_ && card_[i_].is(Token::Kind::Equals);
     if (equals) ++i_;
     if (i_ >= n_)
-      throw Skip{i_ < n_ ? card_.at(i_) : card_.after_last(),
+      throw Skip{card_.after_last(),
                  "missing the expression after " + quote(card_.text(card_[keyword].begin, card_[i_ - 1].end))};
     const Token& t = card_[i_];
     // ngspice 39.3 reads PARAM= up to the first blank: `PARAM=vmax * 5` is vmax (and the rest is
     // ignored, as after 'expr' or {expr}); LTspice's PARAM without '=' takes the rest of the line.
     std::size_t last = i_;
-    if (t.is_expression()) {
-    } else if (equals) {
+    if (!t.is_expression() && !equals) last = n_ - 1;
+    if (!t.is_expression() && equals)
       while (last + 1 < n_ && card_[last + 1].begin == card_[last].end) ++last;
-    } else {
-      last = n_ - 1;
-    }
     int begin = t.begin, end = card_[last].end;
     if (t.is_expression()) ++begin, --end;
     if (last + 1 < n_)
@@ -243,9 +240,14 @@ class Reader {
         throw LookupFailure{why.empty() ? quote(name) + " is neither a measure lcspice computes nor a parameter" : why};
       };
       try {
-        check_expression(text, lookup, function);  // a syntax error before a division by zero ahead of it
         return evaluate_expression(text, lookup, function);
       } catch (const ExpressionError& e) {
+        // A syntax error is said before a division by zero ahead of it.
+        try {
+          check_expression(text, lookup, function);
+        } catch (const ExpressionError& form) {
+          throw std::runtime_error("PARAM " + quote(text) + ": " + form.message);
+        }
         throw std::runtime_error("PARAM " + quote(text) + ": " + e.message);
       }
     };
