@@ -23,6 +23,7 @@
 #include "cli/exit_codes.h"
 #include "cli/gnuplot.h"
 #include "cli/load_circuit.h"
+#include "cli/progress.h"
 #include "cli/source_sampling.h"
 #include "cli/require_ngspice.h"
 #include "cli/validate_tube.h"
@@ -170,12 +171,14 @@ bool sets_option(const std::vector<std::string>& options, const std::string& nam
 
 // One ngspice run of the translated deck; NgspiceError as exit 3 with ngspice's last words.
 // `timestep_too_small`, when given, says whether ngspice gave up with "Timestep too small".
-NgspiceResult run_witness(const std::vector<std::string>& deck, double timeout, bool* timestep_too_small = nullptr) {
+NgspiceResult run_witness(const TranslatedDeck& deck, double timeout, bool* timestep_too_small = nullptr) {
   NgspiceResult theirs;
   try {
     NgspiceRun nr;
-    nr.deck = deck;
+    nr.deck = deck.lines;
     nr.timeout_seconds = timeout;
+    ProgressLine line("validate: ngspice");
+    if (line.enabled()) nr.progress = [&](double t) { line.update(t / deck.tstop); };
     theirs = run_ngspice_transient(nr);
   } catch (const NgspiceError& e) {
     if (timestep_too_small && e.kind() == NgspiceError::Kind::Convergence) {
@@ -412,7 +415,7 @@ bool report_convergence(const ValidateArgs& args, const CircuitModel& model, con
     const TranslatedDeck deck = translate_to_ngspice(model, all, topt);
     NgspiceResult theirs;
     try {
-      theirs = run_witness(deck.lines, args.timeout);
+      theirs = run_witness(deck, args.timeout);
     } catch (const CliError& e) {
       char at[64];
       std::snprintf(at, sizeof at, "ngspice gave up at N = %g: ", topt.emission);
@@ -722,7 +725,7 @@ int validate_with_faults(const ValidateArgs& args, const NgspiceDeckFaults& faul
   {
     bool too_small = false;
     try {
-      theirs = run_witness(deck.lines, args.timeout, &too_small);
+      theirs = run_witness(deck, args.timeout, &too_small);
     } catch (const CliError&) {
       const bool user_rshunt = sets_option(topt.options, "rshunt");
       if (!too_small || user_rshunt) throw;
@@ -732,7 +735,7 @@ int validate_with_faults(const ValidateArgs& args, const NgspiceDeckFaults& faul
       topt.options.push_back("rshunt=1e9");
       shunted = true;
       deck = translate_to_ngspice(model, all, topt);
-      theirs = run_witness(deck.lines, args.timeout);
+      theirs = run_witness(deck, args.timeout);
     }
   }
   // The .nodeset did not keep ngspice in lcspice's state (a flip-flop whose witness still found
@@ -753,7 +756,7 @@ int validate_with_faults(const ValidateArgs& args, const NgspiceDeckFaults& faul
         if (topt.nodesets.count(node)) topt.node_holds[node] = topt.nodesets.at(node);
       topt.nodesets.clear();
       deck = translate_to_ngspice(model, all, topt);
-      theirs = run_witness(deck.lines, args.timeout);
+      theirs = run_witness(deck, args.timeout);
       held_everywhere = true;
       build_far_wall(topt.node_holds);
     }
@@ -815,7 +818,7 @@ int validate_with_faults(const ValidateArgs& args, const NgspiceDeckFaults& faul
     TranslationOptions again = topt;
     for (const std::string& o : extra) again.options.push_back(o);
     TranslatedDeck again_deck = translate_to_ngspice(model, all, again);
-    NgspiceResult again_theirs = run_witness(again_deck.lines, args.timeout);
+    NgspiceResult again_theirs = run_witness(again_deck, args.timeout);
     std::vector<std::vector<double>> again_interpolated;
     std::vector<ProbeComparison> again_rows = compare_with(again_theirs, again_deck, again_interpolated);
     const int worst = worst_outside(again_rows);

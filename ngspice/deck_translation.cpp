@@ -160,6 +160,7 @@ TranslatedDeck translate_to_ngspice(const Netlist& netlist, const std::vector<st
   double tmax = tran.tmax > 0 && tran.tmax < tran.tstep ? tran.tmax : tran.tstep;
   if (options.max_step > 0) tmax = options.max_step;  // asked for explicitly: it wins
   const double tstop = options.tstop > 0 ? options.tstop : tran.tstop;
+  deck.tstop = tstop;
   deck.lines.push_back(".tran " + num(tran.tstep) + " " + num(tstop) + " " + num(tran.tstart) +
                        " " + num(tmax) + (uic ? " uic" : ""));
   if (!options.options.empty()) {

@@ -65,6 +65,7 @@ struct TranslationOptions {
 
 struct TranslatedDeck {
   std::vector<std::string> lines;            // title first, `.end` last
+  double tstop = 0;                          // where its .tran ends
   std::map<std::string, ProbeSource> probes; // by lcspice probe name ("v(a)", "i(d1)")
   std::vector<std::string> ideal_diodes;     // devices whose junctions are threshold source + sharp Shockley
   std::vector<std::string> witnesses;        // what stands in for a device, where it says (transistors)

@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <condition_variable>
@@ -149,6 +150,10 @@ class Engine {
 
   // ngspice callbacks (ngspice's threads; must not throw, must not call back into ngspice)
   static int on_char(char* text, int, void* self);
+  // Every accepted point of a running analysis (ngspice's SendData), for progress: the scale.
+  // ngspice fills what it sends only when a SendInitData callback is given too (sh_vecinit).
+  static int on_data(pvecvaluesall values, int, int, void* self);
+  static int on_init_data(pvecinfoall, int, void*) { return 0; }
   static int on_exit(int status, NG_BOOL immediate, NG_BOOL quit, int, void* self);
   static int on_bg_thread(NG_BOOL exited, int, void* self);
 
@@ -183,6 +188,7 @@ class Engine {
   void reset_run_state() {
     std::lock_guard<std::mutex> lock(state_mutex_);
     log_.clear();
+    simulated_time_ = 0;
   }
   bool exit_requested() {
     std::lock_guard<std::mutex> lock(state_mutex_);
@@ -218,6 +224,7 @@ class Engine {
   bool exit_on_quit_ = false;
   long bg_starts_ = 0;
   long bg_ends_ = 0;
+  std::atomic<double> simulated_time_{0};  // the scale of the last accepted point (on_data)
 
   const NgspiceLibrary* ngspice_ = nullptr;  // set once the library is loaded
   bool initialised_ = false;
@@ -232,6 +239,18 @@ int Engine::on_char(char* text, int, void* self) {
     std::lock_guard<std::mutex> lock(engine->state_mutex_);
     engine->log_.add(std::move(line));
   } catch (...) {
+  }
+  return 0;
+}
+
+int Engine::on_data(pvecvaluesall values, int, int, void* self) {
+  if (!values || !values->vecsa) return 0;
+  for (int k = 0; k < values->veccount; ++k) {
+    const pvecvalues v = values->vecsa[k];
+    if (v && v->is_scale) {
+      static_cast<Engine*>(self)->simulated_time_.store(v->creal, std::memory_order_relaxed);
+      break;
+    }
   }
   return 0;
 }
@@ -284,8 +303,8 @@ void Engine::ensure_initialised() {
   {
     SignalGuard signals;
     ngspice_passwd::PasswdFallback fallback;
-    rc = ngspice_->ngSpice_Init(&Engine::on_char, nullptr, &Engine::on_exit, nullptr, nullptr,
-                                &Engine::on_bg_thread, this);
+    rc = ngspice_->ngSpice_Init(&Engine::on_char, nullptr, &Engine::on_exit, &Engine::on_data,
+                                &Engine::on_init_data, &Engine::on_bg_thread, this);
     stand_in_home = fallback.used();
   }
   info_.init_messages = log_texts();
@@ -475,7 +494,10 @@ NgspiceResult Engine::run(const NgspiceRun& run) {
   command("bg_run");
 
   bool finished = false;
+  double reported = 0;
   while (true) {
+    if (run.progress && simulated_time_.load(std::memory_order_relaxed) > reported)
+      run.progress(reported = simulated_time_.load(std::memory_order_relaxed));
     if (wait_for_thread_end(ends_before, std::min(deadline, Clock::now() + kPollInterval))) {
       finished = true;
       break;

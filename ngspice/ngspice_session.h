@@ -11,6 +11,7 @@
 // ngspice/README.md for what ngspice needs to behave.
 #pragma once
 
+#include <functional>
 #include <map>
 #include <stdexcept>
 #include <string>
@@ -23,6 +24,9 @@ struct NgspiceRun {                      // what to simulate
                                          // `.end` last (entries holding several lines are split;
                                          // a missing `.end` is added; lines after `.end` dropped)
   double timeout_seconds = 60;           // wall-clock limit for the transient (finite, > 0)
+  // Optional. Called on the caller's thread while the transient runs (every few ms, when it has
+  // moved on), with the simulated time of ngspice's last accepted point.
+  std::function<void(double simulated_time)> progress;
 };
 
 struct NgspiceResult {

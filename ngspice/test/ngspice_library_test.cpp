@@ -107,7 +107,7 @@ TEST(NgspiceLibraryDeathTest, WithoutTheLibraryTheBridgeSaysNoLibrary) {
           if (!contains(e.what(), "/nonexistent/libngspice.so.0: cannot open")) status = 3;
         }
         try {
-          run_ngspice_transient({{"t", "r1 a 0 1", ".tran 1m 1m", ".end"}, 10});
+          run_ngspice_transient({{"t", "r1 a 0 1", ".tran 1m 1m", ".end"}, 10, nullptr});
           status = 4;
         } catch (const NgspiceError& e) {
           if (e.kind() != NgspiceError::Kind::NoLibrary) status = 5;

@@ -18,6 +18,7 @@
 #include <future>
 #include <iostream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "ngspice/ngspice_session.h"
@@ -388,6 +389,42 @@ TEST(NgspiceErrors, TimeoutHaltsTheRunAndNgspiceStaysUsable) {
   NgspiceResult r = run_ngspice_transient(run_of(kRcDeck));
   EXPECT_LT(max_rc_error(r), 1e-3);
   EXPECT_NEAR(r.time.back(), 5e-3, 1e-12);
+}
+
+TEST(NgspiceSession, ProgressIsReportedOnTheCallersThreadAsItGrows) {
+  std::vector<double> times;
+  const std::thread::id caller = std::this_thread::get_id();
+  bool other_thread = false;
+  NgspiceRun run = run_of(kLongDeck, 1.0);
+  run.progress = [&](double t) {
+    times.push_back(t);
+    other_thread |= std::this_thread::get_id() != caller;
+  };
+  double halted_at = 0;
+  try {
+    run_ngspice_transient(run);
+    ADD_FAILURE() << "the 10 s transient at 1 ns steps finished within 1 s";
+  } catch (const NgspiceError& e) {
+    EXPECT_EQ(e.kind(), Kind::Timeout) << e.what();
+    const std::string what = e.what();
+    const size_t at = what.find("halted at simulated time ");
+    if (at != std::string::npos) halted_at = std::atof(what.c_str() + at + 25);
+  }
+  EXPECT_FALSE(other_thread);
+  ASSERT_GE(times.size(), 10u);  // polled every 5 ms for 1 s while ngspice moves on at 1 ns
+  EXPECT_GT(times.front(), 0.0);
+  for (size_t k = 1; k < times.size(); ++k) ASSERT_GT(times[k], times[k - 1]);
+  EXPECT_LE(times.back(), halted_at);  // ngspice's accepted points reach no further than the plot
+  std::cout << "[ detail ] progress: " << times.size() << " reports, last " << times.back()
+            << " s of 10 s; halted at " << halted_at << " s\n";
+
+  // A run that completes reports no point beyond TSTOP, and the next run starts from 0 again.
+  times.clear();
+  NgspiceRun rc = run_of(kRcDeck);
+  rc.progress = [&](double t) { times.push_back(t); };
+  NgspiceResult r = run_ngspice_transient(rc);
+  for (double t : times) EXPECT_LE(t, 5e-3);
+  EXPECT_LT(max_rc_error(r), 1e-3);
 }
 
 TEST(NgspiceErrors, DeckWithoutTranIsNoData) {
