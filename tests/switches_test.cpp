@@ -49,6 +49,49 @@ TEST(Switches, RcChargedThroughARampedSwitch) {
   }
 }
 
+// A switch on a PULSE with zero-width edges (TR = TF = 0, the common idiom) chops an RC: on at
+// 5 us + k 50 us, off 20 us later. On, C1 charges towards 10 V 1000/2001 through 1001 || 1000 ohm
+// (tau 5.0025 us); off, it discharges through RL (tau 10 us). The grid times k h lie an ulp on
+// either side of the edges (10 * 0.5 us is 4.9999999999999996e-6, the edge 5e-6): the fixed-step
+// methods switched half a step late (0.24 V off the closed form for all of them), and the smooth
+// method stopped (IDACalcIC: "tout1 too close to t0", its segment starting an ulp before the edge).
+TEST(Switches, ZeroWidthPulseEdgesSwitchAtTheEdges) {
+  const fs::path deck = write_deck("switch_deck_", "zero_width_edges", R"(chopped RC
+VIN in 0 DC 10
+VCTL ctl 0 PULSE(0 5 5u 0 0 20u 50u)
+S1 in x ctl 0 SMOD
+R1 x out 1k
+C1 out 0 10n
+RL out 0 1k
+.model SMOD SW(VT=2.5 VH=0 RON=1 ROFF=1e12)
+.tran 0.5u 200u
+.end
+)");
+  const double v_on = 10 * 1000.0 / 2001, tau_on = 1001 * 1000.0 / 2001 * 10e-9, tau_off = 10e-6;
+  auto exact = [&](double t) {
+    double v = 0, from = 0;
+    bool on = false;
+    for (int k = 0; k < 4; ++k)
+      for (double edge : {5e-6 + k * 50e-6, 25e-6 + k * 50e-6}) {
+        if (edge > t) break;
+        v = on ? v_on + (v - v_on) * std::exp(-(edge - from) / tau_on) : v * std::exp(-(edge - from) / tau_off);
+        on = !on, from = edge;
+      }
+    return on ? v_on + (v - v_on) * std::exp(-(t - from) / tau_on) : v * std::exp(-(t - from) / tau_off);
+  };
+  // event and radau5: exact to ROFF's leak (10 nV); smooth: IDA's tolerance; the fixed-step
+  // methods to their order at h / tau_on = 0.1 (euler's first-order error (h / 2 tau) e^-1 5 V
+  // = 0.09 V; theta's second order).
+  for (auto [method, tol] : {std::pair{"event", 1e-7}, std::pair{"smooth", 1e-5}, std::pair{"radau5", 1e-7},
+                             std::pair{"radau3", 1e-4}, std::pair{"theta", 3e-3}, std::pair{"euler", 0.1}}) {
+    SCOPED_TRACE(method);
+    const Csv csv = run_csv(deck, method, "--probe 'v(out)'");
+    const std::vector<double> t = column(csv, "time"), v = column(csv, "v(out)");
+    ASSERT_EQ(t.size(), 401u);  // the grid, no extra rows: every edge is on it
+    for (size_t k = 0; k < t.size(); ++k) ASSERT_NEAR(v[k], exact(t[k]), tol) << t[k];
+  }
+}
+
 // A triangle 0 -> 1 -> 0 V (1 ms up, 1 ms down) into a switch with VT = 0.5 V, VH = 0.205 V and
 // a 1 k load: on at 0.705 V (t = 0.705 ms) on the way up, off at 0.295 V (t = 1.705 ms) on the
 // way down, not at 0.705 V (t = 1.295 ms). On: v(out) = 5 * 1000/1001. (Neither time is a

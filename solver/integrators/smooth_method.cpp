@@ -21,6 +21,7 @@ struct SmoothMethod::Schedule {
   std::vector<double> outputs;
   std::vector<double> stops;
   double tstep = 0;
+  double merge = 0;  // breakpoints closer than this are one restart
 };
 
 namespace {
@@ -373,7 +374,7 @@ SmoothMethod::Schedule SmoothMethod::make_schedule(const LcsProblem& model,
   const double end = s.outputs.back();
 
   // Breakpoints closer than this are one restart (the later one: every jump is then behind it).
-  const double merge = 1e-13 * end;
+  const double merge = s.merge = 1e-13 * end;
   const std::vector<double> bps = model.inputs().breakpoints(0, end);
   for (size_t k = 0; k < bps.size(); ++k) {
     if (bps[k] <= merge || bps[k] >= end - merge) continue;
@@ -568,13 +569,19 @@ void SmoothMethod::DoRun(const Eigen::VectorXd& x0, const OutputGrid& grid, cons
 
 std::optional<GuardCrossing> SmoothMethod::RunSegment(const SegmentStart& start, const OutputGrid& grid,
                                                       const Emit& emit, const Progress& progress) {
-  const double t0 = start.t;
+  if (start.t == 0) stats_ = {};  // a later segment of the same configuration adds to its counts
   Eigen::VectorXd x0 = start.x;
-  if (t0 == 0) stats_ = {};  // a later segment of the same configuration adds to its counts
   const Schedule schedule = make_schedule(model_, grid);
   const int n = dae_.states(), m = dae_.pairs();
   const std::vector<double>& outs = schedule.outputs;
   const std::vector<double>& stops = schedule.stops;
+  // A switch turned by a source's zero-width edge is located by IDA's root finder within rounding
+  // before the edge's breakpoint: the segment starts at the breakpoint, with the sources' values
+  // after the jump (IDA cannot start a segment shorter than its rounding: IDACalcIC's "tout1 too
+  // close to t0"; x is continuous across the 1e-19 s).
+  double t0 = start.t;
+  for (double b : stops)
+    if (b > t0 && b - t0 <= schedule.merge) t0 = b;
   size_t first = 0;  // the first stop after the segment's start
   while (first + 1 < stops.size() && stops[first] <= t0) ++first;
   auto crossing = [&](double t, const Eigen::VectorXd& y, std::vector<int> crossed) {

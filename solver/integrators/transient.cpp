@@ -325,6 +325,11 @@ void run_switched_fixed_step(SwitchFamily& family, SwitchConfig config, const Ou
     emit(0.0);
     double t = 0.0, switched_at = -1;
     int switches_here = 0, switches_in_step = 0;  // at one instant; since the last grid time
+    const std::vector<double> corners = cur->model->inputs().breakpoints(0.0, tstop);
+    auto corner_near = [&](double tq) -> const double* {  // a corner within rounding of tq
+      auto it = std::lower_bound(corners.begin(), corners.end(), tq - 1e-9 * h);
+      return it != corners.end() && *it <= tq + 1e-9 * h ? &*it : nullptr;
+    };
     long k = 0;  // the run has reached the grid time k h
     while (t < tstop) {
       const long knext = k + 1;
@@ -334,7 +339,14 @@ void run_switched_fixed_step(SwitchFamily& family, SwitchConfig config, const Ou
       const double step = t_next - t;
       Eigen::VectorXd x1 = x, z1 = z;
       cur->stepper->Step(t, step, x1, z1);
-      const Eigen::VectorXd c0 = family.controls(config, x, z, t), c1 = family.controls(config, x1, z1, t_next);
+      // A source's corner within rounding of a step's end (k h is 4.9999999999999996e-6 where a
+      // PULSE's zero-width edge is at 5e-6, and its periods' edges land on either side of the
+      // grid): the controls at the step's start are read after the corner's jump, at its end
+      // before it, so a switch such an edge turns changes at the edge, not half a step off.
+      const double* at_start = corner_near(t);
+      const double* at_end = corner_near(t_next);
+      const Eigen::VectorXd c0 = family.controls(config, x, z, at_start ? std::max(t, *at_start) : t);
+      const Eigen::VectorXd c1 = family.controls(config, x1, z1, t_next);
       const SwitchConfig wanted = family.next(config, c1);
       if (wanted == config) {
         x = x1, z = z1, t = t_next, k = knext;
@@ -343,15 +355,23 @@ void run_switched_fixed_step(SwitchFamily& family, SwitchConfig config, const Ou
         if (options.progress && (k & 4095) == 0) options.progress(t / tstop);
         continue;
       }
+      const Eigen::VectorXd c1_before =
+          at_end ? family.controls(config, x1, z1, std::min(t_next, *at_end), true) : c1;
+      const SwitchConfig wanted_before = at_end ? family.next(config, c1_before) : wanted;
       // The earliest crossing among the switches that change, and every switch crossing there.
       const std::vector<SwitchControl>& sw = family.switches();
       std::vector<double> at(sw.size(), INFINITY);
       double tau = t_next;
       for (size_t s = 0; s < sw.size(); ++s) {
         if (wanted[s] == config[s]) continue;
+        if (wanted_before[s] == config[s]) {  // turned by the jump at the step's end
+          at[s] = t_next;
+          continue;
+        }
         const double threshold = config[s] ? sw[s].off_below : sw[s].on_above;
         const bool beyond = config[s] ? c0(s) < threshold : c0(s) > threshold;
-        const double frac = beyond ? 0.0 : std::clamp((c0(s) - threshold) / (c0(s) - c1(s)), 0.0, 1.0);
+        const double frac =
+            beyond ? 0.0 : std::clamp((c0(s) - threshold) / (c0(s) - c1_before(s)), 0.0, 1.0);
         at[s] = t + frac * step;
         tau = std::min(tau, at[s]);
       }

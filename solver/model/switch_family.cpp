@@ -43,7 +43,7 @@ const CircuitModel& SwitchFamily::model(const SwitchConfig& config) {
 }
 
 Eigen::VectorXd SwitchFamily::controls(const SwitchConfig& config, const Eigen::VectorXd& x,
-                                       const Eigen::VectorXd& z, double t) {
+                                       const Eigen::VectorXd& z, double t, bool before) {
   const CircuitModel& m = model(config);
   auto it = control_maps_.find(config);
   if (it == control_maps_.end()) {
@@ -54,7 +54,7 @@ Eigen::VectorXd SwitchFamily::controls(const SwitchConfig& config, const Eigen::
   const OutputMap& o = it->second;
   Eigen::VectorXd y = o.G * x;
   if (z.size() > 0) y += o.H * z;
-  y += o.J * m.input_values(t) + o.K * m.input_derivatives(t);
+  y += o.J * (before ? m.inputs().values_before(t) : m.input_values(t)) + o.K * m.input_derivatives(t);
   for (size_t k = 0; k < switches_.size(); ++k) y(k) *= switches_[k].sign;
   return y;
 }
