@@ -178,6 +178,14 @@ int run_command(const RunArgs& args) {
   // final run's note says so when it falls back too). A bridge whose fitted diodes differ stopped
   // the event method in a refit pass, and the refit kept its first pass's lines without a word.
   std::optional<TransientOptions> before_final_fallback;
+  // --diode auto's ideal run, written instead where its smooth run stops at a numerical failure.
+  struct IdealRun {
+    Netlist netlist;
+    CircuitModel model;
+    TransientOptions options;
+    std::string why_not;  // why auto chose the smooth method
+  };
+  std::optional<IdealRun> ideal_instead;
   if (method_defaulted && options.method == exact_reference_method().name && !method_of(options).smooth_model)
     before_final_fallback = fixed_step_fallback(netlist, options, tmax_below_tstep ? netlist.tran->tmax : options.step,
                                                 args.step.has_value());
@@ -229,6 +237,7 @@ int run_command(const RunArgs& args) {
     if (!smooth_because.empty()) {
       std::cerr << "lcspice: --diode auto: " << smooth_because << "; running --method " << smooth_method_name()
                 << " with Shockley diodes\n";
+      ideal_instead.emplace(IdealRun{netlist, std::move(model), options, smooth_because});
       options.method = smooth_method_name();
       netlist = smoothed(netlist);
       model = build_model(netlist, 0.0, options.tstop);
@@ -321,6 +330,22 @@ int run_command(const RunArgs& args) {
         throw CliError(kExitNumerical, std::string("lcspice: error: numerical failure ") + default_failure->what() +
                                            " (--method " + options.method + ", tried next, failed too " + e.what() +
                                            ")" + default_where);
+      }
+      // --diode auto: a smooth run that stops (a BJT switching an inductor off with no junction
+      // capacitance: the collector's voltage jumps, and IDA's step fell to 1e-19 s) gives way to
+      // the ideal answer it was chosen over, with the reason it was.
+      if (ideal_instead && sink.replaceable()) {
+        default_failure = e;
+        default_where = where;
+        warn("--diode auto: method " + options.method + " failed " + e.what() + "; writing the ideal answer (method " +
+             ideal_instead->options.method + ", the junctions' fitted lines) instead, passed over because " +
+             ideal_instead->why_not);
+        netlist = std::move(ideal_instead->netlist);
+        model = std::move(ideal_instead->model);
+        options = ideal_instead->options;
+        ideal_instead.reset();
+        outputs = output_map_or_exit(model, run_probes);
+        continue;
       }
       // The fixed-step default stands in unless it too would refuse (a source it would need more
       // than kMaxGuardedSteps steps to resolve, a step count that stopped the event method too):
