@@ -89,7 +89,72 @@ RL out 0 1k
     const std::vector<double> t = column(csv, "time"), v = column(csv, "v(out)");
     ASSERT_EQ(t.size(), 401u);  // the grid, no extra rows: every edge is on it
     for (size_t k = 0; k < t.size(); ++k) ASSERT_NEAR(v[k], exact(t[k]), tol) << t[k];
+    // An edge at TSTOP itself (the switch opens at 25 us): none of the breakpoints before TSTOP;
+    // the last step interpolated the control and switched at 24.75 us (radau5 4.78 V for 4.906 V).
+    const Csv short_run = run_csv(deck, method, "--probe 'v(out)' --tstop 25u");
+    const std::vector<double> ts = column(short_run, "time"), vs = column(short_run, "v(out)");
+    ASSERT_EQ(ts.size(), 51u);
+    EXPECT_NEAR(vs.back(), exact(25e-6), tol);
   }
+}
+
+// Two sources' edges 1e-18 s apart, both within rounding of one grid time: the step's start reads
+// the controls after both jumps (after the first only, S2 switched half a step late: radau5 5e-4
+// off event, where the two agree to 1e-8).
+TEST(Switches, EdgesWithinRoundingOfEachOtherAreBothTakenAtTheGridTime) {
+  const fs::path deck = write_deck("switch_deck_", "close_edges", R"(close edges
+VIN in 0 DC 10
+VCTL ctl 0 PULSE(0 5 5u 0 0 20u 50u)
+VCT2 ct2 0 PULSE(0 5 5.000000000001u 0 0 7u 50u)
+S1 in x ctl 0 SMOD
+S2 in y ct2 0 SMOD2
+S3 y x ctl 0 SMOD3
+R1 x out 1k
+R2 y out 2k
+C1 out 0 10n
+RL out 0 1k
+.model SMOD SW(VT=2.5 VH=0 RON=1 ROFF=1e12)
+.model SMOD2 SW(VT=1 VH=0.5 RON=1 ROFF=1e12)
+.model SMOD3 SW(VT=4 VH=0.5 RON=10 ROFF=1e12)
+.tran 0.5u 60u
+.end
+)");
+  const Csv exact = run_csv(deck, "event", "--probe 'v(out)'"), radau5 = run_csv(deck, "radau5", "--probe 'v(out)'");
+  const std::vector<double> te = column(exact, "time"), ve = column(exact, "v(out)");
+  const std::vector<double> t = column(radau5, "time"), v = column(radau5, "v(out)");
+  ASSERT_EQ(t.size(), 121u);
+  for (size_t k = 0; k < t.size(); ++k) ASSERT_NEAR(v[k], ve[row_at(te, t[k])], 1e-7) << t[k];
+}
+
+// A flyback converter: the switch opens (ROFF = 1 Meg) against the primary's 1 uH of leakage
+// (k = 0.99), a mode whose fast rate ROFF/L_leak is 1e12/s, stiff at any step. The trapezoidal
+// rule's R(h lambda) is near -1 there: the leakage current rang, i(l1) flipping sign at 6198 of
+// the 10200 rows down to -10.3 A, and v(out) reached 58.2 V at 1 ms (event: 19.95 V). The steps
+// after a switching into a stiff configuration are now implicit Euler's.
+TEST(Switches, ThetaDoesNotRingAfterAFlybacksSwitchOpens) {
+  const fs::path deck = write_deck("switch_deck_", "flyback", R"(flyback
+VIN in 0 DC 12
+L1 in sw 100u
+L2 0 s 400u
+K1 L1 L2 0.99
+S1 sw 0 ctl 0 SMOD
+VCTL ctl 0 PULSE(0 5 0 10n 10n 4u 10u)
+D1 s out DS
+C1 out 0 47u
+RL out 0 100
+.model SMOD SW(VT=2.5 VH=0.1 RON=0.05 ROFF=1Meg)
+.model DS D(VON=0.7 RON=0.05)
+.tran 0.1u 1m
+.print tran v(out) i(l1)
+.end
+)");
+  const Csv theta = run_csv(deck, "theta"), event = run_csv(deck, "event");
+  const std::vector<double> t = column(theta, "time"), v = column(theta, "v(out)"), i = column(theta, "i(l1)");
+  const std::vector<double> te = column(event, "time"), ve = column(event, "v(out)");
+  // The primary's current only charges and discharges the core: never negative.
+  for (size_t k = 0; k < i.size(); ++k) ASSERT_GT(i[k], -1e-3) << t[k];
+  // The output within theta's (first-order, at the switchings) error of the exact one.
+  for (double at : {0.25e-3, 0.5e-3, 1e-3}) EXPECT_NEAR(v[row_at(t, at)], ve[row_at(te, at)], 0.01 * ve[row_at(te, at)]) << at;
 }
 
 // A triangle 0 -> 1 -> 0 V (1 ms up, 1 ms down) into a switch with VT = 0.5 V, VH = 0.205 V and

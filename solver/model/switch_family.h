@@ -42,8 +42,8 @@ class SwitchFamily {
   SwitchConfig config_of(const CircuitModel& model) const;
   int formed() const { return static_cast<int>(cache_.size()); }
 
-  // The controls at (x, z, t) in the model of `config`; `before`: with the sources' limits from
-  // the left at t (a zero-width edge at t not yet taken).
+  // The controls at (x, z, t) in the model of `config`; `before`: with the sources' values from
+  // the left at t (a zero-width edge at t not yet taken; their derivatives stay the right ones).
   Eigen::VectorXd controls(const SwitchConfig& config, const Eigen::VectorXd& x, const Eigen::VectorXd& z,
                            double t, bool before = false);
   // The configuration the controls ask for, with hysteresis: an off switch turns on above
