@@ -264,15 +264,6 @@ void run_fixed_step(const CircuitModel& model, const OutputMap& outputs, const T
   notes();
 }
 
-// Switches (S, W) with a fixed-step method. Each configuration of the switches is its own model
-// (SwitchFamily) with the same states x. After every step the controls are evaluated; when one
-// crossed its threshold (VT + VH turning on, VT - VH turning off) the crossing time is located by
-// linear interpolation of that control over the step, the step is taken again from its start to
-// that time, a row is written there (as for an event), and the run continues in the new
-// configuration from the same x (its stepper restarted, so z is consistent with x); one shorter
-// step then brings the run back onto the grid of multiples of h. The switching time is exact to
-// the linear interpolation of the control over one step (an error of order h^2 where the control
-// is smooth), not to a tolerance.
 // The sources' corners within rounding of the grid times a fixed-step run reaches, read a chunk
 // of steps at a time (a fast PULSE over 1e7 steps has 2e7 of them).
 class SourceCorners {
@@ -317,6 +308,15 @@ double fastest_rate(const CircuitModel& model) {
   return A.size() > 0 ? A.cwiseAbs().rowwise().sum().maxCoeff() : 0.0;
 }
 
+// Switches (S, W) with a fixed-step method. Each configuration of the switches is its own model
+// (SwitchFamily) with the same states x. After every step the controls are evaluated; when one
+// crossed its threshold (VT + VH turning on, VT - VH turning off) the crossing time is located by
+// linear interpolation of that control over the step, the step is taken again from its start to
+// that time, a row is written there (as for an event), and the run continues in the new
+// configuration from the same x (its stepper restarted, so z is consistent with x); one shorter
+// step then brings the run back onto the grid of multiples of h. The switching time is exact to
+// the linear interpolation of the control over one step (an error of order h^2 where the control
+// is smooth), not to a tolerance.
 void run_switched_fixed_step(SwitchFamily& family, SwitchConfig config, const OutputMap& base_outputs,
                              const TransientOptions& options, const MethodEntry& entry, Eigen::VectorXd x,
                              const Eigen::VectorXd& z0, OutputSink& sink, TransientSummary& summary,
@@ -394,11 +394,24 @@ void run_switched_fixed_step(SwitchFamily& family, SwitchConfig config, const Ou
       const double step = t_next - t;
       Eigen::VectorXd x1 = x, z1 = z;
       const bool by_euler = euler_due && cur->euler;
-      if (by_euler) {
-        cur->euler->Start(t, h, x1, z1);
-        cur->euler->Step(t, step, x1, z1);
-      } else {
-        cur->stepper->Step(t, step, x1, z1);
+      auto take_step = [&](double dt, Eigen::VectorXd& xs, Eigen::VectorXd& zs) {
+        if (!by_euler) return cur->stepper->Step(t, dt, xs, zs);
+        cur->euler->Start(t, h, xs, zs);
+        cur->euler->Step(t, dt, xs, zs);
+      };
+      take_step(step, x1, z1);
+      const Eigen::VectorXd c1 = family.controls(config, x1, z1, t_next);
+      const SwitchConfig wanted = family.next(config, c1);
+      if (wanted == config) {
+        x = x1, z = z1, t = t_next, k = knext;
+        if (by_euler && step >= 0.5 * h) {  // Euler's steps end: theta from here
+          euler_due = false;
+          cur->stepper->Start(t, h, x, z);
+        }
+        switches_in_step = 0;
+        emit(t);
+        if (options.progress && (k & 4095) == 0) options.progress(t / tstop);
+        continue;
       }
       // A source's corner within rounding of a step's end (k h is 4.9999999999999996e-6 where a
       // PULSE's zero-width edge is at 5e-6, and its periods' edges land on either side of the
@@ -406,17 +419,6 @@ void run_switched_fixed_step(SwitchFamily& family, SwitchConfig config, const Ou
       // before it, so a switch such an edge turns changes at the edge, not half a step off.
       const std::optional<double> at_start = corners.last_near(t), at_end = corners.first_near(t_next);
       const Eigen::VectorXd c0 = family.controls(config, x, z, at_start ? std::max(t, *at_start) : t);
-      const Eigen::VectorXd c1 = family.controls(config, x1, z1, t_next);
-      const SwitchConfig wanted = family.next(config, c1);
-      if (wanted == config) {
-        x = x1, z = z1, t = t_next, k = knext;
-        if (by_euler) cur->stepper->Start(t, h, x, z);
-        if (step >= 0.5 * h) euler_due = false;
-        switches_in_step = 0;
-        emit(t);
-        if (options.progress && (k & 4095) == 0) options.progress(t / tstop);
-        continue;
-      }
       const Eigen::VectorXd c1_before =
           at_end ? family.controls(config, x1, z1, std::min(t_next, *at_end), true) : c1;
       const SwitchConfig wanted_before = at_end ? family.next(config, c1_before) : wanted;
@@ -438,12 +440,7 @@ void run_switched_fixed_step(SwitchFamily& family, SwitchConfig config, const Ou
         tau = std::min(tau, at[s]);
       }
       if (tau - t > 1e-9 * h) {
-        if (by_euler) {
-          cur->euler->Start(t, h, x, z);
-          cur->euler->Step(t, tau - t, x, z);
-        } else {
-          cur->stepper->Step(t, tau - t, x, z);
-        }
+        take_step(tau - t, x, z);
         t = tau;
       }
       if (t > switched_at) switched_at = t, switches_here = 0;
